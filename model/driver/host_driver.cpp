@@ -1,0 +1,136 @@
+#include "driver/host_driver.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace hc {
+
+HostDriver::HostDriver(const Geometry& g, std::vector<const Image*> frames)
+    : g_(g), frames_(std::move(frames)), di_(g.di()), dj_(g.dj()) {
+    g_.validate();
+    if (frames_.empty()) throw std::invalid_argument("host driver: no frames to send");
+    for (size_t f = 0; f < frames_.size(); ++f) {
+        const Image& im = *frames_[f];
+        if (im.width != g.width || im.height != g.height)
+            throw std::invalid_argument("frame " + std::to_string(f) + " is " +
+                                        std::to_string(im.width) + "x" + std::to_string(im.height) +
+                                        " but the design is built for " + std::to_string(g.width) +
+                                        "x" + std::to_string(g.height));
+    }
+}
+
+long HostDriver::total_writes() const {
+    const long n = static_cast<long>(frames_.size());
+    // every frame's body, minus the two preloaded columns of frames 1.., plus their tails
+    return n * g_.frame_writes();
+}
+
+long HostDriver::total_reads() const {
+    // reads in a body: one per column with x = j-5 >= 3 (across rows: also the previous
+    // row's last two); counted by running the loop's rule without the pixels.
+    const int cols = g_.columns();
+    const int rows = g_.rows();
+    long per_frame = 0;
+    // first row: columns j >= 8 read (x = j-5 >= 3); later rows: j = 0,1 read the previous
+    // row's last two windows, j >= 8 as before
+    per_frame += static_cast<long>(rows) * (cols - 8 > 0 ? cols - 8 : 0) + static_cast<long>(rows - 1) * 2;
+    const long n = static_cast<long>(frames_.size());
+    return n * per_frame + (n - 1) * 2;
+}
+
+Corner HostDriver::quadrant_centre(const ReadPos& r, int q) const {
+    return {r.frame, r.x + ((q & 2) ? dj_ : 0), r.y + ((q & 1) ? di_ : 0)};
+}
+
+Corner HostDriver::write_centre(const WritePos& p, int q) const {
+    return quadrant_centre(ReadPos{p.frame, p.j - 3, p.i}, q);
+}
+
+void HostDriver::decode(const ReadPos& r, std::uint32_t value, std::vector<Corner>& out) const {
+    for (int q = 0; q < 4; ++q)
+        if ((value >> (3 - q)) & 1U) out.push_back(quadrant_centre(r, q));
+}
+
+bool HostDriver::next(BusEvent& ev) {
+    if (done_) return false;
+    const int last_frame = static_cast<int>(frames_.size()) - 1;
+    for (;;) {
+        if (!in_tail_) {
+            if (!column_open_) {
+                // entering column (i_, j_): shift the tracked centres as the host does
+                px_[2] = px_[1];
+                py_[2] = py_[1];
+                px_[1] = px_[0];
+                py_[1] = py_[0];
+                px_[0] = j_ - 3;
+                py_[0] = i_;
+                const bool send = i_ > 3 || j_ > 1 || preload_;
+                if (send) {
+                    if (i_ > 3) preload_ = false;
+                    column_open_ = true;
+                    k_ = -3;
+                } else {
+                    // column preloaded by the previous frame's tail: skip it
+                    if (++j_ >= g_.columns()) { j_ = 0; ++i_; }
+                    continue;
+                }
+            }
+            const Image& im = *frames_[frame_];
+            const int r0 = i_ + k_;
+            ev.data = static_cast<std::uint32_t>(im.at(r0, j_)) |
+                      static_cast<std::uint32_t>(im.at(r0 + di_, j_)) << 8 |
+                      static_cast<std::uint32_t>(im.at(r0, j_ + dj_)) << 16 |
+                      static_cast<std::uint32_t>(im.at(r0 + di_, j_ + dj_)) << 24;
+            ev.pos = WritePos{frame_, i_, j_, k_, false};
+            ev.read.reset();
+            if (k_ == 3) {
+                column_open_ = false;
+                if (px_[2] >= 3 && py_[2] >= 3) ev.read = ReadPos{frame_, px_[2], py_[2]};
+                if (++j_ >= g_.columns()) {
+                    j_ = 0;
+                    if (++i_ >= g_.height / 2) {   // frame body done
+                        if (frame_ < last_frame) {
+                            in_tail_ = true;
+                            tail_col_ = 0;
+                            k_ = -3;
+                        } else {
+                            done_ = true;
+                        }
+                    }
+                }
+            } else {
+                ++k_;
+            }
+            return true;
+        }
+        // tail: the next frame's columns 0 and 1 of its first window row (rows 0..6)
+        const Image& nx = *frames_[frame_ + 1];
+        const int r0 = k_ + 3;
+        const int c = tail_col_;
+        ev.data = static_cast<std::uint32_t>(nx.at(r0, c)) |
+                  static_cast<std::uint32_t>(nx.at(r0 + di_, c)) << 8 |
+                  static_cast<std::uint32_t>(nx.at(r0, c + dj_)) << 16 |
+                  static_cast<std::uint32_t>(nx.at(r0 + di_, c + dj_)) << 24;
+        ev.pos = WritePos{frame_ + 1, 3, c, k_, true};
+        ev.read.reset();
+        if (k_ == 3) {
+            // after column 0: the window two columns back (px[1]); after column 1: px[0]
+            const int slot = tail_col_ == 0 ? 1 : 0;
+            ev.read = ReadPos{frame_, px_[slot], py_[slot]};
+            if (++tail_col_ == 2) {
+                in_tail_ = false;
+                ++frame_;
+                i_ = 3;
+                j_ = 0;
+                px_[0] = px_[1] = px_[2] = -1;   // apply() starts with fresh locals
+                py_[0] = py_[1] = py_[2] = -1;
+            }
+            k_ = -3;
+        } else {
+            ++k_;
+        }
+        return true;
+    }
+}
+
+}  // namespace hc

@@ -1,0 +1,34 @@
+// harris_response.hpp: model of rtl/harris_response.vhd (combinational parts of both steps).
+//
+// Step 1 (t(2)): ac = a*c, bb = b*b (2*bf_w bits, exact) and
+//   ktr2 = resize(tr2(top downto k_shift1), ktr_w) + resize(tr2(top downto k_shift2), ktr_w)
+//   with tr2 = (a+c)^2, a+c in bf_w+1 bits: k*tr^2 with k = 2^-5 + 2^-7, each quotient floored.
+// Step 2 (t(3)): r = resize(ac) - resize(bb) - resize(ktr2), all in resp_w bits, wrapping.
+// Harris & Stephens (1988): R = det(M) - k tr(M)^2.
+#pragma once
+
+#include "harris/harris_pkg.hpp"
+#include "harris/types.hpp"
+
+namespace hc {
+
+/// The step-1 registers of one response.
+struct ResponseTerms {
+    Word ac, bb, ktr2;
+};
+
+inline ResponseTerms harris_response_terms(const Word& a, const Word& b, const Word& c,
+                                           const Formats& f) {
+    const Word trace = resize(a, f.trace_w()) + resize(c, f.trace_w());
+    const Word tr2 = trace * trace;
+    const int top = f.trace_sq_w() - 1;
+    const Word ktr2 = resize(slice(tr2, top, f.k_shift1), f.ktr_w) +   // floor(tr2 / 32)
+                      resize(slice(tr2, top, f.k_shift2), f.ktr_w);    // + floor(tr2 / 128)
+    return {a * c, b * b, ktr2};
+}
+
+inline Word harris_response(const ResponseTerms& t, const Formats& f) {
+    return resize(t.ac, f.resp_w) - resize(t.bb, f.resp_w) - resize(t.ktr2, f.resp_w);
+}
+
+}  // namespace hc

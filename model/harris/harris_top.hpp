@@ -1,0 +1,79 @@
+// harris_top.hpp: cycle-accurate model of rtl/harris_top.vhd.
+//
+// One call of write() is one clock edge with write = '1': every register takes the value
+// the RTL computes from the values before the edge. Stages are evaluated from the last to
+// the first so that each reads its predecessor's pre-edge value. Cycles with write = '0'
+// and bus reads change nothing, so they have no call. Every register is exposed.
+#pragma once
+
+#include <cstdint>
+
+#include "harris/control_shift_register.hpp"
+#include "harris/corner_shift_register.hpp"
+#include "harris/find_max.hpp"
+#include "harris/harris_pkg.hpp"
+#include "harris/harris_response.hpp"
+#include "harris/input_converter_mux.hpp"
+#include "harris/load_control.hpp"
+#include "harris/observation.hpp"
+#include "harris/types.hpp"
+
+namespace hc {
+
+/// Which window a stage register holds: the write that completed the window's newest
+/// column (writes count from 1), and the quadrant. write <= 0: none (zeros, reset values).
+struct WindowTag {
+    long write = -1;
+    int quadrant = -1;
+    bool valid() const { return write > 0; }
+};
+
+/// Provenance of the windows held by each stage, for mismatch reports.
+struct StageTags {
+    WindowTag window, sobel, m, block, terms, response, delay, thresholded;
+};
+
+class HarrisTop {
+public:
+    HarrisTop(const Geometry& g, const Formats& f);
+
+    /// Asynchronous reset (rst = '0'): the registers the RTL resets take their reset values;
+    /// the others keep theirs.
+    void reset();
+    /// One bus write of a data word (4 pixels, byte q = quadrant q).
+    void write(std::uint32_t data);
+
+    bool load() const { return lc_.load; }
+    bool ready() const { return mux_.ready(lc_.load); }
+    std::uint8_t t() const { return ctrl_.t; }
+    Word thr() const;
+    bool cornerbit() const;
+    /// The 32-bit value the host reads (bits 3..0 = quadrants 0..3).
+    std::uint32_t corner() const { return csr_.out(); }
+    Observation observe() const;
+
+    const Geometry& geometry() const { return g_; }
+    const Formats& formats() const { return f_; }
+    long writes() const { return writes_; }
+    const FindMax& find_max() const { return fm_; }
+    const StageTags& tags() const { return tags_; }
+
+private:
+    Geometry g_;
+    Formats f_;
+    long writes_ = 0;
+    LoadControl lc_;
+    InputConverterMux mux_;
+    ControlShiftRegister ctrl_;
+    Matrix5 sx_, sy_, ma_, mb_, mc_;
+    Matrix3 bfa_, bfb_, bfc_;
+    std::array<std::array<ResponseTerms, 3>, 3> terms_{};
+    bool terms_defined_ = false;   // step-1 registers have no reset: 'U' until the first t(2)
+    Matrix3 hr_;
+    FindMax fm_;
+    Matrix3 r0_delay_, tr_;
+    CornerShiftRegister csr_;
+    StageTags tags_;
+};
+
+}  // namespace hc

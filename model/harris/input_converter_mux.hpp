@@ -1,0 +1,46 @@
+// input_converter_mux.hpp: model of rtl/input_converter_mux.vhd.
+//
+// Four converters; quadrant q sees the write's byte q and the row counter delayed by q
+// writes. The output register takes window i-1 on a write with i = 1..4, else zeros;
+// ready = (i in 2..5) and not load. Only i is reset; the delays and the output register
+// keep their values (the output is undefined until the first write).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "harris/input_converter.hpp"
+
+namespace hc {
+
+struct InputConverterMux {
+    int i = 1;                                   ///< row counter, 1..7
+    std::array<int, 3> i_dly{1, 1, 1};           ///< i delayed by 1, 2, 3 writes (no reset)
+    std::array<std::uint32_t, 3> data_dly{};     ///< data delayed by 1, 2, 3 writes (no reset)
+    std::array<Window7, 4> win{};                ///< the four converters' windows
+    Window7 a{};                                 ///< output register
+    bool a_defined = false;                      ///< false until the first write ('U')
+
+    void reset() {
+        i = 1;
+        for (auto& w : win) w = Window7{};
+    }
+
+    bool ready(bool load) const { return i > 1 && i <= 5 && !load; }
+
+    InputConverterMux next(std::uint32_t data) const {
+        InputConverterMux n = *this;
+        n.a = i <= 4 ? win[i - 1] : Window7{};
+        n.a_defined = true;
+        n.i = i < 7 ? i + 1 : 1;
+        n.i_dly = {i, i_dly[0], i_dly[1]};
+        n.data_dly = {data, data_dly[0], data_dly[1]};
+        input_converter_shift(n.win[0], i, static_cast<Pixel>(data & 0xFFU));
+        for (int q = 1; q < 4; ++q)
+            input_converter_shift(n.win[q], i_dly[q - 1],
+                                  static_cast<Pixel>((data_dly[q - 1] >> (8 * q)) & 0xFFU));
+        return n;
+    }
+};
+
+}  // namespace hc

@@ -1,0 +1,32 @@
+// sobel_x.hpp: model of rtl/sobel_x.vhd (combinational part; the register is in harris_top).
+//
+// ix = [-1 0 +1; -2 0 +2; -1 0 +1] * a. Each pixel becomes a 9-bit signed (a 10-bit one for
+// the doubled middle row), every term is resized to sobel_w and the six are added in
+// sobel_w bits, exactly as the VHDL does.
+#pragma once
+
+#include "harris/harris_pkg.hpp"
+#include "harris/types.hpp"
+
+namespace hc {
+
+/// +-p widened like signed(resize(p, w)) with an optional negation and doubling.
+inline Word pixel_term(Pixel p, int width, bool negate, bool doubled) {
+    const Word x = as_signed(resize(Word::uns(p, 8), width));   // zero-extend, read as signed
+    Word t = doubled ? (negate ? -x - x : x + x) : (negate ? -x : x);
+    return t;
+}
+
+inline Word sobel_x(const Pixels3& a, const Formats& f) {
+    const int w = f.sobel_w;
+    const Word p11 = pixel_term(a[0][0], 9, true, false);
+    const Word p21 = pixel_term(a[1][0], 10, true, true);
+    const Word p31 = pixel_term(a[2][0], 9, true, false);
+    const Word p13 = pixel_term(a[0][2], 9, false, false);
+    const Word p23 = pixel_term(a[1][2], 10, false, true);
+    const Word p33 = pixel_term(a[2][2], 9, false, false);
+    return resize(p11, w) + resize(p13, w) + resize(p21, w) + resize(p23, w) + resize(p31, w) +
+           resize(p33, w);
+}
+
+}  // namespace hc

@@ -1,0 +1,24 @@
+// threshold.hpp: model of rtl/threshold.vhd and of the threshold value formed in harris_top.
+//
+// thr = resize(max(top downto thr_shift1)) + resize(max(top downto thr_shift2)) in resp_w
+// bits: floor(max/128) + floor(max/512), i.e. about 0.00977*max (OpenCV uses 0.01*max of
+// the current frame; the hardware uses the maximum of the previous find-max period).
+// A response below thr becomes 0; one equal to thr is kept.
+#pragma once
+
+#include "harris/harris_pkg.hpp"
+#include "harris/types.hpp"
+
+namespace hc {
+
+inline Word threshold_value(const Word& max, const Formats& f) {
+    const int top = f.resp_w - 1;
+    return resize(slice(max, top, f.thr_shift1), f.resp_w) +
+           resize(slice(max, top, f.thr_shift2), f.resp_w);
+}
+
+inline Word threshold(const Word& r, const Word& thr) {
+    return r >= thr ? r : Word::sgn(0, r.width());
+}
+
+}  // namespace hc

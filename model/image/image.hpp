@@ -1,0 +1,35 @@
+// image.hpp: an 8-bit grayscale image, the only picture type the model and driver need.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace hc {
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> pixels;   ///< row-major
+
+    Image() = default;
+    Image(int w, int h, std::uint8_t fill = 0)
+        : width(w), height(h), pixels(static_cast<size_t>(w) * static_cast<size_t>(h), fill) {
+        if (w <= 0 || h <= 0)
+            throw std::invalid_argument("image size " + std::to_string(w) + "x" + std::to_string(h));
+    }
+    std::uint8_t at(int row, int col) const { return pixels[static_cast<size_t>(row) * width + col]; }
+    std::uint8_t& at(int row, int col) { return pixels[static_cast<size_t>(row) * width + col]; }
+    friend bool operator==(const Image&, const Image&) = default;
+};
+
+/// Synthetic test frames. `seed` makes random ones reproducible.
+enum class Pattern { flat, checkerboard, random, extremes, blocks };
+Pattern parse_pattern(const std::string& name);   ///< throws std::invalid_argument
+std::string pattern_name(Pattern p);
+/// Frame `index` of a synthetic sequence: patterns move by a few pixels per frame so that
+/// chained frames differ.
+Image make_pattern(Pattern p, int width, int height, int index, std::uint32_t seed = 1);
+
+}  // namespace hc
