@@ -1,0 +1,102 @@
+// hc_bridge.cpp: the extern "C" entry points of hc_bridge.h over one cosim::Session.
+// Every entry point catches every exception: none may unwind into GHDL's runtime.
+#include "hc_bridge.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include "session.hpp"
+
+namespace {
+std::unique_ptr<hc::cosim::Session> g_session;
+int g_status = 2;   // error until a session closes normally
+std::vector<long> g_generics;   // handed over by hc_generic, in harris_pkg order
+
+void fail(const char* where, const char* what) {
+    std::fprintf(stderr, "harris-cosim bridge: %s: %s\n", where, what);
+    std::fflush(stderr);
+    g_status = 2;
+}
+}  // namespace
+
+extern "C" int32_t hc_generic(int32_t index, int32_t value) {
+    if (index >= 0 && index < 64) {
+        if (g_generics.size() <= static_cast<size_t>(index)) g_generics.resize(static_cast<size_t>(index) + 1, -1);
+        g_generics[static_cast<size_t>(index)] = value;
+    }
+    return 0;
+}
+
+extern "C" int32_t hc_open(int32_t obs_w) {
+    try {
+        const char* path = std::getenv("HC_COSIM_CONFIG");
+        if (!path || !*path) throw std::runtime_error("HC_COSIM_CONFIG is not set (run through 'harris-cosim rtl')");
+        std::ifstream f(path);
+        if (!f) throw std::runtime_error(std::string("cannot read run configuration '") + path + "'");
+        std::stringstream ss;
+        ss << f.rdbuf();
+        auto s = std::make_unique<hc::cosim::Session>(hc::cosim::run_config_from_json(ss.str()));
+        s->check_design(obs_w, g_generics);
+        g_session = std::move(s);
+        return 0;
+    } catch (const std::exception& e) {
+        fail("hc_open", e.what());
+        return 1;
+    } catch (...) {
+        fail("hc_open", "unknown exception");
+        return 1;
+    }
+}
+
+extern "C" int32_t hc_next(void) {
+    if (!g_session) return HC_CMD_END;
+    try {
+        switch (g_session->next()) {
+            case hc::cosim::Command::write: return HC_CMD_WRITE;
+            case hc::cosim::Command::idle: return HC_CMD_IDLE;
+            case hc::cosim::Command::end: return HC_CMD_END;
+        }
+    } catch (const std::exception& e) {
+        fail("hc_next", e.what());
+        g_session.reset();
+    } catch (...) {
+        fail("hc_next", "unknown exception");
+        g_session.reset();
+    }
+    return HC_CMD_END;
+}
+
+extern "C" int32_t hc_data(void) {
+    return g_session ? static_cast<int32_t>(g_session->data()) : 0;
+}
+
+extern "C" int32_t hc_observe(const uint8_t* obs) {
+    if (!g_session) return 1;
+    try {
+        return g_session->observe(obs) ? 1 : 0;
+    } catch (const std::exception& e) {
+        fail("hc_observe", e.what());
+    } catch (...) {
+        fail("hc_observe", "unknown exception");
+    }
+    g_session.reset();
+    return 1;
+}
+
+extern "C" int32_t hc_close(void) {
+    if (!g_session) return g_status;
+    try {
+        g_status = g_session->close();
+    } catch (const std::exception& e) {
+        fail("hc_close", e.what());
+    } catch (...) {
+        fail("hc_close", "unknown exception");
+    }
+    g_session.reset();
+    std::fflush(stderr);
+    return g_status;
+}

@@ -1,0 +1,276 @@
+#include "session.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+namespace hc::cosim {
+
+using nlohmann::json;
+
+Session::Session(RunConfig cfg) : cfg_(std::move(cfg)), cmp_(cfg_.formats) {
+    frames_ = read_frames(cfg_.frames_file);
+    std::vector<const Image*> ptrs;
+    for (const auto& f : frames_) ptrs.push_back(&f);
+    driver_ = std::make_unique<HostDriver>(cfg_.geometry, ptrs);
+    model_ = std::make_unique<HarrisTop>(cfg_.geometry, cfg_.formats);
+    corners_per_frame_.assign(frames_.size(), 0);
+    if (!cfg_.reads_file.empty()) {
+        reads_out_.open(cfg_.reads_file + ".part");
+        if (!reads_out_) throw std::runtime_error("cannot write '" + cfg_.reads_file + ".part'");
+        reads_out_ << "write,frame,x,y,value\n";
+    }
+    start_ = last_progress_ = std::chrono::steady_clock::now();
+}
+
+void Session::check_design(int obs_w, const std::vector<long>& got) const {
+    const auto want = generics(cfg_.geometry, cfg_.formats);
+    if (got.size() != want.size())
+        throw std::invalid_argument("testbench handed over " + std::to_string(got.size()) + " generics, expected " +
+                                    std::to_string(want.size()));
+    for (size_t k = 0; k < want.size(); ++k)
+        if (want[k].second != got[k])
+            throw std::invalid_argument("testbench generic " + want[k].first + " = " + std::to_string(got[k]) +
+                                        " but the run is configured for " + std::to_string(want[k].second));
+    if (obs_w != cmp_.width())
+        throw std::invalid_argument("observation port is " + std::to_string(obs_w) +
+                                    " bits but the C++ layout (model/harris/observation.hpp) has " +
+                                    std::to_string(cmp_.width()));
+}
+
+Command Session::next() {
+    if (stop_) return Command::end;
+    if (cfg_.idle_every > 0 && since_idle_ >= cfg_.idle_every) {
+        since_idle_ = 0;
+        idle_now_ = true;
+        return Command::idle;
+    }
+    idle_now_ = false;
+    if (cfg_.max_writes > 0 && model_->writes() >= cfg_.max_writes) return Command::end;
+    if (!driver_->next(ev_)) return Command::end;
+    model_->write(ev_.data);       // the model's post-edge state, compared after the RTL's edge
+    ++since_idle_;
+    positions_.emplace_back(model_->writes(), ev_.pos);
+    if (positions_.size() > 64) positions_.pop_front();
+    return Command::write;
+}
+
+void Session::record_read(const std::uint8_t* codes) {
+    // the host reads the corner port after the write; take the RTL's bits
+    const int corner_field = static_cast<int>(cmp_.layout().size()) - 1;
+    int e = 0;
+    while (cmp_.element_field(e) != corner_field) ++e;
+    std::uint32_t value = 0;
+    bool meta = false;
+    for (int b = 0; b < 32; ++b) {
+        const std::uint8_t c = codes[cmp_.element_offset(e) + b];
+        if (c == SL_1) value |= 1U << (31 - b);
+        else if (c != SL_0) meta = true;
+    }
+    ++reads_;
+    if (meta || value != model_->corner()) ++read_mismatches_;
+    const ReadPos& r = *ev_.read;
+    std::vector<Corner> cs;
+    driver_->decode(r, value, cs);
+    if (r.frame >= 0 && r.frame < static_cast<int>(corners_per_frame_.size()))
+        corners_per_frame_[r.frame] += static_cast<long>(cs.size());
+    if (reads_out_.is_open())
+        reads_out_ << model_->writes() << ',' << r.frame << ',' << r.x << ',' << r.y << ',' << value << '\n';
+}
+
+bool Session::observe(const std::uint8_t* codes) {
+    ++cycles_;
+    if (idle_now_) ++idles_;
+    const FlatObservation flat = flatten(model_->observe(), cfg_.formats);
+    scratch_.clear();
+    cmp_.compare(codes, flat, model_->writes(), scratch_);
+    if (!idle_now_ && ev_.read) record_read(codes);
+
+    CycleRecord rec{model_->writes(), idle_now_, !scratch_.empty(),
+                    std::vector<std::uint8_t>(codes, codes + cmp_.width()), flat};
+    if (post_left_ > 0 && !vcd_done_) {
+        vcd_cycles_.push_back(rec);   // a cycle after the first mismatch
+        --post_left_;
+    } else {
+        history_.push_back(std::move(rec));
+        if (static_cast<int>(history_.size()) > cfg_.pre_mismatch) history_.pop_front();
+    }
+
+    if (!scratch_.empty()) {
+        ++mismatching_cycles_;
+        mismatched_elements_ += static_cast<long>(scratch_.size());
+        std::map<std::string, bool> seen;
+        int first_stage = 1 << 30;
+        for (const auto& m : scratch_) {
+            const std::string& st = cmp_.layout()[m.field].stage;
+            if (m.metavalue) ++metavalue_elements_;
+            ++stage_elements_[st];
+            if (!seen[st]) {
+                seen[st] = true;
+                ++stage_cycles_[st];
+            }
+            first_stage = std::min(first_stage, cmp_.stage_index(m.field));
+        }
+        ++first_stage_cycles_[stage_order()[first_stage]];
+        if (first_report_.empty()) {
+            first_stage_ = stage_order()[first_stage];
+            first_write_ = model_->writes();
+            first_report_ = describe(scratch_, model_->writes());
+            std::fprintf(stderr, "%s", first_report_.c_str());
+            vcd_cycles_.assign(history_.begin(), history_.end());
+            history_.clear();
+            post_left_ = cfg_.post_mismatch;
+        }
+    }
+    if (post_left_ == 0 && !vcd_done_) {
+        vcd_done_ = true;
+        if (!cfg_.keep_going) stop_ = true;
+    }
+    progress(false);
+    return stop_;
+}
+
+std::string Session::describe(const std::vector<Mismatch>& ms, long write) const {
+    // pick the first mismatch of the earliest stage
+    const Mismatch* first = &ms.front();
+    for (const auto& m : ms)
+        if (cmp_.stage_index(m.field) < cmp_.stage_index(first->field)) first = &m;
+    const ObsField& f = cmp_.layout()[first->field];
+    const WritePos* wp = nullptr;
+    for (const auto& [n, p] : positions_)
+        if (n == write) wp = &p;
+
+    // which window the stage holds
+    const StageTags& tg = model_->tags();
+    const WindowTag* tag = nullptr;
+    if (f.stage == "input_converter_mux" && f.name == "icm") tag = &tg.window;
+    else if (f.stage == "sobel_x" || f.stage == "sobel_y") tag = &tg.sobel;
+    else if (f.stage == "m_products") tag = &tg.m;
+    else if (f.stage == "block_filter") tag = &tg.block;
+    else if (f.stage == "harris_response") tag = &tg.response;
+    else if (f.name == "trm" || f.stage == "local_maximum") tag = &tg.thresholded;
+
+    std::ostringstream o;
+    o << "\n=== RTL/model MISMATCH ===\n";
+    o << "  write      : " << write << (idle_now_ ? " (after an idle cycle)" : "") << "\n";
+    if (wp)
+        o << "  bus cycle  : frame " << wp->frame << (wp->tail ? " (preload of the next frame)" : "")
+          << ", window row i=" << wp->i << ", column j=" << wp->j << ", k=" << wp->k << "\n";
+    o << "  stage      : " << f.stage << " (first mismatching stage on this write)\n";
+    o << "  signal     : " << cmp_.element_name(first->field, first->i, first->j) << "  [" << f.width << "-bit "
+      << (f.is_signed ? "signed" : "unsigned") << "]\n";
+    if (tag && tag->valid()) {
+        const WritePos* tp = nullptr;
+        for (const auto& [n, p] : positions_)
+            if (n == tag->write) tp = &p;
+        if (tp) {
+            const Corner c = driver_->write_centre(*tp, tag->quadrant);
+            o << "  window     : quadrant " << tag->quadrant << ", centre pixel (x=" << c.x << ", y=" << c.y
+              << ") of frame " << c.frame << " (column completed at write " << tag->write << ")\n";
+        }
+    } else if (tag) {
+        o << "  window     : none (reset or zero window in this register)\n";
+    }
+    if (first->model_undefined) {
+        o << "  expected   : U (undefined in the model)\n";
+    } else {
+        o << "  expected   : " << cmp_.format_value(first->field, first->expected) << "\n";
+    }
+    if (first->metavalue) o << "  actual     : " << first->actual << "  (METAVALUE)\n";
+    else {
+        std::uint64_t bits = 0;
+        for (char ch : first->actual) bits = (bits << 1) | (ch == '1' ? 1U : 0U);
+        o << "  actual     : " << cmp_.format_value(first->field, bits) << "  bits " << first->actual << "\n";
+    }
+    std::map<std::string, int> per_signal;
+    for (const auto& m : ms) ++per_signal[cmp_.layout()[m.field].name];
+    o << "  this write : " << ms.size() << " element(s) differ:";
+    for (const auto& [s, n] : per_signal) o << " " << s << "x" << n;
+    o << "\n";
+    if (!cfg_.vcd_file.empty()) o << "  waveform   : " << cfg_.vcd_file << " (written at the end of the run)\n";
+    o << "==========================\n";
+    return o.str();
+}
+
+void Session::progress(bool final) {
+    if (!cfg_.progress) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (!final && now - last_progress_ < std::chrono::seconds(2)) return;
+    last_progress_ = now;
+    const double secs = std::chrono::duration<double>(now - start_).count();
+    const long total = cfg_.max_writes > 0 ? std::min(cfg_.max_writes, driver_->total_writes()) : driver_->total_writes();
+    const long w = model_->writes();
+    const double rate = secs > 0 ? static_cast<double>(cycles_) / secs : 0.0;
+    const int frame = positions_.empty() ? 0 : positions_.back().second.frame;
+    std::fprintf(stderr, "[cosim] frame %d/%zu  write %ld/%ld (%.1f%%)  %.0f cycles/s  mismatches %ld  ETA %.0f s\n",
+                 frame + 1, frames_.size(), w, total, total ? 100.0 * static_cast<double>(w) / static_cast<double>(total) : 0.0,
+                 rate, mismatching_cycles_, rate > 0 ? static_cast<double>(total - w) / rate : 0.0);
+}
+
+int Session::close() {
+    progress(true);
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (!first_report_.empty() && !cfg_.vcd_file.empty()) {
+        if (!vcd_done_) vcd_done_ = true;
+        write_vcd(cfg_.vcd_file, cmp_, vcd_cycles_);
+    }
+    if (reads_out_.is_open()) {
+        reads_out_.close();
+        std::rename((cfg_.reads_file + ".part").c_str(), cfg_.reads_file.c_str());
+    }
+    const bool complete = !stop_ && (cfg_.max_writes == 0 || model_->writes() >= std::min(cfg_.max_writes, driver_->total_writes()));
+    json stages = json::object();
+    std::map<std::string, long> per_stage_elements;
+    for (const auto& f : cmp_.layout()) per_stage_elements[f.stage] += f.elements();
+    for (const auto& st : stage_order()) {
+        stages[st] = {{"elements_compared_per_cycle", per_stage_elements[st]},
+                      {"mismatching_cycles", stage_cycles_[st]},
+                      {"mismatching_elements", stage_elements_[st]},
+                      {"first_mismatching_stage_cycles", first_stage_cycles_[st]}};
+    }
+    json frames = json::array();
+    for (size_t k = 0; k < frames_.size(); ++k)
+        frames.push_back({{"index", k},
+                          {"name", k < cfg_.frame_names.size() ? cfg_.frame_names[k] : ""},
+                          {"corners_read", corners_per_frame_[k]}});
+    long corners = 0;
+    for (long c : corners_per_frame_) corners += c;
+    json j = {{"backend", cfg_.backend},
+              {"geometry", {{"width", cfg_.geometry.width}, {"height", cfg_.geometry.height}}},
+              {"formats", json::parse(formats_to_json(cfg_.formats))},
+              {"frames", frames},
+              {"complete", complete},
+              {"writes", model_->writes()},
+              {"writes_in_stream", driver_->total_writes()},
+              {"idle_cycles", idles_},
+              {"cycles", cycles_},
+              {"reads", reads_},
+              {"read_mismatches", read_mismatches_},
+              {"corners", corners},
+              {"signals_compared_per_cycle", cmp_.elements()},
+              {"bits_compared_per_cycle", cmp_.width()},
+              {"stages", stages},
+              {"mismatches", {{"cycles", mismatching_cycles_},
+                              {"elements", mismatched_elements_},
+                              {"metavalue_elements", metavalue_elements_}}},
+              {"wall_seconds", secs},
+              {"cycles_per_second", secs > 0 ? static_cast<double>(cycles_) / secs : 0.0}};
+    if (!first_report_.empty())
+        j["first_mismatch"] = {{"write", first_write_}, {"stage", first_stage_}, {"report", first_report_},
+                               {"vcd", cfg_.vcd_file}};
+    const int status = mismatching_cycles_ > 0 ? 1 : 0;
+    j["status"] = status == 0 ? "pass" : "mismatch";
+    if (!cfg_.summary_file.empty()) {
+        const std::string tmp = cfg_.summary_file + ".part";
+        std::ofstream o(tmp);
+        o << j.dump(2) << "\n";
+        o.close();
+        if (!o) throw std::runtime_error("cannot write summary '" + cfg_.summary_file + "'");
+        std::rename(tmp.c_str(), cfg_.summary_file.c_str());
+    }
+    return status;
+}
+
+}  // namespace hc::cosim

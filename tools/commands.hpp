@@ -1,0 +1,13 @@
+// commands.hpp: the subcommands of harris-cosim. Each lives in its own cmd_*.cpp and adds
+// itself to the app; its callback throws CLI::RuntimeError(status) to exit non-zero and
+// hc::tools::InputError for bad input (printed, status 2).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace hc::tools {
+
+void add_rtl_command(CLI::App& app);        // GHDL co-simulation (cmd_rtl.cpp)
+void add_model_command(CLI::App& app);      // cycle model alone (cmd_rtl.cpp)
+
+}  // namespace hc::tools
