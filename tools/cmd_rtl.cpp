@@ -101,6 +101,7 @@ struct RtlOptions {
     std::string vcd = "harris-cosim-mismatch.vcd";
     std::string json_out;
     std::string reads_out;
+    std::string expect_reads;
     int idle_every = 0;
     long max_writes = 0;
     bool quiet = false;
@@ -114,6 +115,34 @@ void move_into_place(const fs::path& from, const std::string& to) {
     const fs::path tmp = target.string() + ".part";
     fs::copy_file(from, tmp, fs::copy_options::overwrite_existing);
     fs::rename(tmp, target);
+}
+
+/// The lines of a reads CSV without '#' comments.
+std::vector<std::string> csv_rows(const fs::path& p) {
+    std::ifstream f(p);
+    if (!f) throw InputError("cannot read '" + p.string() + "'");
+    std::vector<std::string> rows;
+    std::string line;
+    while (std::getline(f, line))
+        if (!line.empty() && line[0] != '#') rows.push_back(line);
+    return rows;
+}
+
+/// Compares the RTL's reads with a golden file; prints the first difference. 0 if equal.
+int compare_reads(const std::string& golden, const std::string& actual) {
+    const auto want = csv_rows(golden);
+    const auto got = csv_rows(actual);
+    for (size_t k = 0; k < std::max(want.size(), got.size()); ++k) {
+        const std::string a = k < want.size() ? want[k] : "<none>";
+        const std::string b = k < got.size() ? got[k] : "<none>";
+        if (a != b) {
+            std::printf("  GOLDEN READS DIFFER at row %zu: golden '%s', RTL '%s' (%s)\n", k, a.c_str(), b.c_str(),
+                        golden.c_str());
+            return 1;
+        }
+    }
+    std::printf("  reads equal the golden file %s (%zu rows)\n", golden.c_str(), want.size());
+    return 0;
 }
 
 int run_rtl(const RtlOptions& o) {
@@ -141,7 +170,7 @@ int run_rtl(const RtlOptions& o) {
     cfg.max_writes = o.max_writes;
     cfg.vcd_file = o.vcd.empty() ? "" : (scratch.path / "mismatch.vcd").string();
     cfg.summary_file = (scratch.path / "summary.json").string();
-    cfg.reads_file = o.reads_out.empty() ? "" : (scratch.path / "reads.csv").string();
+    cfg.reads_file = o.reads_out.empty() && o.expect_reads.empty() ? "" : (scratch.path / "reads.csv").string();
     cfg.progress = !o.quiet;
     cosim::write_frames(cfg.frames_file, lf.frames);
     const fs::path cfg_path = scratch.path / "run.json";
@@ -179,6 +208,8 @@ int run_rtl(const RtlOptions& o) {
     }
     const json j = json::parse(read_text(summary));
     move_into_place(summary, o.json_out);
+    int golden_status = 0;
+    if (!o.expect_reads.empty()) golden_status = compare_reads(o.expect_reads, cfg.reads_file);
     if (!cfg.reads_file.empty()) move_into_place(cfg.reads_file, o.reads_out);
     if (!o.wave.empty()) move_into_place(scratch.path / "wave.ghw", o.wave);
     if (j.contains("first_mismatch") && !cfg.vcd_file.empty()) move_into_place(cfg.vcd_file, o.vcd);
@@ -204,6 +235,7 @@ int run_rtl(const RtlOptions& o) {
         if (!o.vcd.empty()) std::printf("  waveform written to %s\n", o.vcd.c_str());
     }
     std::printf("  %.1f s, %.0f cycles/s\n", j.at("wall_seconds").get<double>(), j.at("cycles_per_second").get<double>());
+    if (golden_status != 0) return 1;
     if (rc == 0 && j.at("status") == "pass" && j.at("complete").get<bool>()) return 0;
     if (j.at("status") == "mismatch") return 1;
     std::fprintf(stderr, "harris-cosim: the run did not complete (simulator status %d)\n", rc);
@@ -281,6 +313,7 @@ void add_rtl_command(CLI::App& app) {
     cmd->add_option("--wave", o->wave, "GHW waveform of the whole run (GHDL --wave; large for big frames)");
     cmd->add_option("--json", o->json_out, "write the JSON summary here");
     cmd->add_option("--reads", o->reads_out, "write every read as CSV: write,frame,x,y,value");
+    cmd->add_option("--expect-reads", o->expect_reads, "fail unless the RTL's reads equal this golden CSV");
     cmd->add_option("--idle-every", o->idle_every, "insert an idle cycle (write='0') after every N writes")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--max-writes", o->max_writes, "stop after N writes")->check(CLI::NonNegativeNumber);

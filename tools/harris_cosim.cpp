@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "harris-cosim 0.1.0");
     hc::tools::add_rtl_command(app);
     hc::tools::add_model_command(app);
+    hc::tools::add_golden_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
