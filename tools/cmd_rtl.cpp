@@ -7,8 +7,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "commands.hpp"
@@ -16,9 +14,8 @@
 #include "frame_source.hpp"
 #include "frames.hpp"
 #include "harris/harris_top.hpp"
+#include "process.hpp"
 #include "run_config.hpp"
-
-extern char** environ;
 
 namespace hc::tools {
 
@@ -57,31 +54,6 @@ struct ScratchDir {
         fs::remove_all(path, ec);
     }
 };
-
-int run_process(const std::vector<std::string>& argv, const std::vector<std::string>& extra_env) {
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    std::vector<std::string> env_store;
-    for (char** e = environ; *e; ++e) {
-        const std::string kv(*e);
-        bool overridden = false;
-        for (const auto& x : extra_env)
-            if (kv.substr(0, kv.find('=') + 1) == x.substr(0, x.find('=') + 1)) overridden = true;
-        if (!overridden) env_store.push_back(kv);
-    }
-    for (const auto& e : extra_env) env_store.push_back(e);
-    std::vector<char*> envp;
-    for (auto& e : env_store) envp.push_back(e.data());
-    envp.push_back(nullptr);
-    pid_t pid;
-    if (::posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), envp.data()) != 0)
-        throw std::runtime_error("cannot start '" + argv[0] + "'");
-    int st = 0;
-    ::waitpid(pid, &st, 0);
-    if (WIFEXITED(st)) return WEXITSTATUS(st);
-    return 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
-}
 
 std::vector<std::string> split_list(const std::string& s) {
     std::vector<std::string> v;
