@@ -9,6 +9,14 @@ HostDriver::HostDriver(const Geometry& g, std::vector<const Image*> frames)
     : g_(g), frames_(std::move(frames)), di_(g.di()), dj_(g.dj()) {
     g_.validate();
     if (frames_.empty()) throw std::invalid_argument("host driver: no frames to send");
+    // Appendix C clears `preload` only on the second window row (i > 3). With a single window
+    // row (height 8 or 9) it never does, so the thesis's host would re-send the two preloaded
+    // columns of every chained frame and drift out of step with the design's frame counter.
+    if (frames_.size() > 1 && g.rows() < 2)
+        throw std::invalid_argument("chained frames of height " + std::to_string(g.height) +
+                                    " have a single window row, which the thesis's host driver cannot chain "
+                                    "(it would re-send the preloaded columns of every frame); use height >= 10 "
+                                    "or one frame");
     for (size_t f = 0; f < frames_.size(); ++f) {
         const Image& im = *frames_[f];
         if (im.width != g.width || im.height != g.height)
