@@ -61,6 +61,7 @@ std::string to_json(const RunConfig& c) {
               {"frame_names", c.frame_names},
               {"backend", c.backend},
               {"keep_going", c.keep_going},
+              {"compare_all", c.compare_all},
               {"idle_every", c.idle_every},
               {"max_writes", c.max_writes},
               {"post_mismatch", c.post_mismatch},
@@ -83,6 +84,7 @@ RunConfig run_config_from_json(const std::string& text) {
         c.frame_names = j.at("frame_names").get<std::vector<std::string>>();
         c.backend = j.at("backend").get<std::string>();
         c.keep_going = j.at("keep_going").get<bool>();
+        c.compare_all = j.at("compare_all").get<bool>();
         c.idle_every = j.at("idle_every").get<int>();
         c.max_writes = j.at("max_writes").get<long>();
         c.post_mismatch = j.at("post_mismatch").get<int>();

@@ -18,6 +18,7 @@ struct RunConfig {
     std::vector<std::string> frame_names;   ///< what each frame is, for reports
     std::string backend;             ///< gcc, llvm or mcode (informational)
     bool keep_going = false;         ///< count every mismatch instead of stopping
+    bool compare_all = true;         ///< every register after every cycle; false: only the reads
     int idle_every = 0;              ///< an idle (write = '0') cycle after every N writes
     long max_writes = 0;             ///< stop after this many writes (0: the whole stream)
     int post_mismatch = 8;           ///< writes simulated after the first mismatch (for the VCD)

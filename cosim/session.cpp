@@ -83,11 +83,28 @@ void Session::record_read(const std::uint8_t* codes) {
 bool Session::observe(const std::uint8_t* codes) {
     ++cycles_;
     if (idle_now_) ++idles_;
-    const FlatObservation flat = flatten(model_->observe(), cfg_.formats);
     scratch_.clear();
-    cmp_.compare(codes, flat, model_->writes(), scratch_);
-    if (!idle_now_ && ev_.read) record_read(codes);
+    FlatObservation flat;
+    if (cfg_.compare_all) {
+        flat = flatten(model_->observe(), cfg_.formats);
+        cmp_.compare(codes, flat, model_->writes(), scratch_);
+    }
+    if (!idle_now_ && ev_.read) {
+        const long before = read_mismatches_;
+        record_read(codes);
+        if (!cfg_.compare_all && read_mismatches_ != before) {
+            // reads-only mode: the corner port is the one signal compared
+            flat = flatten(model_->observe(), cfg_.formats);
+            cmp_.compare(codes, flat, model_->writes(), scratch_);
+            std::erase_if(scratch_, [&](const Mismatch& m) { return cmp_.layout()[m.field].name != "corner"; });
+        }
+    }
 
+    if (!cfg_.compare_all && first_report_.empty() && scratch_.empty()) {
+        progress(false);   // reads-only mode keeps no history until something differs
+        return stop_;
+    }
+    if (flat.bits.empty()) flat = flatten(model_->observe(), cfg_.formats);
     CycleRecord rec{model_->writes(), idle_now_, !scratch_.empty(),
                     std::vector<std::uint8_t>(codes, codes + cmp_.width()), flat};
     if (post_left_ > 0 && !vcd_done_) {
@@ -249,8 +266,9 @@ int Session::close() {
               {"reads", reads_},
               {"read_mismatches", read_mismatches_},
               {"corners", corners},
-              {"signals_compared_per_cycle", cmp_.elements()},
-              {"bits_compared_per_cycle", cmp_.width()},
+              {"compare", cfg_.compare_all ? "all" : "reads"},
+              {"signals_compared_per_cycle", cfg_.compare_all ? cmp_.elements() : 1},
+              {"bits_compared_per_cycle", cfg_.compare_all ? cmp_.width() : 32},
               {"stages", stages},
               {"mismatches", {{"cycles", mismatching_cycles_},
                               {"elements", mismatched_elements_},

@@ -5,6 +5,7 @@
 //   with tr2 = (a+c)^2, a+c in bf_w+1 bits: k*tr^2 with k = 2^-5 + 2^-7, each quotient floored.
 // Step 2 (t(3)): r = resize(ac) - resize(bb) - resize(ktr2), all in resp_w bits, wrapping.
 // Harris & Stephens (1988): R = det(M) - k tr(M)^2.
+// Templates over the number type T (Word or LeanWord; T must hold 2*(bf_w+1) bits).
 #pragma once
 
 #include "harris/harris_pkg.hpp"
@@ -13,21 +14,27 @@
 namespace hc {
 
 /// The step-1 registers of one response.
-struct ResponseTerms {
-    Word ac, bb, ktr2;
+template <class T>
+struct ResponseTermsT {
+    T ac, bb, ktr2;
 };
+using ResponseTerms = ResponseTermsT<Word>;
 
-inline ResponseTerms harris_response_terms(const Word& a, const Word& b, const Word& c,
-                                           const Formats& f) {
-    const Word trace = resize(a, f.trace_w()) + resize(c, f.trace_w());
-    const Word tr2 = trace * trace;
+template <class T>
+inline ResponseTermsT<T> harris_response_terms(const T& a, const T& b, const T& c, const Formats& f) {
+    const T trace = resize(a, f.trace_w()) + resize(c, f.trace_w());   // 16 -> 17 bits: no overflow
+    const T tr2 = trace * trace;                                         // 34 bits, exact
     const int top = f.trace_sq_w() - 1;
-    const Word ktr2 = resize(slice(tr2, top, f.k_shift1), f.ktr_w) +   // floor(tr2 / 32)
-                      resize(slice(tr2, top, f.k_shift2), f.ktr_w);    // + floor(tr2 / 128)
-    return {a * c, b * b, ktr2};
+    ResponseTermsT<T> t;
+    t.ac = a * c;   // 2*bf_w bits, exact
+    t.bb = b * b;
+    t.ktr2 = resize(slice(tr2, top, f.k_shift1), f.ktr_w) +   // floor(tr2 / 32)
+             resize(slice(tr2, top, f.k_shift2), f.ktr_w);    // + floor(tr2 / 128)
+    return t;
 }
 
-inline Word harris_response(const ResponseTerms& t, const Formats& f) {
+template <class T>
+inline T harris_response(const ResponseTermsT<T>& t, const Formats& f) {
     return resize(t.ac, f.resp_w) - resize(t.bb, f.resp_w) - resize(t.ktr2, f.resp_w);
 }
 

@@ -2,6 +2,7 @@
 //
 // a = ix*ix, b = ix*iy, c = iy*iy: each full product resized to m_prod_w with numeric_std
 // semantics, then bits m_prod_w-1 .. m_drop kept (drop m_drop LSBs: floor(x / 2^m_drop)).
+// Template over the number type T (Word or LeanWord).
 #pragma once
 
 #include "harris/harris_pkg.hpp"
@@ -9,16 +10,20 @@
 
 namespace hc {
 
-struct MProducts {
-    Word a, b, c;
+template <class T>
+struct MProductsT {
+    T a, b, c;
 };
+using MProducts = MProductsT<Word>;
 
-inline Word m_product(const Word& x, const Word& y, const Formats& f) {
-    const Word full = resize(x * y, f.m_prod_w);
+template <class T>
+inline T m_product(const T& x, const T& y, const Formats& f) {
+    const T full = resize(x * y, f.m_prod_w);        // 22 -> 21 bits (+-1020^2 fits in 21)
     return slice(full, f.m_prod_w - 1, f.m_drop);   // 21 -> 16 bits: drop 5 LSBs
 }
 
-inline MProducts m_products(const Word& ix, const Word& iy, const Formats& f) {
+template <class T>
+inline MProductsT<T> m_products(const T& ix, const T& iy, const Formats& f) {
     return {m_product(ix, ix, f), m_product(ix, iy, f), m_product(iy, iy, f)};
 }
 

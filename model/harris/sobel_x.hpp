@@ -3,6 +3,8 @@
 // ix = [-1 0 +1; -2 0 +2; -1 0 +1] * a. Each pixel becomes a 9-bit signed (a 10-bit one for
 // the doubled middle row), every term is resized to sobel_w and the six are added in
 // sobel_w bits, exactly as the VHDL does.
+// Templates over the number type T: Word (cycle model) or LeanWord (spec model, with the
+// same numeric_std semantics); T defaults to Word.
 #pragma once
 
 #include "harris/harris_pkg.hpp"
@@ -11,20 +13,22 @@
 namespace hc {
 
 /// +-p widened like signed(resize(p, w)) with an optional negation and doubling.
-inline Word pixel_term(Pixel p, int width, bool negate, bool doubled) {
-    const Word x = as_signed(resize(Word::uns(p, 8), width));   // zero-extend, read as signed
-    Word t = doubled ? (negate ? -x - x : x + x) : (negate ? -x : x);
+template <class T = Word>
+inline T pixel_term(Pixel p, int width, bool negate, bool doubled) {
+    const T x = as_signed(resize(T::uns(p, 8), width));   // zero-extend, read as signed
+    T t = doubled ? (negate ? -x - x : x + x) : (negate ? -x : x);
     return t;
 }
 
-inline Word sobel_x(const Pixels3& a, const Formats& f) {
+template <class T = Word>
+inline T sobel_x(const Pixels3& a, const Formats& f) {
     const int w = f.sobel_w;
-    const Word p11 = pixel_term(a[0][0], 9, true, false);
-    const Word p21 = pixel_term(a[1][0], 10, true, true);
-    const Word p31 = pixel_term(a[2][0], 9, true, false);
-    const Word p13 = pixel_term(a[0][2], 9, false, false);
-    const Word p23 = pixel_term(a[1][2], 10, false, true);
-    const Word p33 = pixel_term(a[2][2], 9, false, false);
+    const T p11 = pixel_term<T>(a[0][0], 9, true, false);
+    const T p21 = pixel_term<T>(a[1][0], 10, true, true);
+    const T p31 = pixel_term<T>(a[2][0], 9, true, false);
+    const T p13 = pixel_term<T>(a[0][2], 9, false, false);
+    const T p23 = pixel_term<T>(a[1][2], 10, false, true);
+    const T p33 = pixel_term<T>(a[2][2], 9, false, false);
     return resize(p11, w) + resize(p13, w) + resize(p21, w) + resize(p23, w) + resize(p31, w) +
            resize(p33, w);
 }

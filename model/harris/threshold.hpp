@@ -4,6 +4,7 @@
 // bits: floor(max/128) + floor(max/512), i.e. about 0.00977*max (OpenCV uses 0.01*max of
 // the current frame; the hardware uses the maximum of the previous find-max period).
 // A response below thr becomes 0; one equal to thr is kept.
+// Templates over the number type T (Word or LeanWord).
 #pragma once
 
 #include "harris/harris_pkg.hpp"
@@ -11,14 +12,16 @@
 
 namespace hc {
 
-inline Word threshold_value(const Word& max, const Formats& f) {
+template <class T>
+inline T threshold_value(const T& max, const Formats& f) {
     const int top = f.resp_w - 1;
-    return resize(slice(max, top, f.thr_shift1), f.resp_w) +
-           resize(slice(max, top, f.thr_shift2), f.resp_w);
+    return resize(slice(max, top, f.thr_shift1), f.resp_w) +   // floor(max / 128)
+           resize(slice(max, top, f.thr_shift2), f.resp_w);    // + floor(max / 512)
 }
 
-inline Word threshold(const Word& r, const Word& thr) {
-    return r >= thr ? r : Word::sgn(0, r.width());
+template <class T>
+inline T threshold(const T& r, const T& thr) {
+    return r >= thr ? r : T::sgn(0, r.width());
 }
 
 }  // namespace hc

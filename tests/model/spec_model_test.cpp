@@ -1,0 +1,135 @@
+// spec_model_test.cpp: the lean word against Word, and the spec model against the cycle model.
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <random>
+
+#include "driver/host_driver.hpp"
+#include "eval/eval.hpp"
+#include "fixed/word.hpp"
+#include "spec/lean_word.hpp"
+#include "spec/spec_model.hpp"
+
+using namespace hc;
+
+namespace {
+
+// Values of a given width: the extremes and their neighbours, then random ones.
+std::vector<std::int64_t> values(int w, bool s, std::mt19937_64& rng, int n_random) {
+    const std::int64_t lo = s ? -(std::int64_t{1} << (w - 1)) : 0;
+    const std::int64_t hi = s ? (std::int64_t{1} << (w - 1)) - 1 : (std::int64_t{1} << w) - 1;
+    std::vector<std::int64_t> v{lo, lo + 1, hi, hi - 1, 0, 1};
+    if (s) v.push_back(-1);
+    std::uniform_int_distribution<std::int64_t> d(lo, hi);
+    for (int k = 0; k < n_random; ++k) v.push_back(d(rng));
+    for (auto& x : v) x = std::clamp(x, lo, hi);
+    return v;
+}
+
+template <class L>
+void check_same(const Word& w, const L& l, const char* op) {
+    INFO(op << ": Word " << w.value() << " (" << w.width() << " bits) vs lean " << l.value() << " ("
+            << l.width() << " bits)");
+    REQUIRE(l.value() == w.value());
+    REQUIRE(l.width() == w.width());
+    REQUIRE(l.is_signed() == w.is_signed());
+}
+
+template <class L>
+void lean_equals_word(int max_w) {
+    std::mt19937_64 rng(20150101);
+    for (int wa = 2; wa <= max_w; wa += (wa < 12 ? 1 : 5))
+        for (int wb : {2, 3, 8, wa}) {
+            if (wb > max_w) continue;
+            for (bool s : {true, false}) {
+                // a lean word holds unsigned values below 2^(rep_bits-1) only (documented)
+                if (!s && (wa >= L::rep_bits || wb >= L::rep_bits)) continue;
+                for (std::int64_t a : values(wa, s, rng, 6))
+                    for (std::int64_t b : values(wb, s, rng, 3)) {
+                        const Word A = Word::make(a, wa, s), B = Word::make(b, wb, s);
+                        const L la = L::make(a, wa, s), lb = L::make(b, wb, s);
+                        check_same(A, la, "make");
+                        check_same(A + B, la + lb, "+");
+                        check_same(A - B, la - lb, "-");
+                        if (wa + wb <= std::min(L::rep_bits, Word::max_width)) check_same(A * B, la * lb, "*");
+                        if (s) check_same(-A, -la, "unary -");
+                        check_same(as_signed(A), as_signed(la), "as_signed");
+                        for (int n : {1, 2, wa - 1, wa, wa + 1, max_w})
+                            if (n >= 1 && n <= max_w && (s || n < L::rep_bits)) check_same(resize(A, n), resize(la, n), "resize");
+                        for (int hi : {wa - 1, wa / 2})
+                            for (int lo : {0, hi / 2, hi})
+                                if (lo <= hi && hi >= 0) check_same(slice(A, hi, lo), slice(la, hi, lo), "slice");
+                        CHECK((A < B) == (la < lb));
+                        CHECK((A >= B) == (la >= lb));
+                        CHECK(A.bits() == la.bits());
+                    }
+            }
+        }
+}
+
+}  // namespace
+
+TEST_CASE("the 32-bit lean word computes what Word computes on random and extreme values", "[model][spec]") {
+    lean_equals_word<Lean32>(32);
+}
+
+TEST_CASE("the 64-bit lean word computes what Word computes on random and extreme values", "[model][spec]") {
+    lean_equals_word<Lean64>(62);
+}
+
+TEST_CASE("the most negative lean word is the hardware's find-max reset value", "[model][spec]") {
+    CHECK(Lean64::most_negative(32).value() == Word::most_negative(32).value());
+    CHECK(Lean32::most_negative(32).value() == -2147483648LL);
+}
+
+TEST_CASE("the spec model and the cycle model agree on every pixel the hardware processes at the same thresholds",
+          "[model][spec]") {
+    // two stereo-like pairs of a textured pattern, small enough for the cycle model
+    for (Pattern p : {Pattern::blocks, Pattern::random}) {
+        eval::Stream s;
+        for (int k = 0; k < 4; ++k) {
+            s.frames.push_back(make_pattern(p, 61, 41, k, 7));
+            s.pair_index.push_back(k / 2);
+            s.names.push_back("f" + std::to_string(k));
+        }
+        const auto cyc = eval::run_cycle(s, Formats{}, false);
+        const spec::SpecModel m;
+        long compared = 0, corners = 0;
+        for (int k = 0; k < 4; ++k) {
+            spec::Response r;
+            m.response(s.frames[k], r);
+            const auto& tm = cyc.thr_map[k];
+            std::vector<std::uint8_t> mask;
+            m.corners(r, [&](int x, int y) { return tm[static_cast<size_t>(y) * 61 + x]; }, mask);
+            for (int y = 0; y < 41; ++y)
+                for (int x = 0; x < 61; ++x) {
+                    const size_t i = static_cast<size_t>(y) * 61 + x;
+                    const bool read = tm[i] != -1;   // thresholded window (hardware processed it)
+                    INFO("pattern " << pattern_name(p) << " frame " << k << " x=" << x << " y=" << y
+                                    << " thr=" << tm[i] << " response=" << r.at(y, x));
+                    if (!read) {
+                        REQUIRE(cyc.masks[k][i] == 0);
+                        continue;
+                    }
+                    // the last pair's last windows are never read: only compare read pixels
+                    ++compared;
+                    corners += cyc.masks[k][i];
+                    if (k < 3 || cyc.masks[k][i]) REQUIRE(int(mask[i]) == int(cyc.masks[k][i]));
+                }
+        }
+        CHECK(compared > 4 * 900);   // most of each frame's 55x35 centres
+        CHECK(corners > 0);
+    }
+}
+
+TEST_CASE("the spec model's first frame uses the find-max reset value as its maximum", "[model][spec]") {
+    const spec::SpecModel m;
+    const Image a = make_pattern(Pattern::blocks, 64, 36, 0), b = make_pattern(Pattern::blocks, 64, 36, 1);
+    std::int64_t prev = m.reset_max();
+    const auto out = m.run({&a, &b}, prev, 1);
+    REQUIRE(out.size() == 2);
+    CHECK(out[0].thr == m.threshold_for(-(std::int64_t{1} << 31)));
+    CHECK(out[0].thr < 0);
+    CHECK(out[1].thr == m.threshold_for(out[0].max));
+    CHECK(prev == out[1].max);
+}
