@@ -17,16 +17,32 @@ HarrisTop::HarrisTop(const Geometry& g, const Formats& f) : g_(g), f_(f), fm_(f)
     reset();
 }
 
+namespace {
+template <int N, class T>
+std::array<std::array<T, N>, N> fill(const T& v) {
+    std::array<std::array<T, N>, N> m;
+    for (auto& row : m) row.fill(v);
+    return m;
+}
+template <std::size_t N, class T>
+WordMatrix<static_cast<int>(N)> to_words(const std::array<std::array<T, N>, N>& m) {
+    WordMatrix<static_cast<int>(N)> out;
+    for (std::size_t i = 0; i < N; ++i)
+        for (std::size_t j = 0; j < N; ++j) out[i][j] = Word::from_bits(m[i][j].bits(), m[i][j].width(), m[i][j].is_signed());
+    return out;
+}
+}  // namespace
+
 void HarrisTop::reset() {
     lc_.reset();
     mux_.reset();
     ctrl_.reset();
-    const Word s0 = Word::sgn(0, f_.sobel_w), m0 = Word::sgn(0, f_.m_w()),
-               b0 = Word::sgn(0, f_.bf_w()), r0 = Word::sgn(0, f_.resp_w);
-    sx_ = sy_ = filled<5>(s0);
-    ma_ = mb_ = mc_ = filled<5>(m0);
-    bfa_ = bfb_ = bfc_ = filled<3>(b0);
-    hr_ = r0_delay_ = tr_ = filled<3>(r0);
+    const Reg s0 = Reg::sgn(0, f_.sobel_w), m0 = Reg::sgn(0, f_.m_w()), b0 = Reg::sgn(0, f_.bf_w()),
+              r0 = Reg::sgn(0, f_.resp_w);
+    sx_ = sy_ = fill<5>(s0);
+    ma_ = mb_ = mc_ = fill<5>(m0);
+    bfa_ = bfb_ = bfc_ = fill<3>(b0);
+    hr_ = r0_delay_ = tr_ = fill<3>(r0);
     fm_.reset(f_);
     csr_.reset();
 }
@@ -40,7 +56,8 @@ void HarrisTop::write(std::uint32_t data) {
     // Read every pre-edge value a stage needs before any stage is updated.
     const bool ready_now = ready();
     const bool corner_now = cornerbit();
-    const Word thr_now = thr();
+    const Word thr_word = thr();
+    const Reg thr_now = Reg::from_bits(thr_word.bits(), thr_word.width(), true);
 
     csr_ = csr_.next(corner_now);
     const StageTags tg = tags_;
@@ -57,11 +74,11 @@ void HarrisTop::write(std::uint32_t data) {
     // threshold: output from the one-write-delayed response; the delay takes hrm always
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
-            tr_[i][j] = ctrl_.en(5) ? threshold(r0_delay_[i][j], thr_now) : Word::sgn(0, f_.resp_w);
+            tr_[i][j] = ctrl_.en(5) ? threshold(r0_delay_[i][j], thr_now) : Reg::sgn(0, f_.resp_w);
             r0_delay_[i][j] = hr_[i][j];
         }
 
-    if (ctrl_.en(4)) fm_ = fm_.next(hr_[1][1], g_);
+    if (ctrl_.en(4)) fm_ = fm_.next(Word::from_bits(hr_[1][1].bits(), f_.resp_w, true), g_);
 
     if (ctrl_.en(3)) {
         if (!terms_defined_)
@@ -86,7 +103,7 @@ void HarrisTop::write(std::uint32_t data) {
     if (ctrl_.en(0)) {
         for (int i = 0; i < 5; ++i)
             for (int j = 0; j < 5; ++j) {
-                const MProducts m = m_products(sx_[i][j], sy_[i][j], f_);
+                const MProductsT<Reg> m = m_products(sx_[i][j], sy_[i][j], f_);
                 ma_[i][j] = m.a;
                 mb_[i][j] = m.b;
                 mc_[i][j] = m.c;
@@ -98,8 +115,8 @@ void HarrisTop::write(std::uint32_t data) {
         for (int i = 0; i < 5; ++i)
             for (int j = 0; j < 5; ++j) {
                 const Pixels3 nb = sub3(mux_.a, i, j);
-                sx_[i][j] = sobel_x(nb, f_);
-                sy_[i][j] = sobel_y(nb, f_);
+                sx_[i][j] = sobel_x<Reg>(nb, f_);
+                sy_[i][j] = sobel_y<Reg>(nb, f_);
             }
     }
     ctrl_ = ctrl_.next(ready_now);
@@ -114,18 +131,18 @@ Observation HarrisTop::observe() const {
     o.t = ctrl_.t;
     o.icm = mux_.a;
     o.icm_defined = mux_.a_defined;
-    o.sx = sx_;
-    o.sy = sy_;
-    o.ma = ma_;
-    o.mb = mb_;
-    o.mc = mc_;
-    o.bfa = bfa_;
-    o.bfb = bfb_;
-    o.bfc = bfc_;
-    o.hr = hr_;
+    o.sx = to_words(sx_);
+    o.sy = to_words(sy_);
+    o.ma = to_words(ma_);
+    o.mb = to_words(mb_);
+    o.mc = to_words(mc_);
+    o.bfa = to_words(bfa_);
+    o.bfb = to_words(bfb_);
+    o.bfc = to_words(bfc_);
+    o.hr = to_words(hr_);
     o.max = fm_.max;
     o.thr = thr();
-    o.tr = tr_;
+    o.tr = to_words(tr_);
     o.cornerbit = cornerbit();
     o.corner_sr = csr_.out();
     o.corner = corner();

@@ -4,6 +4,9 @@
 // the RTL computes from the values before the edge. Stages are evaluated from the last to
 // the first so that each reads its predecessor's pre-edge value. Cycles with write = '0'
 // and bus reads change nothing, so they have no call. Every register is exposed.
+// The datapath registers are held as LeanWord<int64_t>: the same numeric_std semantics as
+// Word (property-tested against it in tests/model/spec_model_test.cpp) without Word's
+// run-time checks, which Formats::validate() already guarantees; observe() returns Words.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +20,7 @@
 #include "harris/load_control.hpp"
 #include "harris/observation.hpp"
 #include "harris/types.hpp"
+#include "fixed/lean_word.hpp"
 
 namespace hc {
 
@@ -59,19 +63,23 @@ public:
     const StageTags& tags() const { return tags_; }
 
 private:
+    using Reg = Lean64;
+    template <int N>
+    using RegMatrix = std::array<std::array<Reg, N>, N>;
+
     Geometry g_;
     Formats f_;
     long writes_ = 0;
     LoadControl lc_;
     InputConverterMux mux_;
     ControlShiftRegister ctrl_;
-    Matrix5 sx_, sy_, ma_, mb_, mc_;
-    Matrix3 bfa_, bfb_, bfc_;
-    std::array<std::array<ResponseTerms, 3>, 3> terms_{};
+    RegMatrix<5> sx_, sy_, ma_, mb_, mc_;
+    RegMatrix<3> bfa_, bfb_, bfc_;
+    std::array<std::array<ResponseTermsT<Reg>, 3>, 3> terms_{};
     bool terms_defined_ = false;   // step-1 registers have no reset: 'U' until the first t(2)
-    Matrix3 hr_;
+    RegMatrix<3> hr_;
     FindMax fm_;
-    Matrix3 r0_delay_, tr_;
+    RegMatrix<3> r0_delay_, tr_;
     CornerShiftRegister csr_;
     StageTags tags_;
 };

@@ -31,7 +31,7 @@
 #include "harris/sobel_x.hpp"
 #include "harris/sobel_y.hpp"
 #include "harris/threshold.hpp"
-#include "spec/lean_word.hpp"
+#include "fixed/lean_word.hpp"
 
 namespace hc::spec {
 

@@ -7,7 +7,7 @@
 #include "driver/host_driver.hpp"
 #include "eval/eval.hpp"
 #include "fixed/word.hpp"
-#include "spec/lean_word.hpp"
+#include "fixed/lean_word.hpp"
 #include "spec/spec_model.hpp"
 
 using namespace hc;
