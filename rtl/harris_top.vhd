@@ -12,7 +12,7 @@
 -- The observation port `obs` exposes every inter-stage register for co-simulation (GHDL
 -- 2.0 has no VHDL-2008 external names). It only reads signals, so it cannot change the
 -- design's behaviour; with OBSERVE = false it is a single constant bit, and a synthesis of
--- either variant with `obs` left open is the same circuit (tests/rtl/harris_top_obs_test).
+-- either variant with `obs` left open is the same circuit (tests/cosim/obs_port_synthesis.sh).
 library ieee;
 use ieee.std_logic_1164.all;
 use ieee.numeric_std.all;
