@@ -43,6 +43,7 @@ void HarrisTop::reset() {
     ma_ = mb_ = mc_ = fill<5>(m0);
     bfa_ = bfb_ = bfc_ = fill<3>(b0);
     hr_ = r0_delay_ = tr_ = fill<3>(r0);
+    for (auto& q : qc_) q.valid = false;
     fm_.reset(f_);
     csr_.reset();
 }
@@ -50,6 +51,20 @@ void HarrisTop::reset() {
 Word HarrisTop::thr() const { return threshold_value(fm_.max, f_); }
 
 bool HarrisTop::cornerbit() const { return local_maximum(tr_); }
+
+int HarrisTop::first_column(const WindowTag& tag, int n) const {
+    return tag.quadrant >= 0 && tag.slid ? n - 1 : 0;
+}
+
+namespace {
+/// Moves the cached previous results one column left into `out` (columns 0..n-2).
+template <class M>
+void slide_from(M& out, const M& prev) {
+    const std::size_t n = out.size();
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j + 1 < n; ++j) out[i][j] = prev[i][j + 1];
+}
+}  // namespace
 
 void HarrisTop::write(std::uint32_t data) {
     ++writes_;
@@ -83,41 +98,97 @@ void HarrisTop::write(std::uint32_t data) {
     if (ctrl_.en(3)) {
         if (!terms_defined_)
             throw std::logic_error("harris_response step 2 enabled before step 1 ever was");
+        const WindowTag& t = tg.terms;
+        const int j0 = first_column(t, 3);
+        if (j0 > 0) slide_from(hr_, qc_[t.quadrant].hr);
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) hr_[i][j] = harris_response(terms_[i][j], f_);
+            for (int j = j0; j < 3; ++j) hr_[i][j] = harris_response(terms_[i][j], f_);
+        if (t.quadrant >= 0) qc_[t.quadrant].hr = hr_;
     }
     if (ctrl_.en(2)) {
+        const WindowTag& t = tg.block;
+        const int j0 = first_column(t, 3);
+        if (j0 > 0) slide_from(terms_, qc_[t.quadrant].terms);
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
+            for (int j = j0; j < 3; ++j)
                 terms_[i][j] = harris_response_terms(bfa_[i][j], bfb_[i][j], bfc_[i][j], f_);
+        if (t.quadrant >= 0) qc_[t.quadrant].terms = terms_;
         terms_defined_ = true;
     }
     if (ctrl_.en(1)) {
+        const WindowTag& t = tg.m;
+        const int j0 = first_column(t, 3);
+        if (j0 > 0) {
+            slide_from(bfa_, qc_[t.quadrant].bfa);
+            slide_from(bfb_, qc_[t.quadrant].bfb);
+            slide_from(bfc_, qc_[t.quadrant].bfc);
+        }
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) {
+            for (int j = j0; j < 3; ++j) {
                 bfa_[i][j] = block_filter(sub3(ma_, i, j), f_);
                 bfb_[i][j] = block_filter(sub3(mb_, i, j), f_);
                 bfc_[i][j] = block_filter(sub3(mc_, i, j), f_);
             }
+        if (t.quadrant >= 0) {
+            qc_[t.quadrant].bfa = bfa_;
+            qc_[t.quadrant].bfb = bfb_;
+            qc_[t.quadrant].bfc = bfc_;
+        }
     }
     if (ctrl_.en(0)) {
+        const WindowTag& t = tg.sobel;
+        const int j0 = first_column(t, 5);
+        if (j0 > 0) {
+            slide_from(ma_, qc_[t.quadrant].ma);
+            slide_from(mb_, qc_[t.quadrant].mb);
+            slide_from(mc_, qc_[t.quadrant].mc);
+        }
         for (int i = 0; i < 5; ++i)
-            for (int j = 0; j < 5; ++j) {
+            for (int j = j0; j < 5; ++j) {
                 const MProductsT<Reg> m = m_products(sx_[i][j], sy_[i][j], f_);
                 ma_[i][j] = m.a;
                 mb_[i][j] = m.b;
                 mc_[i][j] = m.c;
             }
+        if (t.quadrant >= 0) {
+            qc_[t.quadrant].ma = ma_;
+            qc_[t.quadrant].mb = mb_;
+            qc_[t.quadrant].mc = mc_;
+        }
     }
     if (ready_now) {
         if (!mux_.a_defined)
             throw std::logic_error("Sobel enabled while the window register is undefined");
+        // does the window continue this quadrant's previous one by exactly one column?
+        const int q = tg.window.quadrant;
+        bool slid = false;
+        if (q >= 0 && qc_[q].valid) {
+            slid = true;
+            for (int r = 0; r < 7 && slid; ++r)
+                for (int c = 0; c < 6; ++c)
+                    if (mux_.a[r][c] != qc_[q].window[r][c + 1]) {
+                        slid = false;
+                        break;
+                    }
+        }
+        tags_.sobel.slid = slid;
+        const int j0 = slid ? 4 : 0;
+        if (slid) {
+            slide_from(sx_, qc_[q].sx);
+            slide_from(sy_, qc_[q].sy);
+        }
         for (int i = 0; i < 5; ++i)
-            for (int j = 0; j < 5; ++j) {
+            for (int j = j0; j < 5; ++j) {
                 const Pixels3 nb = sub3(mux_.a, i, j);
                 sx_[i][j] = sobel_x<Reg>(nb, f_);
                 sy_[i][j] = sobel_y<Reg>(nb, f_);
             }
+        if (q >= 0) {
+            qc_[q].valid = true;
+            qc_[q].window = mux_.a;
+            qc_[q].sx = sx_;
+            qc_[q].sy = sy_;
+        }
     }
     ctrl_ = ctrl_.next(ready_now);
     mux_ = mux_.next(data);

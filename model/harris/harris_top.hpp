@@ -29,6 +29,9 @@ namespace hc {
 struct WindowTag {
     long write = -1;
     int quadrant = -1;
+    /// The window equals the quadrant's previous processed window shifted one column left,
+    /// so every stage may reuse that window's results for all but its newest column.
+    bool slid = false;
     bool valid() const { return write > 0; }
 };
 
@@ -82,6 +85,23 @@ private:
     RegMatrix<3> r0_delay_, tr_;
     CornerShiftRegister csr_;
     StageTags tags_;
+
+    // Per quadrant, the last window each stage processed and its results. A quadrant's
+    // window advances one column every 7 writes; when a stage's input is the previous one
+    // shifted left by a column, only the newest output column is computed (the others are
+    // the previous results moved left). Exact: each output column depends only on its
+    // input columns. Registers above stay the single source of the observed values.
+    struct QuadrantCache {
+        bool valid = false;
+        Window7 window{};
+        RegMatrix<5> sx, sy, ma, mb, mc;
+        RegMatrix<3> bfa, bfb, bfc, hr;
+        std::array<std::array<ResponseTermsT<Reg>, 3>, 3> terms{};
+    };
+    std::array<QuadrantCache, 4> qc_{};
+    /// First output column to compute for a stage whose input carries `tag`: 0 (all), or
+    /// the last column when the input slid and the cache holds the previous results.
+    int first_column(const WindowTag& tag, int n) const;
 };
 
 }  // namespace hc
