@@ -11,6 +11,7 @@ void add_rtl_command(CLI::App& app);        // GHDL co-simulation (cmd_rtl.cpp)
 void add_model_command(CLI::App& app);      // cycle model alone (cmd_rtl.cpp)
 void add_golden_command(CLI::App& app);     // golden reference files (cmd_golden.cpp)
 void add_mutate_command(CLI::App& app);     // mutation campaign (cmd_mutate.cpp)
+void add_verilate_command(CLI::App& app);   // Verilator full-frame verification (cmd_verilate.cpp)
 void add_eval_command(CLI::App& app);       // precision/recall against OpenCV (cmd_eval.cpp)
 
 }  // namespace hc::tools

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     hc::tools::add_model_command(app);
     hc::tools::add_golden_command(app);
     hc::tools::add_mutate_command(app);
+    hc::tools::add_verilate_command(app);
     hc::tools::add_eval_command(app);
     try {
         app.parse(argc, argv);

@@ -1,0 +1,291 @@
+// gate.cpp: see gate.hpp.
+#include "gate.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "driver/host_driver.hpp"
+#include "harris/harris_top.hpp"
+#include "harris/observation.hpp"
+#include "lockstep.hpp"
+
+namespace hc::vl {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string hex(std::uint64_t v) {
+    std::ostringstream s;
+    s << "0x" << std::hex << v;
+    return s.str();
+}
+
+std::uint64_t fnv1a(const std::string& s, std::uint64_t h = 1469598103934665603ULL) {
+    for (unsigned char ch : s) {
+        h ^= ch;
+        h *= 1099511628211ULL;
+    }
+    return h;
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// Runs a shell-free command in cwd with both streams to `log`; returns the exit status.
+int run(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log) {
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("fork failed");
+    if (pid == 0) {
+        if (chdir(cwd.c_str()) != 0) _exit(126);
+        if (!freopen(log.c_str(), "a", stdout) || !freopen(log.c_str(), "a", stderr)) _exit(126);
+        std::vector<char*> args;
+        for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+        args.push_back(nullptr);
+        execvp(args[0], args.data());
+        _exit(127);
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) throw std::runtime_error("waitpid failed");
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+void must(int rc, const std::string& what, const fs::path& log) {
+    if (rc == 0) return;
+    std::string t = slurp(log);
+    if (t.size() > 2000) t = "..." + t.substr(t.size() - 2000);
+    throw std::runtime_error(what + " failed (exit " + std::to_string(rc) + "); log " + log.string() + ":\n" + t);
+}
+
+// GHDL library with the design (variants substituted) and the replay testbench analysed.
+fs::path ghdl_library(const std::vector<fs::path>& sources, const fs::path& cache_dir, std::ostream& log) {
+    const fs::path tb = fs::path(HCVL_SRC_DIR) / "ghdl_replay_tb.vhd";
+    std::uint64_t h = fnv1a(HCVL_TOOL_VERSIONS);
+    for (const auto& p : sources) h = fnv1a(p.filename().string() + slurp(p), h);
+    h = fnv1a(slurp(tb), h);
+    char key[32];
+    std::snprintf(key, sizeof key, "ghdl_%012llx", static_cast<unsigned long long>(h & 0xffffffffffffULL));
+    const fs::path dir = cache_dir / key;
+    if (fs::exists(dir / "done")) return dir;
+    const fs::path tmp = cache_dir / (std::string(key) + ".tmp" + std::to_string(getpid()));
+    fs::remove_all(tmp);
+    fs::create_directories(tmp);
+    log << "gate: analysing the VHDL with GHDL into " << dir.string() << '\n' << std::flush;
+    std::vector<std::string> a = {HCVL_GHDL, "-a", "--std=08", "--workdir=."};
+    for (const auto& p : sources) a.push_back(p.string());
+    a.push_back(tb.string());
+    must(run(a, tmp, tmp / "analysis.log"), "GHDL analysis", tmp / "analysis.log");
+    std::ofstream(tmp / "done") << "ok\n";
+    std::error_code ec;
+    fs::rename(tmp, dir, ec);
+    if (ec) fs::remove_all(tmp);
+    return dir;
+}
+
+// What one simulator left on its ports after a write.
+struct Sample {
+    std::uint32_t corner = 0;
+    std::string obs;   // GHDL: std_ulogic characters, obs(0) first; empty without obs
+};
+
+struct Side {
+    std::vector<Sample> ghdl;
+};
+
+std::string element_name(const ObsField& f, const ObsSlot& s) {
+    return f.name + (f.elements() > 1 ? "(" + std::to_string(s.row) + "," + std::to_string(s.col) + ")" : "");
+}
+
+// Value of a slot in GHDL's obs string; nullopt when any of its bits is not '0'/'1'.
+std::optional<std::uint64_t> ghdl_value(const std::string& obs, const ObsSlot& s, int obs_bits) {
+    const int msb_p = obs_bits - 1 - (s.lsb + s.width - 1);   // VHDL index of the MSB
+    std::uint64_t v = 0;
+    for (int k = 0; k < s.width; ++k) {
+        const char ch = obs[static_cast<std::size_t>(msb_p + k)];
+        if (ch != '0' && ch != '1') return std::nullopt;
+        v = (v << 1) | static_cast<std::uint64_t>(ch == '1');
+    }
+    return v;
+}
+
+}  // namespace
+
+std::vector<GateCase> gate_cases() {
+    return {
+        {"10x10_random (smallest chainable size)", {10, 10}, Pattern::random, 3},
+        {"11x11_extremes (odd size)", {11, 11}, Pattern::extremes, 3},
+        {"16x12_checkerboard", {16, 12}, Pattern::checkerboard, 3},
+        {"32x16_random", {32, 16}, Pattern::random, 3},
+        {"37x21_blocks (odd, several window rows)", {37, 21}, Pattern::blocks, 3},
+    };
+}
+
+const char* verdict_name(GateVerdict v) {
+    switch (v) {
+        case GateVerdict::pass: return "pass";
+        case GateVerdict::translation_fault: return "translation fault";
+        case GateVerdict::rtl_fault: return "RTL fault";
+    }
+    return "?";
+}
+
+GateResult run_gate(const Formats& f, const std::vector<fs::path>& variants, const fs::path& cache_dir,
+                    std::ostream& log) {
+    GateResult res;
+    std::string first_rtl;
+    const auto layout = obs_layout(f);
+    NetlistConfig base{Geometry{}, f, true, variants};
+    const fs::path lib = ghdl_library(vhdl_sources(base), cache_dir, log);
+
+    for (const GateCase& gc : gate_cases()) {
+        // -- the stream, once, shared by the three sides
+        std::vector<Image> imgs;
+        for (int k = 0; k < gc.frames; ++k) imgs.push_back(make_pattern(gc.pattern, gc.g.width, gc.g.height, k, 7));
+        std::vector<const Image*> ptrs;
+        for (const auto& im : imgs) ptrs.push_back(&im);
+        HostDriver drv(gc.g, ptrs);
+        std::vector<BusEvent> events;
+        for (BusEvent ev; drv.next(ev);) events.push_back(ev);
+
+        // -- GHDL: replay the stream through the VHDL
+        const fs::path run_dir = cache_dir / ("gate_run" + std::to_string(getpid()));
+        fs::create_directories(run_dir);
+        {
+            std::ofstream stim(run_dir / "stim.txt");
+            char buf[16];
+            for (const auto& ev : events) {
+                std::snprintf(buf, sizeof buf, "%08X\n", ev.data);
+                stim << buf;
+            }
+        }
+        // mcode takes top-level generics as run options, after the unit name
+        std::vector<std::string> cmd = {HCVL_GHDL, "--elab-run", "--std=08", "--workdir=" + lib.string(),
+                                        "ghdl_replay_tb"};
+        for (const auto& [name, value] : generics(gc.g, f)) cmd.push_back("-g" + name + "=" + std::to_string(value));
+        // power-up 'U' values make numeric_std warn at time 0 only; they say nothing here
+        cmd.insert(cmd.end(), {"-gOBSERVE=true", "-gSTIM=stim.txt", "-gRESULT=result.txt",
+                               "--ieee-asserts=disable-at-0"});
+        fs::remove(run_dir / "ghdl.log");
+        must(run(cmd, run_dir, run_dir / "ghdl.log"), "GHDL simulation of " + gc.name, run_dir / "ghdl.log");
+        std::vector<Sample> ghdl;
+        {
+            std::ifstream in(run_dir / "result.txt");
+            std::string line;
+            while (std::getline(in, line)) {
+                Sample s;
+                s.corner = static_cast<std::uint32_t>(std::stoul(line.substr(0, 8), nullptr, 16));
+                if (line.size() > 9) s.obs = line.substr(9);
+                ghdl.push_back(std::move(s));
+            }
+        }
+        fs::remove_all(run_dir);
+        if (ghdl.size() != events.size())
+            throw std::runtime_error("GHDL replay of " + gc.name + " returned " + std::to_string(ghdl.size()) +
+                                     " writes, expected " + std::to_string(events.size()));
+
+        // -- Verilator: the netlist this geometry and these formats synthesise to
+        NetlistConfig nc{gc.g, f, true, variants};
+        VerilatedDesign dut(build_netlist(nc, cache_dir, log), config_key(nc));
+        const int nbits = dut.obs_bits();
+        const auto slots = obs_slots(f, nbits);
+        HarrisTop model(gc.g, f);
+
+        long reads = 0;
+        std::string case_translation, case_rtl;
+        for (std::size_t w = 0; w < events.size(); ++w) {
+            model.write(events[w].data);
+            dut.write(events[w].data);
+            if (events[w].read) ++reads;
+            const std::string where = gc.name + ", write " + std::to_string(w + 1) +
+                                      (events[w].read ? " (a read)" : "");
+            const std::uint32_t cg = ghdl[w].corner, cv = dut.corner(), cm = model.corner();
+            if (case_translation.empty() && cg != cv)
+                case_translation = where + ": corner GHDL " + hex(cg) + ", Verilator " + hex(cv) + ", model " +
+                                   hex(cm);
+            if (case_rtl.empty() && cg != cm)
+                case_rtl = where + ": corner GHDL " + hex(cg) + ", model " + hex(cm);
+            // observation port: GHDL vs Verilator bit by bit (defined GHDL bits only), and
+            // GHDL vs model element by element
+            if (ghdl[w].obs.size() != static_cast<std::size_t>(nbits))
+                throw std::runtime_error("GHDL obs is " + std::to_string(ghdl[w].obs.size()) + " bits, netlist " +
+                                         std::to_string(nbits));
+            const auto& words = dut.obs();
+            const FlatObservation flat = flatten(model.observe(), f);
+            for (std::size_t k = 0; k < slots.size(); ++k) {
+                if (!case_translation.empty() && !case_rtl.empty()) break;
+                const auto g = ghdl_value(ghdl[w].obs, slots[k], nbits);
+                if (!g) continue;
+                const std::uint64_t v = obs_value(words, slots[k]);
+                const std::uint64_t m = flat.bits[k] & (slots[k].width >= 64 ? ~0ULL : (1ULL << slots[k].width) - 1);
+                const ObsField& fld = layout[static_cast<std::size_t>(slots[k].field)];
+                const std::string sig = element_name(fld, slots[k]) + " (" + fld.stage + ")";
+                if (case_translation.empty() && *g != v)
+                    case_translation = where + ": " + sig + " GHDL " + hex(*g) + ", Verilator " + hex(v) + ", model " +
+                                       (flat.defined[k] ? hex(m) : std::string("undefined")) +
+                                       (flat.defined[k] && m == *g ? " (GHDL agrees with the model)" : "");
+                if (case_rtl.empty() && flat.defined[k] && *g != m)
+                    case_rtl = where + ": " + sig + " GHDL " + hex(*g) + ", model " + hex(m);
+            }
+            ++res.obs_compared;
+            if (!case_translation.empty() && !case_rtl.empty()) break;
+        }
+        res.writes += static_cast<long>(events.size());
+        res.reads += reads;
+        std::string line = gc.name + ": " + std::to_string(events.size()) + " writes, " + std::to_string(reads) +
+                           " reads: ";
+        if (!case_translation.empty()) {
+            line += "TRANSLATION FAULT (GHDL != Verilator) at " + case_translation;
+            if (res.verdict != GateVerdict::translation_fault) res.first = "translation fault: " + case_translation;
+            res.verdict = GateVerdict::translation_fault;
+        } else if (!case_rtl.empty()) {
+            line += "RTL FAULT (GHDL == Verilator != model) at " + case_rtl;
+            if (first_rtl.empty()) first_rtl = "RTL fault: " + case_rtl;
+            if (res.verdict == GateVerdict::pass) res.verdict = GateVerdict::rtl_fault;
+        } else {
+            line += "GHDL, Verilator and model agree on every read and every observed register";
+        }
+        res.per_case.push_back(line);
+        log << "gate: " << line << '\n' << std::flush;
+        // a failed gate is failed: the remaining cases (and their netlist builds) add nothing
+        if (res.verdict != GateVerdict::pass) break;
+    }
+    if (res.verdict == GateVerdict::rtl_fault) res.first = first_rtl;
+    return res;
+}
+
+GateResult run_gate_cached(const Formats& f, const std::vector<fs::path>& variants, const fs::path& cache_dir,
+                           std::ostream& log, bool* from_cache) {
+    // key: every netlist key of the regression set (sources, formats, harness, tools)
+    std::string keys;
+    for (const GateCase& gc : gate_cases()) keys += config_key(NetlistConfig{gc.g, f, true, variants}) + "\n";
+    char name[40];
+    std::snprintf(name, sizeof name, "gate_pass_%016llx", static_cast<unsigned long long>(fnv1a(keys)));
+    const fs::path marker = cache_dir / name;
+    if (from_cache) *from_cache = false;
+    if (fs::exists(marker)) {
+        if (from_cache) *from_cache = true;
+        GateResult r;
+        std::ifstream in(marker);
+        for (std::string line; std::getline(in, line);) r.per_case.push_back(line);
+        return r;
+    }
+    GateResult r = run_gate(f, variants, cache_dir, log);
+    if (r.verdict == GateVerdict::pass) {
+        std::ofstream out(marker);
+        for (const auto& l : r.per_case) out << l << '\n';
+    }
+    return r;
+}
+
+}  // namespace hc::vl

@@ -1,0 +1,244 @@
+// lockstep.cpp: see lockstep.hpp.
+#include "lockstep.hpp"
+
+#include <chrono>
+#include <sstream>
+#include <stdexcept>
+
+#include "harris/harris_top.hpp"
+
+namespace hc::vl {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double secs(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+std::string hex(std::uint64_t v) {
+    std::ostringstream s;
+    s << "0x" << std::hex << v;
+    return s.str();
+}
+
+// The model's provenance tag for the stage holding a field, or nullptr (control signals,
+// max/thr, corner bits: not one window's value).
+const WindowTag* tag_of(const std::string& field, const StageTags& t) {
+    if (field == "icm") return &t.window;
+    if (field == "sxm" || field == "sym") return &t.sobel;
+    if (field == "mam" || field == "mbm" || field == "mcm") return &t.m;
+    if (field == "bfam" || field == "bfbm" || field == "bfcm") return &t.block;
+    if (field == "hrm") return &t.response;
+    if (field == "trm" || field == "cornerbit") return &t.thresholded;
+    return nullptr;
+}
+// Pixel offset of element (r, c) from its window's centre: 7x7 window centred on (4,4),
+// 5x5 gradient/M elements centred on window pixel (r+1, c+1), 3x3 ones on (r+2, c+2).
+int centre_offset(int n, int rc) { return n == 7 ? rc - 4 : n == 5 ? rc - 3 : rc - 2; }
+
+constexpr int kRing = 256;   // writes of position history: far more than the pipeline depth
+}  // namespace
+
+std::vector<ObsSlot> obs_slots(const Formats& f, int obs_bits) {
+    const auto layout = obs_layout(f);
+    if (obs_width(f) != obs_bits)
+        throw std::runtime_error("the netlist's obs port is " + std::to_string(obs_bits) +
+                                 " bits but obs_layout() describes " + std::to_string(obs_width(f)) +
+                                 " (built with OBSERVE = false, or layout and RTL disagree)");
+    std::vector<ObsSlot> slots;
+    int p = 0;   // VHDL index of the element's MSB; Verilog bit = obs_bits - 1 - p
+    for (int k = 0; k < static_cast<int>(layout.size()); ++k)
+        for (int r = 1; r <= layout[k].rows; ++r)
+            for (int c = 1; c <= layout[k].cols; ++c) {
+                slots.push_back({k, r, c, obs_bits - p - layout[k].width, layout[k].width});
+                p += layout[k].width;
+            }
+    return slots;
+}
+
+std::uint64_t obs_value(const std::vector<std::uint32_t>& words, const ObsSlot& s) {
+    // gather the (at most three) words spanning [lsb, lsb+width) into 96 bits
+    const int w0 = s.lsb / 32, sh = s.lsb % 32;
+    unsigned __int128 acc = 0;
+    for (int k = 2; k >= 0; --k) {
+        acc <<= 32;
+        if (w0 + k < static_cast<int>(words.size())) acc |= words[static_cast<std::size_t>(w0 + k)];
+    }
+    const std::uint64_t v = static_cast<std::uint64_t>(acc >> sh);
+    return s.width >= 64 ? v : v & ((std::uint64_t{1} << s.width) - 1);
+}
+
+std::string Mismatch::describe() const {
+    std::ostringstream s;
+    s << kind << " mismatch after write " << write << ": frame " << frame << ", pixel x=" << x << " y=" << y;
+    if (quadrant >= 0) s << ", quadrant " << quadrant;
+    else s << " (the write's column: the register holds no window's value)";
+    s << ", signal " << signal << " (" << stage << "): expected " << expected
+      << " (model), actual " << actual << " (Verilator)";
+    return s.str();
+}
+
+RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut,
+                       const std::vector<const Image*>& frames, const std::vector<std::string>& names,
+                       const RunOptions& opt) {
+    RunResult res;
+    HostDriver drv(g, frames);
+    HarrisTop model(g, f);
+    dut.reset();
+    const auto layout = obs_layout(f);
+    std::vector<ObsSlot> slots;
+    if (opt.compare_obs) slots = obs_slots(f, dut.obs_bits());
+
+    res.frames.resize(frames.size());
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        res.frames[k].index = static_cast<int>(k);
+        res.frames[k].source = k < names.size() ? names[k] : "";
+    }
+    std::vector<WritePos> ring(kRing);
+    std::vector<Corner> corners;
+    const auto t_start = Clock::now();
+    auto t_frame = t_start;
+    Clock::duration t_dut{}, t_model{};
+    int open_frame = 0;   // lowest frame whose reads are not all done
+
+    auto record = [&](Mismatch m) {
+        ++res.mismatches;
+        if (static_cast<int>(res.reported.size()) < opt.max_reported) res.reported.push_back(std::move(m));
+    };
+    auto finish_frames_below = [&](int limit) {
+        while (open_frame < limit) {
+            const auto now = Clock::now();
+            res.frames[static_cast<std::size_t>(open_frame)].seconds = secs(now - t_frame);
+            t_frame = now;
+            if (opt.on_frame) opt.on_frame(res.frames[static_cast<std::size_t>(open_frame)]);
+            ++open_frame;
+        }
+    };
+
+    BusEvent ev;
+    while (drv.next(ev)) {
+        // a frame is complete once the next frame's body (not its preload) starts
+        if (!ev.pos.tail) finish_frames_below(ev.pos.frame);
+        ++res.writes;
+        ++res.frames[static_cast<std::size_t>(ev.pos.frame)].writes;
+        ring[static_cast<std::size_t>(res.writes % kRing)] = ev.pos;
+
+        const auto t0 = Clock::now();
+        model.write(ev.data);
+        const auto t1 = Clock::now();
+        dut.write(ev.data);
+        std::uint32_t actual = 0;
+        if (ev.read) actual = dut.corner();
+        const auto t2 = Clock::now();
+        t_model += t1 - t0;
+        t_dut += t2 - t1;
+
+        if (ev.read) {
+            const ReadPos& r = *ev.read;
+            const std::uint32_t expected = model.corner();
+            FrameStats& fs = res.frames[static_cast<std::size_t>(r.frame)];
+            ++res.reads;
+            ++fs.reads;
+            corners.clear();
+            drv.decode(r, actual, corners);
+            res.corners += static_cast<long>(corners.size());
+            fs.corners += static_cast<long>(corners.size());
+            if (opt.read_rows) {
+                std::ostringstream row;
+                row << res.writes << ',' << r.frame << ',' << r.x << ',' << r.y << ',' << actual;
+                opt.read_rows->push_back(row.str());
+            }
+            if (actual != expected) {
+                ++fs.mismatches;
+                ++res.read_mismatches;
+                // report the first differing corner bit (bit 3 = quadrant 0); other bits of
+                // the word (31..4 must be 0) are reported as the whole word
+                const std::uint32_t diff = actual ^ expected;
+                Mismatch m;
+                m.kind = "read";
+                m.write = res.writes;
+                int bit = -1;
+                for (int b = 3; b >= 0; --b)
+                    if ((diff >> b) & 1U) {
+                        bit = b;
+                        break;
+                    }
+                if (bit >= 0) {
+                    const Corner c = drv.quadrant_centre(r, 3 - bit);
+                    m.frame = c.frame;
+                    m.x = c.x;
+                    m.y = c.y;
+                    m.quadrant = 3 - bit;
+                    m.signal = "corner(" + std::to_string(bit) + ")";
+                    m.expected = std::to_string((expected >> bit) & 1U);
+                    m.actual = std::to_string((actual >> bit) & 1U);
+                } else {
+                    m.frame = r.frame;
+                    m.x = r.x;
+                    m.y = r.y;
+                    m.signal = "corner";
+                    m.expected = hex(expected);
+                    m.actual = hex(actual);
+                }
+                m.stage = "corner_shift_register";
+                record(std::move(m));
+                if (!opt.keep_going) {
+                    res.stopped_early = true;
+                    break;
+                }
+            }
+        }
+
+        if (opt.compare_obs) {
+            const FlatObservation flat = flatten(model.observe(), f);
+            const auto& words = dut.obs();
+            bool bad = false;
+            for (std::size_t k = 0; k < slots.size(); ++k) {
+                if (!flat.defined[k]) continue;   // 'U' in the RTL: no value to compare
+                const ObsSlot& s = slots[k];
+                const std::uint64_t mask = s.width >= 64 ? ~0ULL : (std::uint64_t{1} << s.width) - 1;
+                const std::uint64_t want = flat.bits[k] & mask, got = obs_value(words, s);
+                if (want == got) continue;
+                const ObsField& fld = layout[static_cast<std::size_t>(s.field)];
+                Mismatch m;
+                m.kind = "obs";
+                m.write = res.writes;
+                m.signal = fld.name + (fld.elements() > 1 ? "(" + std::to_string(s.row) + "," +
+                                                                 std::to_string(s.col) + ")"
+                                                           : "");
+                m.stage = fld.stage;
+                m.expected = hex(want);
+                m.actual = hex(got);
+                const WindowTag* tag = tag_of(fld.name, model.tags());
+                if (tag && tag->valid() && res.writes - tag->write < kRing) {
+                    const WritePos& wp = ring[static_cast<std::size_t>(tag->write % kRing)];
+                    const Corner c = drv.write_centre(wp, tag->quadrant);
+                    m.frame = c.frame;
+                    m.quadrant = tag->quadrant;
+                    m.x = c.x + centre_offset(fld.cols, s.col);
+                    m.y = c.y + centre_offset(fld.rows, s.row);
+                } else {   // control/max/threshold/corner: the write's own column
+                    const Corner c = drv.write_centre(ev.pos, 0);
+                    m.frame = c.frame;
+                    m.x = c.x;
+                    m.y = c.y;
+                }
+                record(std::move(m));
+                bad = true;
+                break;   // first differing element of this write: later stages follow from it
+            }
+            if (bad) {
+                ++res.frames[static_cast<std::size_t>(ev.pos.frame)].mismatches;
+                if (!opt.keep_going) {
+                    res.stopped_early = true;
+                    break;
+                }
+            }
+        }
+    }
+    if (!res.stopped_early) finish_frames_below(static_cast<int>(frames.size()));
+    res.seconds = secs(Clock::now() - t_start);
+    res.verilator_seconds = secs(t_dut);
+    res.model_seconds = secs(t_model);
+    return res;
+}
+
+}  // namespace hc::vl
