@@ -128,6 +128,15 @@ int run_rtl(const RtlOptions& o) {
     const Formats formats = load_formats(o.config);
     LoadedFrames lf = load_frames(o.src);
     const Geometry g{lf.frames[0].width, lf.frames[0].height};
+    {   // the host driver's own checks (e.g. chaining), before a simulator starts
+        std::vector<const Image*> ptrs;
+        for (const auto& f : lf.frames) ptrs.push_back(&f);
+        try {
+            HostDriver check(g, ptrs);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(lf.description + ": " + e.what());
+        }
+    }
     for (const std::string* out : {&o.json_out, &o.reads_out, &o.vcd, &o.wave})
         if (!out->empty() && fs::is_directory(*out)) throw InputError("output '" + *out + "' is a directory");
 
