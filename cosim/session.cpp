@@ -206,7 +206,6 @@ std::string Session::describe(const std::vector<Mismatch>& ms, long write) const
     o << "  this write : " << ms.size() << " element(s) differ:";
     for (const auto& [s, n] : per_signal) o << " " << s << "x" << n;
     o << "\n";
-    if (!cfg_.vcd_file.empty()) o << "  waveform   : " << cfg_.vcd_file << " (written at the end of the run)\n";
     o << "==========================\n";
     return o.str();
 }
