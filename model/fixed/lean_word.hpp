@@ -65,7 +65,6 @@ struct LeanWord {
     // LSBs as an unsigned field and subtract 2^(n-1) when the value is negative. For a
     // signed grow this is the identity (the value fits), so one formula serves both.
     friend constexpr LeanWord resize(const LeanWord& x, int n) {
-        if (n >= x.w) return {x.v, n, x.s};   // growing keeps the value (sign- or zero-extended)
         if (!x.s) return {wrap(static_cast<URep>(x.v), n, false), n, false};
         const URep low_mask = (static_cast<URep>(1) << (n - 1)) - 1U;
         const URep low = static_cast<URep>(x.v) & low_mask;
