@@ -13,5 +13,6 @@ void add_golden_command(CLI::App& app);     // golden reference files (cmd_golde
 void add_mutate_command(CLI::App& app);     // mutation campaign (cmd_mutate.cpp)
 void add_verilate_command(CLI::App& app);   // Verilator full-frame verification (cmd_verilate.cpp)
 void add_eval_command(CLI::App& app);       // precision/recall against OpenCV (cmd_eval.cpp)
+void add_sweep_command(CLI::App& app);      // bit-width exploration (cmd_sweep.cpp)
 
 }  // namespace hc::tools

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     hc::tools::add_mutate_command(app);
     hc::tools::add_verilate_command(app);
     hc::tools::add_eval_command(app);
+    hc::tools::add_sweep_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
