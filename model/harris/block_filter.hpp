@@ -1,7 +1,8 @@
 // block_filter.hpp: model of rtl/block_filter.vhd (combinational part).
 //
 // The nine M coefficients, each resized (sign-extended) to bf_sum_w, summed in bf_sum_w
-// bits, then bits bf_sum_w-1 .. bf_drop kept: 20 -> 16 bits, floor(sum / 16).
+// bits (by columns: block_column_sum, then block_filter_of_columns), then bits
+// bf_sum_w-1 .. bf_drop kept: 20 -> 16 bits, floor(sum / 16).
 // Template over the number type T (Word or LeanWord).
 #pragma once
 
@@ -10,12 +11,28 @@
 
 namespace hc {
 
+/// The sum of one column of the 3x3 (three coefficients, each resized to bf_sum_w), in
+/// bf_sum_w bits. Sums in bf_sum_w bits wrap modulo 2^bf_sum_w, so the order in which the
+/// nine are added does not change a bit of the result: the frame-level model sums columns
+/// once and reuses each for three windows (model/spec/spec_model.cpp).
+template <class T>
+inline T block_column_sum(const T& a0, const T& a1, const T& a2, const Formats& f) {
+    return resize(a0, f.bf_sum_w) + resize(a1, f.bf_sum_w) + resize(a2, f.bf_sum_w);
+}
+
+/// The block filter's output from its three column sums: their sum in bf_sum_w bits, then
+/// bits bf_sum_w-1 .. bf_drop.
+template <class T>
+inline T block_filter_of_columns(const T& c0, const T& c1, const T& c2, const Formats& f) {
+    const T sum = resize(c0, f.bf_sum_w) + resize(c1, f.bf_sum_w) + resize(c2, f.bf_sum_w);
+    return slice(sum, f.bf_sum_w - 1, f.bf_drop);   // 20 -> 16 bits: drop 4 LSBs
+}
+
 template <class T>
 inline T block_filter(const std::array<std::array<T, 3>, 3>& a, const Formats& f) {
-    T sum = T::sgn(0, f.bf_sum_w);
-    for (const auto& row : a)
-        for (const T& x : row) sum = sum + resize(x, f.bf_sum_w);
-    return slice(sum, f.bf_sum_w - 1, f.bf_drop);   // 20 -> 16 bits: drop 4 LSBs
+    return block_filter_of_columns(block_column_sum(a[0][0], a[1][0], a[2][0], f),
+                                   block_column_sum(a[0][1], a[1][1], a[2][1], f),
+                                   block_column_sum(a[0][2], a[1][2], a[2][2], f), f);
 }
 
 }  // namespace hc

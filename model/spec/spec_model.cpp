@@ -95,32 +95,37 @@ void m_pass(const FS fs, const std::uint8_t* src, int w0, int h0, std::int32_t* 
 }
 
 /// Pass 2: block sums and the response at every pixel whose 3x3 neighbourhood is in the
-/// M planes (w1 x h1).
+/// M planes (w1 x h1). The block filter is taken in its two shared halves: each row's
+/// column sums first (block_column_sum, into `cols`: 3 x w1 words), then each window adds
+/// three of them (block_filter_of_columns), so every column sum serves three windows.
+/// Column sums are bf_sum_w-bit words (up to 40 bits): stored in T's representation.
+template <class T>
+using Rep = decltype(T{}.v);
+
 template <class T, bool ExactK, class FS>
 void response_pass(const FS fs, const std::int32_t* A, const std::int32_t* B, const std::int32_t* C,
-                   int w1, int h1, std::int64_t* R, int r_stride) {
+                   int w1, int h1, std::int64_t* R, int r_stride, Rep<T>* cols) {
     const Formats& f = fs.get();
-    const int mw = f.m_w();
+    const int mw = f.m_w(), sw = f.bf_sum_w;
     const int w = w1 - 2, h = h1 - 2;
+    Rep<T>* ca = cols;
+    Rep<T>* cb = cols + w1;
+    Rep<T>* cc = cols + 2 * static_cast<size_t>(w1);
     for (int y = 0; y < h; ++y) {
         const size_t o0 = static_cast<size_t>(y) * w1, o1 = o0 + w1, o2 = o1 + w1;
+        // the M registers are m_w-bit signed words, the column sums bf_sum_w-bit ones
+#pragma GCC ivdep
+        for (int x = 0; x < w1; ++x) {
+            ca[x] = block_column_sum(T{A[o0 + x], mw, true}, T{A[o1 + x], mw, true}, T{A[o2 + x], mw, true}, f).v;
+            cb[x] = block_column_sum(T{B[o0 + x], mw, true}, T{B[o1 + x], mw, true}, T{B[o2 + x], mw, true}, f).v;
+            cc[x] = block_column_sum(T{C[o0 + x], mw, true}, T{C[o1 + x], mw, true}, T{C[o2 + x], mw, true}, f).v;
+        }
         std::int64_t* r = R + static_cast<size_t>(y) * r_stride;
 #pragma GCC ivdep
         for (int x = 0; x < w; ++x) {
-            std::array<std::array<T, 3>, 3> na, nb, nc;
-            for (int j = 0; j < 3; ++j) {
-                // the M registers are m_w-bit signed words: construct them as such
-                na[0][j] = T{A[o0 + x + j], mw, true};
-                na[1][j] = T{A[o1 + x + j], mw, true};
-                na[2][j] = T{A[o2 + x + j], mw, true};
-                nb[0][j] = T{B[o0 + x + j], mw, true};
-                nb[1][j] = T{B[o1 + x + j], mw, true};
-                nb[2][j] = T{B[o2 + x + j], mw, true};
-                nc[0][j] = T{C[o0 + x + j], mw, true};
-                nc[1][j] = T{C[o1 + x + j], mw, true};
-                nc[2][j] = T{C[o2 + x + j], mw, true};
-            }
-            const T ba = block_filter(na, f), bb = block_filter(nb, f), bc = block_filter(nc, f);
+            const T ba = block_filter_of_columns(T{ca[x], sw, true}, T{ca[x + 1], sw, true}, T{ca[x + 2], sw, true}, f);
+            const T bb = block_filter_of_columns(T{cb[x], sw, true}, T{cb[x + 1], sw, true}, T{cb[x + 2], sw, true}, f);
+            const T bc = block_filter_of_columns(T{cc[x], sw, true}, T{cc[x + 1], sw, true}, T{cc[x + 2], sw, true}, f);
             // the response needs 2*(bf_w+1) bits: continue in 64-bit words
             const Lean64 a{ba.v, ba.w, true}, b{bb.v, bb.w, true}, c{bc.v, bc.w, true};
             const ResponseTermsT<Lean64> t = harris_response_terms(a, b, c, f);
@@ -152,7 +157,13 @@ void pad_reflect101(const V* src, int w, int h, std::vector<V>& dst) {
 
 struct Workspace {
     std::vector<std::uint8_t> img;
-    std::vector<std::int32_t> a, b, c, pa, pb, pc;
+    std::vector<std::int32_t> a, b, c, pa, pb, pc, cols32;
+    std::vector<std::int64_t> cols64;
+    template <class R>
+    R* cols(size_t n) {
+        if constexpr (sizeof(R) == 4) return (cols32.resize(n), cols32.data());
+        else return (cols64.resize(n), cols64.data());
+    }
 };
 
 template <class T, bool ExactK, class FS>
@@ -194,7 +205,8 @@ void compute(const FS fs, const Image& im, Border border, Workspace& ws, Respons
     }
     const int w2 = w1 - 2, h2 = h1 - 2, o2 = o1 + 1;
     // R plane (w2 x h2) lands at image pixel (o2, o2), straight into the output
-    response_pass<T, ExactK>(fs, A, B, C, w1, h1, out.r.data() + static_cast<size_t>(o2) * W + o2, W);
+    response_pass<T, ExactK>(fs, A, B, C, w1, h1, out.r.data() + static_cast<size_t>(o2) * W + o2, W,
+                             ws.cols<Rep<T>>(3 * static_cast<size_t>(w1)));
     // candidate centres: all 8 neighbours must have a response (window), or all pixels
     if (refl) {
         out.x0 = 0; out.x1 = W; out.y0 = 0; out.y1 = H;

@@ -2,12 +2,19 @@
 #include <catch2/catch.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <random>
+#include <utility>
 
 #include "driver/host_driver.hpp"
 #include "eval/eval.hpp"
 #include "fixed/word.hpp"
 #include "fixed/lean_word.hpp"
+#include "harris/block_filter.hpp"
+#include "harris/harris_response.hpp"
+#include "harris/m_products.hpp"
+#include "harris/sobel_x.hpp"
+#include "harris/sobel_y.hpp"
 #include "spec/spec_model.hpp"
 
 using namespace hc;
@@ -132,4 +139,50 @@ TEST_CASE("the spec model's first frame uses the find-max reset value as its max
     CHECK(out[0].thr < 0);
     CHECK(out[1].thr == m.threshold_for(out[0].max));
     CHECK(prev == out[1].max);
+}
+
+// The window-border responses (computed in strips of rows, model/spec/spec_model.cpp)
+// against the stage functions applied pixel by pixel in the run-time-checked Word: every
+// pixel, a size whose response rows are not a multiple of the strip height, and the maximum.
+TEST_CASE("the spec model's responses equal the stage functions in Word at every pixel", "[model][spec]") {
+    const Formats f{};
+    for (auto [w, h] : {std::pair{61, 41}, std::pair{37, 23}, std::pair{8, 8}}) {
+        const Image im = make_pattern(Pattern::random, w, h, 3, 11);
+        spec::Response r;
+        spec::SpecModel{}.response(im, r);
+        REQUIRE(r.width == w);
+        REQUIRE(r.height == h);
+        auto m_at = [&](int y, int x) {   // M products of the 3x3 neighbourhood centred at (x, y)
+            Pixels3 nb;
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) nb[i][j] = im.at(y + i - 1, x + j - 1);
+            return m_products(sobel_x<Word>(nb, f), sobel_y<Word>(nb, f), f);
+        };
+        std::int64_t mx = std::numeric_limits<std::int64_t>::min();
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                std::int64_t want = 0;   // the window border leaves 0 where nothing is computed
+                if (x >= 2 && y >= 2 && x < w - 2 && y < h - 2) {
+                    std::array<std::array<Word, 3>, 3> na, nb, nc;
+                    for (int i = 0; i < 3; ++i)
+                        for (int j = 0; j < 3; ++j) {
+                            const auto m = m_at(y + i - 1, x + j - 1);
+                            na[i][j] = m.a;
+                            nb[i][j] = m.b;
+                            nc[i][j] = m.c;
+                        }
+                    const auto t = harris_response_terms(block_filter(na, f), block_filter(nb, f),
+                                                         block_filter(nc, f), f);
+                    want = harris_response(t, f).value();
+                    if (x >= r.x0 && x < r.x1 && y >= r.y0 && y < r.y1) mx = std::max(mx, want);
+                }
+                INFO(w << "x" << h << " x=" << x << " y=" << y);
+                REQUIRE(r.at(y, x) == want);
+            }
+        CHECK(r.x0 == 3);
+        CHECK(r.x1 == w - 3);
+        CHECK(r.y0 == 3);
+        CHECK(r.y1 == h - 3);
+        CHECK(r.max == mx);
+    }
 }
