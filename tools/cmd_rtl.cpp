@@ -32,15 +32,6 @@ std::string read_text(const fs::path& p) {
     return ss.str();
 }
 
-Formats load_formats(const std::string& path) {
-    if (path.empty()) return Formats{};
-    try {
-        return cosim::formats_from_json(read_text(path));
-    } catch (const std::invalid_argument& e) {
-        throw InputError("--config '" + path + "': " + e.what());
-    }
-}
-
 /// A scratch directory removed when the run ends.
 struct ScratchDir {
     fs::path path;
@@ -125,7 +116,7 @@ int run_rtl(const RtlOptions& o) {
     if (std::find(backends.begin(), backends.end(), o.backend) == backends.end())
         throw InputError("GHDL back end '" + o.backend + "' was not found when this build was configured "
                          "(install ghdl-" + o.backend + " and re-run cmake)");
-    const Formats formats = load_formats(o.config);
+    const Formats formats = load_config_formats(o.config);
     LoadedFrames lf = load_frames(o.src);
     const Geometry g{lf.frames[0].width, lf.frames[0].height};
     {   // the host driver's own checks (e.g. chaining), before a simulator starts
@@ -237,7 +228,7 @@ struct ModelOptions {
 };
 
 int run_model(const ModelOptions& o) {
-    const Formats formats = load_formats(o.config);
+    const Formats formats = load_config_formats(o.config);
     LoadedFrames lf = load_frames(o.src);
     const Geometry g{lf.frames[0].width, lf.frames[0].height};
     std::vector<const Image*> ptrs;
@@ -283,6 +274,21 @@ int run_model(const ModelOptions& o) {
 }
 
 }  // namespace
+
+Formats load_config_formats(const std::string& path) {
+    if (path.empty()) return Formats{};
+    std::string text;
+    try {
+        text = read_text(path);
+    } catch (const InputError&) {
+        throw InputError("--config '" + path + "' cannot be read");
+    }
+    try {
+        return cosim::formats_from_json(text);   // validates the formats
+    } catch (const std::invalid_argument& e) {
+        throw InputError("--config '" + path + "': " + e.what());
+    }
+}
 
 void add_rtl_command(CLI::App& app) {
     auto o = std::make_shared<RtlOptions>();

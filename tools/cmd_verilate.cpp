@@ -40,21 +40,6 @@ struct VerilateArgs {
 constexpr int kStatusMismatch = 1;
 constexpr int kStatusTranslationFault = 4;
 
-Formats load_formats(const std::string& path) {
-    if (path.empty()) return Formats{};
-    std::ifstream in(path);
-    if (!in) throw InputError("--config '" + path + "' cannot be read");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    try {
-        Formats f = cosim::formats_from_json(ss.str());
-        f.validate();
-        return f;
-    } catch (const std::invalid_argument& e) {
-        throw InputError("--config '" + path + "': " + e.what());
-    }
-}
-
 json mismatch_json(const vl::Mismatch& m) {
     return {{"kind", m.kind},         {"write", m.write},     {"frame", m.frame},   {"x", m.x},
             {"y", m.y},               {"quadrant", m.quadrant}, {"signal", m.signal}, {"stage", m.stage},
@@ -71,7 +56,7 @@ int run_verilate(const VerilateArgs& a) {
     std::string why;
     if (!vl::toolchain_available(&why)) throw InputError("the Verilator flow needs GHDL and Verilator: " + why);
     const fs::path cache = a.cache.empty() ? vl::default_cache_dir() : fs::path(a.cache);
-    const Formats f = load_formats(a.config);
+    const Formats f = load_config_formats(a.config);
     json out = {{"command", "verilate"}, {"simulator", "verilator"},
                 {"formats", json::parse(cosim::formats_to_json(f))}};
 

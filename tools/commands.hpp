@@ -5,6 +5,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
+#include "harris/harris_pkg.hpp"
+
 namespace hc::tools {
 
 void add_rtl_command(CLI::App& app);        // GHDL co-simulation (cmd_rtl.cpp)
@@ -14,5 +18,10 @@ void add_mutate_command(CLI::App& app);     // mutation campaign (cmd_mutate.cpp
 void add_verilate_command(CLI::App& app);   // Verilator full-frame verification (cmd_verilate.cpp)
 void add_eval_command(CLI::App& app);       // precision/recall against OpenCV (cmd_eval.cpp)
 void add_sweep_command(CLI::App& app);      // bit-width exploration (cmd_sweep.cpp)
+
+/// The formats of `--config FILE.json` (the thesis's when `path` is empty), validated.
+/// Throws InputError naming the file when it cannot be read or holds bad formats.
+/// Defined in cmd_rtl.cpp; rtl, model and verilate share it.
+Formats load_config_formats(const std::string& path);
 
 }  // namespace hc::tools
