@@ -20,19 +20,21 @@ inline T block_column_sum(const T& a0, const T& a1, const T& a2, const Formats& 
     return resize(a0, f.bf_sum_w) + resize(a1, f.bf_sum_w) + resize(a2, f.bf_sum_w);
 }
 
-/// The block filter's output from its three column sums: their sum in bf_sum_w bits, then
-/// bits bf_sum_w-1 .. bf_drop.
+/// The block filter's output from its three column sums (bf_sum_w-bit words, as
+/// block_column_sum returns them): their sum in bf_sum_w bits, then bits
+/// bf_sum_w-1 .. bf_drop.
 template <class T>
 inline T block_filter_of_columns(const T& c0, const T& c1, const T& c2, const Formats& f) {
-    const T sum = resize(c0, f.bf_sum_w) + resize(c1, f.bf_sum_w) + resize(c2, f.bf_sum_w);
+    const T sum = c0 + c1 + c2;   // same widths: the sum wraps to bf_sum_w bits
     return slice(sum, f.bf_sum_w - 1, f.bf_drop);   // 20 -> 16 bits: drop 4 LSBs
 }
 
 template <class T>
 inline T block_filter(const std::array<std::array<T, 3>, 3>& a, const Formats& f) {
-    return block_filter_of_columns(block_column_sum(a[0][0], a[1][0], a[2][0], f),
-                                   block_column_sum(a[0][1], a[1][1], a[2][1], f),
-                                   block_column_sum(a[0][2], a[1][2], a[2][2], f), f);
+    const T c0 = block_column_sum(a[0][0], a[1][0], a[2][0], f);
+    const T c1 = block_column_sum(a[0][1], a[1][1], a[2][1], f);
+    const T c2 = block_column_sum(a[0][2], a[1][2], a[2][2], f);
+    return block_filter_of_columns(c0, c1, c2, f);
 }
 
 }  // namespace hc

@@ -45,10 +45,16 @@ void HarrisTop::reset() {
     hr_ = r0_delay_ = tr_ = fill<3>(r0);
     for (auto& q : qc_) q.valid = false;
     fm_.reset(f_);
+    update_thr();
     csr_.reset();
 }
 
 Word HarrisTop::thr() const { return threshold_value(fm_.max, f_); }
+
+void HarrisTop::update_thr() {
+    const Word t = thr();
+    thr_reg_ = Reg::from_bits(t.bits(), t.width(), true);
+}
 
 bool HarrisTop::cornerbit() const { return local_maximum(tr_); }
 
@@ -71,8 +77,7 @@ void HarrisTop::write(std::uint32_t data) {
     // Read every pre-edge value a stage needs before any stage is updated.
     const bool ready_now = ready();
     const bool corner_now = cornerbit();
-    const Word thr_word = thr();
-    const Reg thr_now = Reg::from_bits(thr_word.bits(), thr_word.width(), true);
+    const Reg thr_now = thr_reg_;
 
     csr_ = csr_.next(corner_now);
     const StageTags tg = tags_;
@@ -93,7 +98,11 @@ void HarrisTop::write(std::uint32_t data) {
             r0_delay_[i][j] = hr_[i][j];
         }
 
-    if (ctrl_.en(4)) fm_ = fm_.next(Word::from_bits(hr_[1][1].bits(), f_.resp_w, true), g_);
+    if (ctrl_.en(4)) {
+        const std::int64_t old_max = fm_.max.value();
+        fm_ = fm_.next(Word::from_bits(hr_[1][1].bits(), f_.resp_w, true), g_);
+        if (fm_.max.value() != old_max) update_thr();
+    }
 
     if (ctrl_.en(3)) {
         if (!terms_defined_)

@@ -82,6 +82,8 @@ private:
     bool terms_defined_ = false;   // step-1 registers have no reset: 'U' until the first t(2)
     RegMatrix<3> hr_;
     FindMax fm_;
+    Reg thr_reg_;   // threshold_value(fm_.max) as a register word: recomputed when max changes
+    void update_thr();
     RegMatrix<3> r0_delay_, tr_;
     CornerShiftRegister csr_;
     StageTags tags_;
