@@ -141,9 +141,10 @@ TEST_CASE("the spec model's first frame uses the find-max reset value as its max
     CHECK(prev == out[1].max);
 }
 
-// The window-border responses (computed in strips of rows, model/spec/spec_model.cpp)
-// against the stage functions applied pixel by pixel in the run-time-checked Word: every
-// pixel, a size whose response rows are not a multiple of the strip height, and the maximum.
+// The window-border responses (whole-frame passes with the block filter taken by column
+// sums, model/spec/spec_model.cpp) against the stage functions applied pixel by pixel in
+// the run-time-checked Word, block_filter on the 3x3 included: every pixel of three sizes
+// (down to 8x8: 2x2 candidate centres), and the maximum.
 TEST_CASE("the spec model's responses equal the stage functions in Word at every pixel", "[model][spec]") {
     const Formats f{};
     for (auto [w, h] : {std::pair{61, 41}, std::pair{37, 23}, std::pair{8, 8}}) {
