@@ -8,11 +8,9 @@
 // 1 mismatch against the model, 2 bad input, 3 internal error, 4 translation fault.
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 
 #include "commands.hpp"
 #include "frame_source.hpp"

@@ -83,7 +83,6 @@ private:
     RegMatrix<3> hr_;
     FindMax fm_;
     Reg thr_reg_;   // threshold_value(fm_.max) as a register word: recomputed when max changes
-    void update_thr();
     RegMatrix<3> r0_delay_, tr_;
     CornerShiftRegister csr_;
     StageTags tags_;
@@ -104,6 +103,8 @@ private:
     /// First output column to compute for a stage whose input carries `tag`: 0 (all), or
     /// the last column when the input slid and the cache holds the previous results.
     int first_column(const WindowTag& tag, int n) const;
+    /// Recomputes thr_reg_ from fm_.max (after a reset and when find-max publishes a new max).
+    void update_thr();
 };
 
 }  // namespace hc
