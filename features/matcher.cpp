@@ -1,0 +1,213 @@
+// Purpose: the stereo matcher of thesis section 6.1 / appendix F: brute-force 2-NN both ways,
+// the 2-NN ratio test (as printed, or dropping ties), the symmetry (cross-check) test and the
+// epipolar test for rectified pairs, in appendix F's order: ratio test on both 2-NN lists,
+// symmetry test on what remains (a list emptied by the ratio test fails it), epipolar test.
+#include "features.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace hc::features {
+namespace {
+
+bool is_hamming(int norm) { return norm == cv::NORM_HAMMING || norm == cv::NORM_HAMMING2; }
+bool is_metric(int norm) { return norm == cv::NORM_L1 || norm == cv::NORM_L2 || norm == cv::NORM_L2SQR; }
+
+std::string norm_name(int norm) {
+    switch (norm) {
+    case cv::NORM_HAMMING: return "NORM_HAMMING";
+    case cv::NORM_HAMMING2: return "NORM_HAMMING2";
+    case cv::NORM_L1: return "NORM_L1";
+    case cv::NORM_L2: return "NORM_L2";
+    case cv::NORM_L2SQR: return "NORM_L2SQR";
+    default: return "norm " + std::to_string(norm);
+    }
+}
+
+/// Best and second best (distance, index) with OpenCV's tie rule: a candidate replaces a
+/// kept one only when strictly closer, so among equal distances the lower index ranks first.
+struct Best2 {
+    float d0 = std::numeric_limits<float>::infinity(), d1 = d0;
+    int i0 = -1, i1 = -1;
+    void offer(float d, int i) {
+        if (d < d0) {
+            d1 = d0; i1 = i0;
+            d0 = d; i0 = i;
+        } else if (d < d1) {
+            d1 = d; i1 = i;
+        }
+    }
+};
+
+/// Rows of query x rows of train distances, in blocks of query rows, feeding both directions'
+/// 2-NN lists (one distance computation serves both).
+void both_ways(const cv::Mat& a, const cv::Mat& b, int norm, std::vector<Best2>& ab,
+               std::vector<Best2>& ba) {
+    ab.assign(static_cast<size_t>(a.rows), Best2{});
+    ba.assign(static_cast<size_t>(b.rows), Best2{});
+    if (a.rows == 0 || b.rows == 0) return;
+    const int dtype = is_hamming(norm) ? CV_32S : CV_32F;
+    constexpr int block = 256;
+    cv::Mat dist;
+    for (int r0 = 0; r0 < a.rows; r0 += block) {
+        const int r1 = std::min(a.rows, r0 + block);
+        cv::batchDistance(a.rowRange(r0, r1), b, dist, dtype, cv::noArray(), norm);
+        for (int r = r0; r < r1; ++r) {
+            Best2& row_best = ab[static_cast<size_t>(r)];
+            if (dtype == CV_32S) {
+                const int* d = dist.ptr<int>(r - r0);
+                for (int c = 0; c < b.rows; ++c) {
+                    row_best.offer(static_cast<float>(d[c]), c);
+                    ba[static_cast<size_t>(c)].offer(static_cast<float>(d[c]), r);
+                }
+            } else {
+                const float* d = dist.ptr<float>(r - r0);
+                for (int c = 0; c < b.rows; ++c) {
+                    row_best.offer(d[c], c);
+                    ba[static_cast<size_t>(c)].offer(d[c], r);
+                }
+            }
+        }
+    }
+}
+
+std::vector<cv::DMatch> as_list(const Best2& b, int query) {
+    std::vector<cv::DMatch> m;
+    if (b.i0 >= 0) m.emplace_back(query, b.i0, b.d0);
+    if (b.i1 >= 0) m.emplace_back(query, b.i1, b.d1);
+    return m;
+}
+
+void check_descriptors(const cv::Mat& d, const std::string& what) {
+    if (d.dims > 2 || d.channels() != 1)
+        throw InputError(what + ": descriptors must be a single-channel matrix");
+    if (!d.empty() && d.depth() != CV_8U && d.depth() != CV_32F)
+        throw InputError(what + ": descriptor type must be CV_8U or CV_32F");
+}
+
+/// Whether the ratio test removes a 2-NN list with distances d0 <= d1 (the list has two).
+bool ratio_removes(RatioTest t, float d0, float d1, double max_ratio) {
+    switch (t) {
+    case RatioTest::none: return false;
+    case RatioTest::printed: {
+        // appendix F: double ratio = distance0 / distance1 (float division); ratio > maxRatio.
+        const double ratio = d0 / d1;
+        return ratio > max_ratio;  // NaN (0/0) compares false: kept
+    }
+    case RatioTest::drop_ties: return !(double(d0) < max_ratio * double(d1));
+    }
+    return false;
+}
+
+}  // namespace
+
+bool descriptor_norm_valid(int descriptor_type, int norm) {
+    const int depth = CV_MAT_DEPTH(descriptor_type);
+    if (CV_MAT_CN(descriptor_type) != 1) return false;
+    if (is_hamming(norm)) return depth == CV_8U;
+    if (is_metric(norm)) return depth == CV_32F;
+    return false;
+}
+
+void require_descriptor_norm(int descriptor_type, int norm, const std::string& what) {
+    if (descriptor_norm_valid(descriptor_type, norm)) return;
+    throw InputError(what + ": " + norm_name(norm) + " cannot compare descriptors of type " +
+                     cv::typeToString(descriptor_type) +
+                     " (Hamming norms need binary CV_8U descriptors, L1/L2 need CV_32F ones "
+                     "such as SIFT)");
+}
+
+std::vector<std::vector<cv::DMatch>> knn2(const cv::Mat& query, const cv::Mat& train, int norm) {
+    check_descriptors(query, "query");
+    check_descriptors(train, "train");
+    if (!query.empty()) require_descriptor_norm(query.type(), norm, "query descriptors");
+    if (!train.empty()) require_descriptor_norm(train.type(), norm, "train descriptors");
+    if (!query.empty() && !train.empty() && (query.cols != train.cols || query.type() != train.type()))
+        throw InputError("knn2: query and train descriptors differ in width or type");
+    std::vector<Best2> qt, tq;
+    both_ways(query, train, norm, qt, tq);
+    std::vector<std::vector<cv::DMatch>> out(static_cast<size_t>(query.rows));
+    for (int q = 0; q < query.rows; ++q) out[static_cast<size_t>(q)] = as_list(qt[static_cast<size_t>(q)], q);
+    return out;
+}
+
+std::vector<cv::DMatch> match_stereo(const cv::Mat& desc_l, const std::vector<cv::KeyPoint>& kp_l,
+                                     const cv::Mat& desc_r, const std::vector<cv::KeyPoint>& kp_r,
+                                     const MatchOptions& o, MatchCounts* counts) {
+    check_descriptors(desc_l, "left descriptors");
+    check_descriptors(desc_r, "right descriptors");
+    if (!desc_l.empty()) require_descriptor_norm(desc_l.type(), o.norm, "left descriptors");
+    if (!desc_r.empty()) require_descriptor_norm(desc_r.type(), o.norm, "right descriptors");
+    if (!desc_l.empty() && !desc_r.empty() &&
+        (desc_l.cols != desc_r.cols || desc_l.type() != desc_r.type()))
+        throw InputError("match_stereo: left descriptors (" + std::to_string(desc_l.cols) + " x " +
+                         cv::typeToString(desc_l.type()) + ") and right descriptors (" +
+                         std::to_string(desc_r.cols) + " x " + cv::typeToString(desc_r.type()) +
+                         ") differ");
+    if (static_cast<size_t>(desc_l.rows) != kp_l.size())
+        throw InputError("match_stereo: " + std::to_string(kp_l.size()) + " left keypoints but " +
+                         std::to_string(desc_l.rows) + " left descriptors");
+    if (static_cast<size_t>(desc_r.rows) != kp_r.size())
+        throw InputError("match_stereo: " + std::to_string(kp_r.size()) + " right keypoints but " +
+                         std::to_string(desc_r.rows) + " right descriptors");
+    if (!(o.max_ratio >= 0) || !(o.max_dy >= 0))
+        throw InputError("match_stereo: max_ratio and max_dy must be >= 0");
+
+    MatchCounts c;
+    std::vector<Best2> lr, rl;
+    both_ways(desc_l, desc_r, o.norm, lr, rl);
+
+    // Ratio test on both 2-NN lists; `alive` = the list was not cleared.
+    auto ratio_pass = [&](std::vector<Best2>& lists, int& queries, int& removed, int& nans,
+                          int& ties) {
+        std::vector<char> alive(lists.size(), 0);
+        for (size_t q = 0; q < lists.size(); ++q) {
+            const Best2& b = lists[q];
+            if (b.i0 < 0) continue;
+            ++queries;
+            alive[q] = 1;
+            if (b.i1 < 0) continue;  // a single neighbour: nothing to compare
+            if (b.d0 == b.d1) ++ties;
+            if (b.d0 == 0 && b.d1 == 0) ++nans;
+            if (ratio_removes(o.ratio, b.d0, b.d1, o.max_ratio)) {
+                alive[q] = 0;
+                ++removed;
+            }
+        }
+        return alive;
+    };
+    const std::vector<char> alive_l =
+        ratio_pass(lr, c.left_queries, c.ratio_left, c.ratio_nan_left, c.ratio_ties_left);
+    std::vector<char> alive_r(rl.size(), 1);
+    if (o.symmetry)
+        alive_r = ratio_pass(rl, c.right_queries, c.ratio_right, c.ratio_nan_right, c.ratio_ties_right);
+
+    std::vector<cv::DMatch> out;
+    for (size_t q = 0; q < lr.size(); ++q) {
+        if (!alive_l[q]) continue;
+        const Best2& b = lr[q];
+        if (o.symmetry) {
+            const size_t t = static_cast<size_t>(b.i0);
+            if (!alive_r[t] || rl[t].i0 != static_cast<int>(q)) {
+                ++c.symmetry;
+                continue;
+            }
+        }
+        if (o.epipolar) {
+            // appendix F: fabsf(y_r - y_l) < 5, in single precision
+            const float dy = std::fabs(kp_r[static_cast<size_t>(b.i0)].pt.y - kp_l[q].pt.y);
+            if (!(double(dy) < o.max_dy)) {
+                ++c.epipolar;
+                continue;
+            }
+        }
+        out.emplace_back(static_cast<int>(q), b.i0, b.d0);
+    }
+    c.kept = static_cast<int>(out.size());
+    if (counts) *counts = c;
+    return out;
+}
+
+}  // namespace hc::features
