@@ -1,0 +1,138 @@
+// features_bench.cpp: descriptor extraction + stereo matching per stereo pair, one thread:
+// the grid descriptor (thesis variant, g = 16, h = 3: the thesis's Harris choice; and the
+// corrected variant) against BRIEF, each followed by the same brute-force Hamming matcher
+// (hc::features::match_stereo: 2-NN both ways, symmetry, printed ratio test, |dy| < 5), on
+// the same keypoints, in the same run. Goal: grid + matching faster than BRIEF + matching
+// (thesis Tables 9-10: 1.72-1.88 times slower on a PC). Also each stage alone, and FREAK.
+// Pair: KITTI 01 pair 0 from the data directory ($HARRIS_COSIM_DATA, else the build
+// default), else opencv-doc's aloeL/aloeR; keypoints: the 1,000 strongest Harris corners
+// per image that BRIEF keeps (at least 28 px inside the image), so every descriptor sees
+// the same ones.
+#include <benchmark/benchmark.h>
+#include <opencv2/core.hpp>
+
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "features/features.hpp"
+#include "stereo_sample.hpp"
+
+namespace {
+
+using namespace hc::features;
+
+hc::features_test::StereoSample g_pair;
+
+struct Described {
+    cv::Mat l, r;
+};
+
+Described describe(cv::Feature2D& f) {
+    Described d;
+    auto kl = g_pair.kp_l, kr = g_pair.kp_r;
+    f.compute(g_pair.left, kl, d.l);
+    f.compute(g_pair.right, kr, d.r);
+    return d;
+}
+
+void run_describe_and_match(benchmark::State& st, const cv::Ptr<cv::Feature2D>& f) {
+    MatchOptions o;
+    o.norm = f->defaultNorm();
+    size_t matches = 0;
+    for (auto _ : st) {
+        const Described d = describe(*f);
+        const auto m = match_stereo(d.l, g_pair.kp_l, d.r, g_pair.kp_r, o);
+        matches = m.size();
+        benchmark::DoNotOptimize(m.data());
+    }
+    st.counters["matches"] = double(matches);
+    st.counters["bytes"] = f->descriptorSize();
+}
+
+void run_describe(benchmark::State& st, const cv::Ptr<cv::Feature2D>& f) {
+    for (auto _ : st) {
+        const Described d = describe(*f);
+        benchmark::DoNotOptimize(d.l.data);
+    }
+}
+
+void run_match(benchmark::State& st, const cv::Ptr<cv::Feature2D>& f) {
+    const Described d = describe(*f);
+    MatchOptions o;
+    o.norm = f->defaultNorm();
+    for (auto _ : st) {
+        const auto m = match_stereo(d.l, g_pair.kp_l, d.r, g_pair.kp_r, o);
+        benchmark::DoNotOptimize(m.data());
+    }
+}
+
+cv::Ptr<cv::Feature2D> grid_thesis() { return GridDescriptor::create(16, 3, GridVariant::thesis); }
+cv::Ptr<cv::Feature2D> grid_corrected() { return GridDescriptor::create(16, 3, GridVariant::corrected); }
+cv::Ptr<cv::Feature2D> brief() { return BriefDescriptor::create(); }
+cv::Ptr<cv::Feature2D> freak() { return FreakDescriptor::create(); }
+
+void BM_grid_thesis_describe_and_match(benchmark::State& st) { run_describe_and_match(st, grid_thesis()); }
+void BM_grid_corrected_describe_and_match(benchmark::State& st) { run_describe_and_match(st, grid_corrected()); }
+void BM_brief_describe_and_match(benchmark::State& st) { run_describe_and_match(st, brief()); }
+void BM_freak_describe_and_match(benchmark::State& st) { run_describe_and_match(st, freak()); }
+void BM_grid_thesis_describe(benchmark::State& st) { run_describe(st, grid_thesis()); }
+void BM_brief_describe(benchmark::State& st) { run_describe(st, brief()); }
+void BM_grid_thesis_match(benchmark::State& st) { run_match(st, grid_thesis()); }
+void BM_brief_match(benchmark::State& st) { run_match(st, brief()); }
+
+BENCHMARK(BM_grid_thesis_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_grid_corrected_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_brief_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_freak_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_grid_thesis_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_brief_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_grid_thesis_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_brief_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// Keeps every benchmark's real time per iteration to print the ratios after the run.
+class RatioReporter : public benchmark::ConsoleReporter {
+public:
+    void ReportRuns(const std::vector<Run>& runs) override {
+        for (const auto& r : runs)
+            if (r.run_type == Run::RT_Iteration && r.iterations > 0)
+                ms[r.benchmark_name()] = r.GetAdjustedRealTime();
+        ConsoleReporter::ReportRuns(runs);
+    }
+    void ratio(const char* what, const std::string& a, const std::string& b) const {
+        const auto x = ms.find(a), y = ms.find(b);
+        if (x != ms.end() && y != ms.end() && y->second > 0)
+            std::printf("%s: %.3f ms / %.3f ms = %.3f\n", what, x->second, y->second, x->second / y->second);
+    }
+    std::map<std::string, double> ms;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    cv::setNumThreads(1);
+    auto s = hc::features_test::load_stereo_sample(1000);
+    if (!s) {
+        std::fprintf(stderr, "features_bench: no KITTI 01 pair 0 and no opencv-doc aloe pair\n");
+        return 2;
+    }
+    g_pair = std::move(*s);
+    // keep the keypoints BRIEF keeps, so that every descriptor describes the same ones
+    cv::Mat unused;
+    BriefDescriptor::create()->compute(g_pair.left, g_pair.kp_l, unused);
+    BriefDescriptor::create()->compute(g_pair.right, g_pair.kp_r, unused);
+    std::printf("pair: %s (%dx%d), keypoints %zu left, %zu right\n", g_pair.name.c_str(), g_pair.left.cols,
+                g_pair.left.rows, g_pair.kp_l.size(), g_pair.kp_r.size());
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    RatioReporter rep;
+    benchmark::RunSpecifiedBenchmarks(&rep);
+    benchmark::Shutdown();
+    rep.ratio("grid (thesis) + matching / BRIEF + matching (goal < 1)", "BM_grid_thesis_describe_and_match",
+              "BM_brief_describe_and_match");
+    rep.ratio("grid (corrected) + matching / BRIEF + matching", "BM_grid_corrected_describe_and_match",
+              "BM_brief_describe_and_match");
+    rep.ratio("grid (thesis) extraction / BRIEF extraction", "BM_grid_thesis_describe", "BM_brief_describe");
+    rep.ratio("matching 35-byte grid / matching 32-byte BRIEF", "BM_grid_thesis_match", "BM_brief_match");
+    return 0;
+}
