@@ -5,7 +5,10 @@
 #include "features.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -41,6 +44,44 @@ struct Best2 {
     }
 };
 
+/// Binary descriptors as rows of 64-bit words, zero-padded (zero bytes add no distance).
+struct Packed {
+    int rows = 0;
+    int words = 0;
+    std::vector<std::uint64_t> w;
+    const std::uint64_t* row(int r) const { return w.data() + static_cast<size_t>(r) * words; }
+};
+
+Packed pack(const cv::Mat& m) {
+    Packed p;
+    p.rows = m.rows;
+    p.words = (m.cols + 7) / 8;
+    p.w.assign(static_cast<size_t>(p.rows) * p.words, 0);
+    for (int r = 0; r < m.rows; ++r)
+        std::memcpy(p.w.data() + static_cast<size_t>(r) * p.words, m.ptr<uchar>(r), static_cast<size_t>(m.cols));
+    return p;
+}
+
+/// NORM_HAMMING both ways: XOR and popcount on 64-bit words (the same distances as
+/// cv::batchDistance; compiled also for the popcnt instruction and picked at load time).
+#if defined(__GNUC__) && defined(__x86_64__)
+__attribute__((target_clones("popcnt", "default")))
+#endif
+void hamming_both_ways(const Packed& a, const Packed& b, std::vector<Best2>& ab, std::vector<Best2>& ba) {
+    const int words = a.words;
+    for (int r = 0; r < a.rows; ++r) {
+        const std::uint64_t* x = a.row(r);
+        Best2& row_best = ab[static_cast<size_t>(r)];
+        for (int c = 0; c < b.rows; ++c) {
+            const std::uint64_t* y = b.row(c);
+            int d = 0;
+            for (int k = 0; k < words; ++k) d += std::popcount(x[k] ^ y[k]);
+            row_best.offer(static_cast<float>(d), c);
+            ba[static_cast<size_t>(c)].offer(static_cast<float>(d), r);
+        }
+    }
+}
+
 /// Rows of query x rows of train distances, in blocks of query rows, feeding both directions'
 /// 2-NN lists (one distance computation serves both).
 void both_ways(const cv::Mat& a, const cv::Mat& b, int norm, std::vector<Best2>& ab,
@@ -48,6 +89,10 @@ void both_ways(const cv::Mat& a, const cv::Mat& b, int norm, std::vector<Best2>&
     ab.assign(static_cast<size_t>(a.rows), Best2{});
     ba.assign(static_cast<size_t>(b.rows), Best2{});
     if (a.rows == 0 || b.rows == 0) return;
+    if (norm == cv::NORM_HAMMING) {
+        hamming_both_ways(pack(a), pack(b), ab, ba);
+        return;
+    }
     const int dtype = is_hamming(norm) ? CV_32S : CV_32F;
     constexpr int block = 256;
     cv::Mat dist;

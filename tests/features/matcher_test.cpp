@@ -157,6 +157,9 @@ TEST_CASE("knn2 agrees with cv::BFMatcher::knnMatch, ties included", "[landmarks
     for (cv::Mat* m : {&a, &b})
         for (int r = 0; r < m->rows; ++r)
             for (int c = 0; c < 2; ++c) m->at<uchar>(r, c) = uchar(rng() & 0x13);  // few values: many ties
+    cv::Mat wa(90, 35, CV_8U), wb(80, 35, CV_8U);  // several 64-bit words and a 3-byte tail
+    cv::randu(wa, 0, 256);
+    cv::randu(wb, 0, 256);
     cv::Mat fa(40, 8, CV_32F), fb(50, 8, CV_32F);
     cv::randu(fa, 0, 4);
     cv::randu(fb, 0, 4);
@@ -165,7 +168,8 @@ TEST_CASE("knn2 agrees with cv::BFMatcher::knnMatch, ties included", "[landmarks
         cv::Mat q, t;
         int norm;
     };
-    for (const auto& k : {Case{a, b, cv::NORM_HAMMING}, Case{b, a, cv::NORM_HAMMING}, Case{fa, fb, cv::NORM_L2}}) {
+    for (const auto& k : {Case{a, b, cv::NORM_HAMMING}, Case{b, a, cv::NORM_HAMMING}, Case{wa, wb, cv::NORM_HAMMING},
+                          Case{wa, wb, cv::NORM_HAMMING2}, Case{fa, fb, cv::NORM_L2}, Case{fa, fb, cv::NORM_L1}}) {
         std::vector<std::vector<cv::DMatch>> ref;
         cv::BFMatcher(k.norm).knnMatch(k.q, k.t, ref, 2);
         const auto ours = knn2(k.q, k.t, k.norm);

@@ -22,17 +22,20 @@ struct StereoSample {
     std::vector<cv::KeyPoint> kp_l, kp_r;
 };
 
-inline std::vector<cv::KeyPoint> strongest_harris(const cv::Mat& grey, int count) {
+/// The `count` strongest Harris corners at least `border` pixels inside the image.
+inline std::vector<cv::KeyPoint> strongest_harris(const cv::Mat& grey, int count, int border) {
     std::vector<cv::Point2f> pts;
-    cv::goodFeaturesToTrack(grey, pts, count, 1e-4, 3, cv::noArray(), 3, true, 0.04);
+    cv::Mat mask = cv::Mat::zeros(grey.size(), CV_8U);
+    mask(cv::Rect(border, border, grey.cols - 2 * border, grey.rows - 2 * border)).setTo(255);
+    cv::goodFeaturesToTrack(grey, pts, count, 1e-4, 3, mask, 3, true, 0.04);
     std::vector<cv::KeyPoint> k;
     for (const auto& p : pts) k.emplace_back(p, 7.f);
     return k;
 }
 
 /// The KITTI pair when the data directory has it, else aloe (HC_OPENCV_SAMPLES_DIR), else
-/// nothing. `corners` keypoints per image.
-inline std::optional<StereoSample> load_stereo_sample(int corners) {
+/// nothing. `corners` keypoints per image, at least `border` pixels inside it.
+inline std::optional<StereoSample> load_stereo_sample(int corners, int border = 0) {
     namespace fs = std::filesystem;
     StereoSample s;
     const auto data = tools::data_dir("");
@@ -50,8 +53,8 @@ inline std::optional<StereoSample> load_stereo_sample(int corners) {
 #endif
     }
     if (s.left.empty() || s.right.empty()) return std::nullopt;
-    s.kp_l = strongest_harris(s.left, corners);
-    s.kp_r = strongest_harris(s.right, corners);
+    s.kp_l = strongest_harris(s.left, corners, border);
+    s.kp_r = strongest_harris(s.right, corners, border);
     return s;
 }
 
