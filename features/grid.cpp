@@ -137,12 +137,12 @@ Scaled scale_all(const std::vector<cv::KeyPoint>& kps, int h) {
 }
 
 /// Visits every j whose scaled position may fall on keypoint i's grid of either variant:
-/// thesis reach (-1 - lx, g + 1 - lx), corrected reach [x_i - g/2, x_i + g - g/2), one
-/// scaled unit of margin for float rounding.
+/// thesis reach x_j in (x_i - centre - 1, x_i - centre + g + 1) = (x_i - g/2 - 2, x_i + g - g/2),
+/// corrected reach [x_i - g/2, x_i + g - g/2); one scaled unit of margin for float rounding.
 template <class F>
 void for_each_candidate(const Buckets& b, const Scaled& s, size_t i, int g, F&& f) {
     const double reach_lo = -double(thesis_centre(g)) - 2.0;
-    const double reach_hi = double(g) + 2.0;
+    const double reach_hi = double(g - g / 2) + 1.0;
     b.for_each_in(s.x[i] + reach_lo, s.x[i] + reach_hi, s.y[i] + reach_lo, s.y[i] + reach_hi, f);
 }
 
