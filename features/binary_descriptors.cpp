@@ -15,8 +15,11 @@
 namespace hc::features {
 namespace {
 
-/// Grey 8-bit copy of `image` (1 or 3/4 channels, CV_8U); InputError otherwise.
-cv::Mat grey8(cv::InputArray image, const char* who) {
+/// Grey 8-bit copy of `image` (1 or 3/4 channels, CV_8U) for a descriptor that describes
+/// given keypoints; InputError otherwise, or when asked to detect keypoints.
+cv::Mat descriptor_input(cv::InputArray image, bool useProvidedKeypoints, const char* who) {
+    if (!useProvidedKeypoints)
+        throw InputError(std::string(who) + ": a descriptor only (call compute with keypoints)");
     const cv::Mat m = image.getMat();
     if (m.empty()) throw InputError(std::string(who) + ": empty image");
     if (m.depth() != CV_8U)
@@ -174,9 +177,7 @@ const std::vector<cv::Vec4i>& BriefDescriptor::pattern() {
 void BriefDescriptor::detectAndCompute(cv::InputArray image, cv::InputArray,
                                        std::vector<cv::KeyPoint>& keypoints,
                                        cv::OutputArray descriptors, bool useProvidedKeypoints) {
-    if (!useProvidedKeypoints)
-        throw InputError("BRIEF: a descriptor only (call compute with keypoints)");
-    const cv::Mat grey = grey8(image, "BRIEF");
+    const cv::Mat grey = descriptor_input(image, useProvidedKeypoints, "BRIEF");
     // the patch reaches S/2 pixels left/up and S/2 - 1 right/down, the kernel K/2 more
     const int margin = patch_size / 2 + brief_kernel / 2;
     apply_border(keypoints, grey.size(), margin, border_);
@@ -234,9 +235,7 @@ const std::vector<cv::Vec2i>& FreakDescriptor::pairs() {
 void FreakDescriptor::detectAndCompute(cv::InputArray image, cv::InputArray,
                                        std::vector<cv::KeyPoint>& keypoints,
                                        cv::OutputArray descriptors, bool useProvidedKeypoints) {
-    if (!useProvidedKeypoints)
-        throw InputError("FREAK: a descriptor only (call compute with keypoints)");
-    const cv::Mat grey = grey8(image, "FREAK");
+    const cv::Mat grey = descriptor_input(image, useProvidedKeypoints, "FREAK");
     const auto& f = fields();
     const auto& pr = pairs();
     static const std::vector<cv::Vec2i> orient = make_orientation_pairs();
