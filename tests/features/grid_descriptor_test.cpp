@@ -143,7 +143,7 @@ TEST_CASE("negative offsets truncate toward zero, so thesis cell 0 spans two cel
     CHECK(grid_cell(ref, {99, 100}, 16, 2, GridVariant::corrected).x == 7);  // floor(-0.25) = -1
 }
 
-TEST_CASE("the corrected grid covers [-g/2, g - g/2) cells with bit g*Y + X", "[landmarks][grid]") {
+TEST_CASE("the corrected grid covers cell offsets -g/2 to g - g/2 - 1 with bit g*Y + X", "[landmarks][grid]") {
     const cv::Mat d = grid_describe({kp(100, 100), kp(92, 92), kp(107.9f, 100), kp(108, 100), kp(91.5f, 100)},
                                     16, 0, GridVariant::corrected);
     REQUIRE(d.cols == 32);
