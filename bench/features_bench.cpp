@@ -12,6 +12,7 @@
 
 #include <cstdio>
 #include <map>
+#include <set>
 #include <string>
 
 #include "features/features.hpp"
@@ -89,21 +90,34 @@ BENCHMARK(BM_brief_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_grid_thesis_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_brief_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-/// Keeps every benchmark's real time per iteration to print the ratios after the run.
+/// Keeps every benchmark's real time per iteration (the median over repetitions when
+/// --benchmark_repetitions is given) to print the ratios after the run.
 class RatioReporter : public benchmark::ConsoleReporter {
 public:
     void ReportRuns(const std::vector<Run>& runs) override {
-        for (const auto& r : runs)
-            if (r.run_type == Run::RT_Iteration && r.iterations > 0)
-                ms[r.benchmark_name().substr(0, r.benchmark_name().find('/'))] = r.GetAdjustedRealTime();
+        for (const auto& r : runs) {
+            const std::string name = r.run_name.function_name;
+            if (r.run_type == Run::RT_Aggregate && r.aggregate_name == "median") {
+                ms[name] = r.GetAdjustedRealTime();
+                cpu[name] = r.GetAdjustedCPUTime();
+                median.insert(name);
+            } else if (r.run_type == Run::RT_Iteration && r.iterations > 0 && !median.count(name)) {
+                ms[name] = r.GetAdjustedRealTime();
+                cpu[name] = r.GetAdjustedCPUTime();
+            }
+        }
         ConsoleReporter::ReportRuns(runs);
     }
+    std::set<std::string> median;
+    /// Real-time ratio a / b, and the CPU-time ratio (the fairer one on a loaded machine).
     void ratio(const char* what, const std::string& a, const std::string& b) const {
         const auto x = ms.find(a), y = ms.find(b);
-        if (x != ms.end() && y != ms.end() && y->second > 0)
-            std::printf("%s: %.3f ms / %.3f ms = %.3f\n", what, x->second, y->second, x->second / y->second);
+        if (x == ms.end() || y == ms.end() || y->second <= 0) return;
+        const double ca = cpu.at(a), cb = cpu.at(b);
+        std::printf("%s: real %.3f ms / %.3f ms = %.3f; CPU %.3f ms / %.3f ms = %.3f\n", what, x->second,
+                    y->second, x->second / y->second, ca, cb, cb > 0 ? ca / cb : 0.0);
     }
-    std::map<std::string, double> ms;
+    std::map<std::string, double> ms, cpu;
 };
 
 }  // namespace
