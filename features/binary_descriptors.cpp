@@ -184,20 +184,30 @@ void BriefDescriptor::detectAndCompute(cv::InputArray image, cv::InputArray,
     cv::Mat smooth;
     cv::GaussianBlur(padded(grey, margin), smooth, cv::Size(brief_kernel, brief_kernel),
                      brief_sigma, brief_sigma, cv::BORDER_REFLECT_101);
+    // each test's two points as offsets from the centre pixel in this image's memory
     const auto& pat = pattern();
-    cv::Mat d = cv::Mat::zeros(static_cast<int>(keypoints.size()), brief_bits / 8, CV_8U);
+    const auto step = static_cast<std::ptrdiff_t>(smooth.step1());
+    std::vector<std::ptrdiff_t> off_a(brief_bits), off_b(brief_bits);
+    for (size_t k = 0; k < brief_bits; ++k) {
+        off_a[k] = pat[k][1] * step + pat[k][0];
+        off_b[k] = pat[k][3] * step + pat[k][2];
+    }
+    cv::Mat d(static_cast<int>(keypoints.size()), brief_bits / 8, CV_8U);
     const cv::Size inner(smooth.cols - 2 * (patch_size / 2), smooth.rows - 2 * (patch_size / 2));
     for (size_t i = 0; i < keypoints.size(); ++i) {
         // the centre, clamped so that the whole patch stays on the padded image
         cv::Point c = pixel_of(keypoints[i]) + cv::Point(margin, margin);
         c = clamp_into(c - cv::Point(patch_size / 2, patch_size / 2), inner) +
             cv::Point(patch_size / 2, patch_size / 2);
+        const uchar* centre = smooth.ptr<uchar>(c.y) + c.x;
         uchar* row = d.ptr<uchar>(static_cast<int>(i));
-        for (int k = 0; k < brief_bits; ++k) {
-            const cv::Vec4i& t = pat[static_cast<size_t>(k)];
-            const uchar a = smooth.at<uchar>(c.y + t[1], c.x + t[0]);
-            const uchar b = smooth.at<uchar>(c.y + t[3], c.x + t[2]);
-            if (a < b) row[k >> 3] = static_cast<uchar>(row[k >> 3] | (1 << (k & 7)));
+        for (size_t byte = 0; byte < brief_bits / 8; ++byte) {
+            unsigned v = 0;
+            for (size_t bit = 0; bit < 8; ++bit) {
+                const size_t k = 8 * byte + bit;
+                v |= static_cast<unsigned>(centre[off_a[k]] < centre[off_b[k]]) << bit;
+            }
+            row[byte] = static_cast<uchar>(v);
         }
     }
     d.copyTo(descriptors);
