@@ -3,7 +3,9 @@
 // corrected variant) against BRIEF, each followed by the same brute-force Hamming matcher
 // (hc::features::match_stereo: 2-NN both ways, symmetry, printed ratio test, |dy| < 5), on
 // the same keypoints, in the same run. Goal: grid + matching faster than BRIEF + matching
-// (thesis Tables 9-10: 1.72-1.88 times slower on a PC). Also each stage alone, and FREAK.
+// (thesis Tables 9-10: 1.72-1.88 times slower on a PC), measured by BM_grid_vs_brief_interleaved
+// (both chains alternately in every iteration: robust to a changing machine load). Also each
+// chain and stage alone, FREAK, and grid extraction against the keypoint count.
 // Pair: KITTI 01 pair 0 from the data directory ($HARRIS_COSIM_DATA, else the build
 // default), else opencv-doc's aloeL/aloeR; keypoints: the 1,000 strongest Harris corners
 // per image at least 28 px inside it (BRIEF's margin), so every descriptor sees the same ones.
