@@ -176,8 +176,11 @@ StereoCalib calibrate(const Detection& d, const Board& board, const CalibOptions
     c.D2 = cv::Mat::zeros(1, 5, CV_64F);
     // Each camera alone first (Zhang's initialisation needs no stereo), model k1 k2 p1 p2 k3.
     std::vector<cv::Mat> rv, tv;
-    cv::calibrateCamera(obj, il, d.image_size, c.K1, c.D1, rv, tv);
-    cv::calibrateCamera(obj, ir, d.image_size, c.K2, c.D2, rv, tv);
+    cv::Mat sd, sde, pve;
+    cv::calibrateCamera(obj, il, d.image_size, c.K1, c.D1, rv, tv, sd, sde, pve);
+    c.sigma1 = cv::Vec4d(sd.at<double>(0), sd.at<double>(1), sd.at<double>(2), sd.at<double>(3));
+    cv::calibrateCamera(obj, ir, d.image_size, c.K2, c.D2, rv, tv, sd, sde, pve);
+    c.sigma2 = cv::Vec4d(sd.at<double>(0), sd.at<double>(1), sd.at<double>(2), sd.at<double>(3));
     cv::Mat E, F, errs;
     const int flags = opt.refine_intrinsics ? cv::CALIB_USE_INTRINSIC_GUESS : cv::CALIB_FIX_INTRINSIC;
     c.rms = cv::stereoCalibrate(obj, il, ir, c.K1, c.D1, c.K2, c.D2, d.image_size, c.R, c.T, E, F,
@@ -349,6 +352,7 @@ std::string to_opencv_storage(const StereoCalib& c, bool json) {
     fs << "view_names" << "[";
     for (const auto& n : c.view_names) fs << n;
     fs << "]";
+    fs << "sigma1" << cv::Mat(c.sigma1).reshape(1, 1) << "sigma2" << cv::Mat(c.sigma2).reshape(1, 1);
     fs << "rectified_input" << (c.rectified_input ? 1 : 0);
     return fs.releaseAndGetString();
 }
@@ -393,6 +397,11 @@ StereoCalib read_opencv_storage(const fs::path& p) {
         for (int i = 0; i < errs.rows; ++i)
             c.per_view_errors.emplace_back(errs.at<double>(i, 0), errs.at<double>(i, 1));
         for (const auto& n : node("view_names")) c.view_names.push_back(static_cast<std::string>(n));
+        const cv::Mat s1 = mat("sigma1", 1, 4), s2 = mat("sigma2", 1, 4);
+        for (int i = 0; i < 4; ++i) {
+            c.sigma1[i] = s1.at<double>(i);
+            c.sigma2[i] = s2.at<double>(i);
+        }
         c.rectified_input = static_cast<int>(node("rectified_input")) != 0;
     } catch (const cv::Exception& e) {
         throw InputError(fmt::format("cannot parse calibration file '{}': {}", p.string(), e.what()));
@@ -412,7 +421,7 @@ std::string mat_md(const cv::Mat& m) {
     s += "\n";
     for (int i = 0; i < m.rows; ++i) {
         s += "|";
-        for (int j = 0; j < m.cols; ++j) s += fmt::format(" {:.6g} |", m.at<double>(i, j));
+        for (int j = 0; j < m.cols; ++j) s += fmt::format(" {:.6g} |", m.at<double>(i, j) + 0.0);   // -0 -> 0
         s += "\n";
     }
     return s;
@@ -440,13 +449,16 @@ std::string report_markdown(const StereoCalib& c, const Detection& d, const Boar
         s += "\n## Skipped pairs\n\n";
         for (const auto& k : d.skipped) s += "- " + k + "\n";
     }
-    s += "\n## Intrinsics\n\n| camera | fx | fy | cx | cy | k1 | k2 | p1 | p2 | k3 |\n"
-         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    s += "\n## Intrinsics\n\nAfter the stereo optimisation; the standard deviations (sd, px) are each camera's own "
+         "calibration's (cv::calibrateCamera).\n\n| camera | fx | fy | cx | cy | sd fx | sd fy | sd cx | sd cy | k1 | "
+         "k2 | p1 | p2 | k3 |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (int k = 0; k < 2; ++k) {
         const cv::Mat& K = k ? c.K2 : c.K1;
         const cv::Mat& D = k ? c.D2 : c.D1;
-        s += fmt::format("| {} | {:.3f} | {:.3f} | {:.3f} | {:.3f}", k ? "right" : "left",
-                         K.at<double>(0, 0), K.at<double>(1, 1), K.at<double>(0, 2), K.at<double>(1, 2));
+        const cv::Vec4d& sd = k ? c.sigma2 : c.sigma1;
+        s += fmt::format("| {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f}",
+                         k ? "right" : "left", K.at<double>(0, 0), K.at<double>(1, 1), K.at<double>(0, 2),
+                         K.at<double>(1, 2), sd[0], sd[1], sd[2], sd[3]);
         for (int i = 0; i < 5; ++i) s += fmt::format(" | {:.5g}", D.at<double>(0, i));
         s += " |\n";
     }

@@ -99,6 +99,9 @@ struct StereoCalib {
     cv::Mat P1, P2;            ///< rectified projections (3x4): calib.txt's P0 and P1
     cv::Mat Q;                 ///< disparity-to-depth (4x4)
     double rms = 0;            ///< stereo reprojection RMS, px (0 when not calibrated here)
+    /// Standard deviations of fx, fy, cx, cy from each camera's own calibration
+    /// (cv::calibrateCamera's estimate, px); zero when not calibrated here.
+    cv::Vec4d sigma1, sigma2;
     std::vector<cv::Vec2d> per_view_errors;   ///< RMS per view, left and right, px
     std::vector<std::string> view_names;      ///< parallel to per_view_errors
     /// True when the images are already rectified and undistorted (a KITTI calib.txt):
@@ -157,7 +160,7 @@ StereoCalib read_kitti_calib(const std::filesystem::path& p);
 
 /// The whole calibration as OpenCV FileStorage text: YAML when `json` is false, else JSON.
 /// Keys: image_width, image_height, distortion_model, K1, D1, K2, D2, R, T, R1, R2, P1, P2,
-/// Q, rms, per_view_errors, view_names, rectified_input.
+/// Q, rms, per_view_errors, view_names, sigma1, sigma2 (1x4: fx fy cx cy), rectified_input.
 std::string to_opencv_storage(const StereoCalib& c, bool json);
 /// Reads a file written by to_opencv_storage (.yml, .yaml, .json). Throws InputError naming
 /// it when it is missing, unreadable or lacks a key.

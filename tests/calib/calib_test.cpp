@@ -230,6 +230,8 @@ TEST_CASE("the OpenCV storage reads back what it wrote, in YAML and in JSON", "[
     c.rms = 0.3333333333333333;
     c.per_view_errors = {{0.1, 0.2}, {1.0 / 3.0, 2.0 / 7.0}};
     c.view_names = {"left01.jpg + right01.jpg", "a b"};
+    c.sigma1 = {0.5, 0.25, 1.0 / 3.0, 0.125};
+    c.sigma2 = {1, 2, 3, 4};
     for (const bool json : {false, true}) {
         const fs::path p = fs::temp_directory_path() / (json ? "hc_calib_test.json" : "hc_calib_test.yml");
         std::ofstream(p) << to_opencv_storage(c, json);
@@ -243,6 +245,8 @@ TEST_CASE("the OpenCV storage reads back what it wrote, in YAML and in JSON", "[
         CHECK(r.rms == c.rms);
         CHECK(r.per_view_errors == c.per_view_errors);
         CHECK(r.view_names == c.view_names);
+        CHECK(r.sigma1 == c.sigma1);
+        CHECK(r.sigma2 == c.sigma2);
         CHECK(r.rectified_input);
     }
     CHECK_THROWS_WITH(read_opencv_storage("no/such/calib.yml"), Catch::Contains("no/such/calib.yml"));
