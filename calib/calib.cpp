@@ -59,7 +59,8 @@ std::vector<fs::path> expand_image_list(const std::vector<std::string>& items,
     return out;
 }
 
-std::vector<cv::Point2f> find_board(const cv::Mat& grey, const Board& board, int subpix_half) {
+std::vector<cv::Point2f> find_board(const cv::Mat& grey, const Board& board, int subpix_half,
+                                    int* used_half) {
     std::vector<cv::Point2f> corners;
     if (!cv::findChessboardCorners(grey, board.inner, corners,
                                    cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
@@ -79,6 +80,7 @@ std::vector<cv::Point2f> find_board(const cv::Mat& grey, const Board& board, int
                 spacing = std::min(spacing, static_cast<float>(cv::norm(corners[k + static_cast<size_t>(w)] - corners[k])));
         }
     const int half = subpix_half > 0 ? subpix_half : std::clamp(static_cast<int>(spacing / 3), 2, 11);
+    if (used_half) *used_half = half;
     cv::cornerSubPix(grey, corners, cv::Size(half, half), cv::Size(-1, -1),
                      cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 30, 0.01));
     return corners;
@@ -122,7 +124,10 @@ Detection detect_boards(const std::vector<fs::path>& left, const std::vector<fs:
         const std::string name = left[i].filename().string() + " + " + right[i].filename().string();
         const cv::Mat l = read_grey(left[i], d.image_size);
         const cv::Mat r = read_grey(right[i], d.image_size);
-        StereoView v{name, find_board(l, board, opt.subpix_half), find_board(r, board, opt.subpix_half)};
+        StereoView v;
+        v.name = name;
+        v.left = find_board(l, board, opt.subpix_half, &v.window_left);
+        v.right = find_board(r, board, opt.subpix_half, &v.window_right);
         std::string missing;
         if (v.left.empty() && v.right.empty()) missing = "both images";
         else if (v.left.empty()) missing = "the left image";
@@ -441,10 +446,15 @@ std::string report_markdown(const StereoCalib& c, const Detection& d, const Boar
                      focal(c), baseline(c));
     s += fmt::format("- rectification check over {} corner pairs: mean |y_l - y_r| = **{:.4f} px**, "
                      "largest {:.4f} px\n\n", check.corners, check.mean_abs_dy, check.max_abs_dy);
-    s += "## Per-view reprojection error (px)\n\n| pair | left | right |\n|---|---:|---:|\n";
-    for (size_t i = 0; i < c.per_view_errors.size(); ++i)
-        s += fmt::format("| {} | {:.4f} | {:.4f} |\n", c.view_names[i], c.per_view_errors[i][0],
-                         c.per_view_errors[i][1]);
+    s += "## Per-view reprojection error\n\nRMS per image (px) and the half side of the sub-pixel "
+         "window its corners were refined in (px).\n\n| pair | left | right | window left | window right |\n"
+         "|---|---:|---:|---:|---:|\n";
+    for (size_t i = 0; i < c.per_view_errors.size(); ++i) {
+        const StereoView* v = i < d.views.size() && d.views[i].name == c.view_names[i] ? &d.views[i] : nullptr;
+        s += fmt::format("| {} | {:.4f} | {:.4f} | {} | {} |\n", c.view_names[i], c.per_view_errors[i][0],
+                         c.per_view_errors[i][1], v ? std::to_string(v->window_left) : "-",
+                         v ? std::to_string(v->window_right) : "-");
+    }
     if (!d.skipped.empty()) {
         s += "\n## Skipped pairs\n\n";
         for (const auto& k : d.skipped) s += "- " + k + "\n";

@@ -55,13 +55,16 @@ std::vector<std::filesystem::path> expand_image_list(const std::vector<std::stri
 /// the board is not found in full. subpix_half = 0 chooses it per image: a third of the
 /// smallest distance between adjacent corners, within [2, 11] px, so that the window stays
 /// inside the four squares around a corner (OpenCV's samples use 11 whatever the board's
-/// size; docs/calibration.md measures both).
-std::vector<cv::Point2f> find_board(const cv::Mat& grey, const Board& board, int subpix_half = 0);
+/// size; docs/calibration.md measures both). The half side used is stored in *used_half
+/// when given.
+std::vector<cv::Point2f> find_board(const cv::Mat& grey, const Board& board, int subpix_half = 0,
+                                    int* used_half = nullptr);
 
 /// One stereo pair in which both images show the whole board.
 struct StereoView {
     std::string name;                                ///< "left01.jpg + right01.jpg"
     std::vector<cv::Point2f> left, right;            ///< corners, same order in both
+    int window_left = 0, window_right = 0;           ///< sub-pixel half windows used, px
 };
 
 /// The boards found over a list of stereo pairs.

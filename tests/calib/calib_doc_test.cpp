@@ -96,11 +96,13 @@ TEST_CASE("the left camera's intrinsics agree with the sample's left_intrinsics.
     INFO("ours fx " << K.at<double>(0, 0) << " fy " << K.at<double>(1, 1) << " cx " << K.at<double>(0, 2)
                     << " cy " << K.at<double>(1, 2) << "; shipped fx " << s.fx << " fy " << s.fy << " cx "
                     << s.cx << " cy " << s.cy);
-    // Tolerance 4.5 px on each of fx, fy, cx, cy: three standard deviations of the difference
-    // of two estimates, sqrt(0.6^2 + 1.4^2) = 1.5 px, from cv::calibrateCamera's own
-    // uncertainty on these 13 views (0.6 px with our corners, 1.4 px with the samples' 11 px
-    // window, which left_intrinsics.yml was made with: docs/calibration.md).
-    const double tol = 4.5;
+    // Tolerance 5 px on each of fx, fy, cx, cy: three standard deviations of the difference of
+    // two estimates taken as independent (the same images correlate them, which only narrows
+    // the difference), 3 sqrt(0.68^2 + 1.56^2) = 5.1 px, with cv::calibrateCamera's
+    // largest deviation of the four on these 13 views: 0.68 px with our corners, 1.56 px with
+    // the samples' 11 px sub-pixel window that left_intrinsics.yml was made with (both in the
+    // reports of docs/calibration.md). Measured differences: 2.21, 2.22, 0.16, 0.57 px.
+    const double tol = 5.0;
     CHECK(std::abs(K.at<double>(0, 0) - s.fx) < tol);
     CHECK(std::abs(K.at<double>(1, 1) - s.fy) < tol);
     CHECK(std::abs(K.at<double>(0, 2) - s.cx) < tol);
@@ -126,7 +128,7 @@ TEST_CASE("with the sample's window and flags the left images reproduce left_int
     std::vector<cv::Mat> rv, tv;
     const double rms = cv::calibrateCamera(obj, img, cv::Size(640, 480), K, D, rv, tv, cv::CALIB_FIX_ASPECT_RATIO);
     INFO("rms " << rms << " fx " << K.at<double>(0, 0) << " cx " << K.at<double>(0, 2) << " cy " << K.at<double>(1, 2));
-    CHECK(std::abs(K.at<double>(0, 0) - s.fx) < 0.5);   // a third of the estimate's 1.4 px deviation
+    CHECK(std::abs(K.at<double>(0, 0) - s.fx) < 0.5);   // a third of the estimate's deviation (1.36 px in fx)
     CHECK(std::abs(K.at<double>(0, 2) - s.cx) < 0.5);
     CHECK(std::abs(K.at<double>(1, 2) - s.cy) < 0.5);
     CHECK(std::abs(rms - s.rms) < 0.03);
