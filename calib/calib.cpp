@@ -126,6 +126,8 @@ Detection detect_boards(const std::vector<fs::path>& left, const std::vector<fs:
         const cv::Mat r = read_grey(right[i], d.image_size);
         StereoView v;
         v.name = name;
+        v.left_file = left[i];
+        v.right_file = right[i];
         v.left = find_board(l, board, opt.subpix_half, &v.window_left);
         v.right = find_board(r, board, opt.subpix_half, &v.window_right);
         std::string missing;
@@ -229,6 +231,29 @@ RectificationCheck check_rectification(const StereoCalib& c, const Detection& d)
     }
     r.mean_abs_dy = r.corners ? sum / static_cast<double>(r.corners) : 0;
     return r;
+}
+
+cv::Mat rectified_pair_figure(const StereoCalib& c, const cv::Mat& left, const cv::Mat& right,
+                              const StereoView& view) {
+    if (left.size() != c.image_size || right.size() != c.image_size)
+        throw InputError(fmt::format("images of {}x{} for a calibration of {}x{}", left.cols, left.rows,
+                                     c.image_size.width, c.image_size.height));
+    const int W = c.image_size.width, H = c.image_size.height;
+    cv::Mat fig(H, 2 * W, CV_8UC3);
+    for (int k = 0; k < 2; ++k) {
+        cv::Mat mx, my, rect, bgr;
+        cv::initUndistortRectifyMap(k ? c.K2 : c.K1, k ? c.D2 : c.D1, k ? c.R2 : c.R1, k ? c.P2 : c.P1,
+                                    c.image_size, CV_32FC1, mx, my);
+        cv::remap(k ? right : left, rect, mx, my, cv::INTER_LINEAR);
+        cv::cvtColor(rect, bgr, cv::COLOR_GRAY2BGR);
+        bgr.copyTo(fig(cv::Rect(k * W, 0, W, H)));
+    }
+    for (int y = 0; y < H; y += 20) cv::line(fig, {0, y}, {2 * W - 1, y}, cv::Scalar(255, 160, 0), 1);
+    for (const auto& p : rectify_points(c, Side::left, view.left))
+        cv::circle(fig, p, 3, cv::Scalar(0, 200, 0), 1, cv::LINE_AA);
+    for (const auto& p : rectify_points(c, Side::right, view.right))
+        cv::circle(fig, p + cv::Point2f(static_cast<float>(W), 0), 3, cv::Scalar(0, 0, 230), 1, cv::LINE_AA);
+    return fig;
 }
 
 double focal(const StereoCalib& c) { return c.P1.at<double>(0, 0); }
@@ -435,7 +460,8 @@ std::string mat_md(const cv::Mat& m) {
 }  // namespace
 
 std::string report_markdown(const StereoCalib& c, const Detection& d, const Board& board,
-                            const RectificationCheck& check) {
+                            const RectificationCheck& check, const std::string& figure,
+                            const std::string& figure_view) {
     std::string s = "# Stereo calibration\n\n";
     s += fmt::format("Board {}x{} inner corners, square {}; images {}x{}; {} pairs used, {} skipped.\n\n",
                      board.inner.width, board.inner.height, board.square, c.image_size.width,
@@ -446,6 +472,11 @@ std::string report_markdown(const StereoCalib& c, const Detection& d, const Boar
                      focal(c), baseline(c));
     s += fmt::format("- rectification check over {} corner pairs: mean |y_l - y_r| = **{:.4f} px**, "
                      "largest {:.4f} px\n\n", check.corners, check.mean_abs_dy, check.max_abs_dy);
+    if (!figure.empty())
+        s += fmt::format("![{0} rectified]({1})\n\n{0}, warped for this picture only (the pipeline moves "
+                         "keypoints, not pixels): left and right rectified side by side, board corners "
+                         "through rectify_points (green left, red right), a line every 20 px.\n\n",
+                         figure_view, figure);
     s += "## Per-view reprojection error\n\nRMS per image (px) and the half side of the sub-pixel "
          "window its corners were refined in (px).\n\n| pair | left | right | window left | window right |\n"
          "|---|---:|---:|---:|---:|\n";

@@ -65,6 +65,7 @@ struct StereoView {
     std::string name;                                ///< "left01.jpg + right01.jpg"
     std::vector<cv::Point2f> left, right;            ///< corners, same order in both
     int window_left = 0, window_right = 0;           ///< sub-pixel half windows used, px
+    std::filesystem::path left_file, right_file;     ///< the images
 };
 
 /// The boards found over a list of stereo pairs.
@@ -144,6 +145,14 @@ struct RectificationCheck {
 };
 RectificationCheck check_rectification(const StereoCalib& c, const Detection& d);
 
+/// A picture for the eye, not for the pipeline: `left` and `right` (8-bit grey) rectified by
+/// warping (cv::initUndistortRectifyMap, cv::remap) side by side, with the board corners of
+/// `view` moved by rectify_points drawn on them (green left, red right) and a horizontal
+/// line every 20 px: on a good calibration every corner pair sits on one row. BGR, 2W x H.
+/// Throws InputError when the images are not of the calibration's size.
+cv::Mat rectified_pair_figure(const StereoCalib& c, const cv::Mat& left, const cv::Mat& right,
+                              const StereoView& view);
+
 /// Focal length of the rectified pair, px (P1(0,0)).
 double focal(const StereoCalib& c);
 /// Baseline, in the board's unit: -P2(0,3) / P2(0,0).
@@ -174,8 +183,11 @@ StereoCalib read_opencv_storage(const std::filesystem::path& p);
 cv::Mat disparity_to_depth(const cv::Mat& P1, const cv::Mat& P2);
 
 /// A Markdown report of a calibration: RMS, per-view errors, intrinsics, distortion,
-/// extrinsics, rectified projections, Q, the rectification check and the skipped pairs.
+/// extrinsics, rectified projections, Q, the rectification check and the skipped pairs;
+/// with `figure` (a PNG file name beside the report, of rectified_pair_figure for the view
+/// named `figure_view`), a link to it.
 std::string report_markdown(const StereoCalib& c, const Detection& d, const Board& board,
-                            const RectificationCheck& check);
+                            const RectificationCheck& check, const std::string& figure = {},
+                            const std::string& figure_view = {});
 
 }  // namespace hc::calib

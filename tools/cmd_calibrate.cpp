@@ -2,11 +2,13 @@
 // chessboard pairs (thesis 4.3) into a KITTI-style calib.txt, the OpenCV YAML/JSON with the
 // distortion model and Q, per-view errors (CSV) and a Markdown report. The work is in
 // calib/calib.hpp; docs/calibration.md describes the files.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "calib/calib.hpp"
 #include "commands.hpp"
@@ -52,12 +54,27 @@ void run_calibrate(const CalibrateOptions& o) {
             csv += fmt::format("\"{}\",{:.6f},{:.6f}\n", c.view_names[i], c.per_view_errors[i][0],
                                c.per_view_errors[i][1]);
         write_file_atomic(out / "views.csv", csv);
-        write_file_atomic(out / "report.md", calib::report_markdown(c, d, board, check));
+        // The picture shows the view with the largest reprojection error, where a bad
+        // calibration would show first.
+        size_t worst = 0;
+        for (size_t i = 1; i < c.per_view_errors.size(); ++i)
+            if (std::max(c.per_view_errors[i][0], c.per_view_errors[i][1]) >
+                std::max(c.per_view_errors[worst][0], c.per_view_errors[worst][1]))
+                worst = i;
+        const auto& wv = d.views[worst];
+        std::vector<uchar> png;
+        cv::imencode(".png",
+                     calib::rectified_pair_figure(c, cv::imread(wv.left_file.string(), cv::IMREAD_GRAYSCALE),
+                                                  cv::imread(wv.right_file.string(), cv::IMREAD_GRAYSCALE), wv),
+                     png);
+        write_file_atomic(out / "rectified.png", std::string(png.begin(), png.end()));
+        write_file_atomic(out / "report.md", calib::report_markdown(c, d, board, check, "rectified.png", wv.name));
         std::printf("%zu pairs used, %zu skipped; RMS %.4f px; left fx %.3f fy %.3f cx %.3f cy %.3f; "
                     "baseline %.6g; rectified mean |y_l - y_r| %.4f px\n",
                     d.views.size(), d.skipped.size(), c.rms, c.K1.at<double>(0, 0), c.K1.at<double>(1, 1),
                     c.K1.at<double>(0, 2), c.K1.at<double>(1, 2), calib::baseline(c), check.mean_abs_dy);
-        std::printf("wrote %s/{calib.txt, calib.yml, calib.json, views.csv, report.md}\n", out.string().c_str());
+        std::printf("wrote %s/{calib.txt, calib.yml, calib.json, views.csv, rectified.png, report.md}\n",
+                    out.string().c_str());
     } catch (const calib::InputError& e) {
         throw InputError(e.what());
     }

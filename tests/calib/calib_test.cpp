@@ -220,6 +220,19 @@ TEST_CASE("calibrating a synthetic rig from its exact corners recovers it", "[ca
     const RectificationCheck chk = check_rectification(c, d);
     CHECK(chk.corners == 12u * 54u);
     CHECK(chk.max_abs_dy < 1e-3);
+    // The picture: both rectified images side by side, the first left corner drawn in green
+    // (a ring of radius 3 around its rectified position).
+    const cv::Mat grey(480, 640, CV_8U, cv::Scalar(0));
+    const cv::Mat fig = rectified_pair_figure(c, grey, grey, d.views[0]);
+    CHECK(fig.size() == cv::Size(1280, 480));
+    CHECK(fig.type() == CV_8UC3);
+    const cv::Point2f p = rectify_points(c, Side::left, {d.views[0].left[0]})[0];
+    const cv::Vec3b ring = fig.at<cv::Vec3b>(cvRound(p.y), cvRound(p.x) + 3);
+    INFO("pixel at (" << cvRound(p.x) + 3 << ", " << cvRound(p.y) << "): " << ring);
+    CHECK(ring[1] > 100);
+    CHECK(ring[2] < 50);
+    CHECK_THROWS_WITH(rectified_pair_figure(c, grey(cv::Rect(0, 0, 320, 240)), grey, d.views[0]),
+                      Catch::Contains("320x240"));
 }
 
 TEST_CASE("the OpenCV storage reads back what it wrote, in YAML and in JSON", "[calib]") {

@@ -1,7 +1,7 @@
 #!/bin/sh
 # `harris-cosim calibrate`: bad input exits 2 with a message naming it and writes nothing;
-# on OpenCV's sample pairs it exits 0 and writes calib.txt, calib.yml, calib.json, views.csv
-# and report.md, calib.txt holding exactly the rows P0 and P1 of 12 numbers.
+# on OpenCV's sample pairs it exits 0 and writes calib.txt, calib.yml, calib.json, views.csv,
+# rectified.png and report.md, calib.txt holding exactly the rows P0 and P1 of 12 numbers.
 #   calibrate_command.sh HARRIS_COSIM SAMPLES_DIR
 set -u
 cli="$1"; samples="${HARRIS_COSIM_OPENCV_SAMPLES:-$2}"
@@ -30,7 +30,7 @@ expect_2 "2 left images but 1 right" --left "$samples/left0[1-2].jpg" --right "$
 
 "$cli" calibrate --left "$samples/left[0-9]*.jpg" --right "$samples/right[0-9]*.jpg" --board 9x6 \
   --square 0.025 --out "$out/good" > "$out/log" 2>&1 || { cat "$out/log"; fail "calibrate on the samples exited non-zero"; }
-for f in calib.txt calib.yml calib.json views.csv report.md; do
+for f in calib.txt calib.yml calib.json views.csv rectified.png report.md; do
   [ -s "$out/good/$f" ] || fail "calibrate did not write $f"
 done
 [ "$(cut -d' ' -f1 "$out/good/calib.txt" | tr '\n' ' ')" = "P0: P1: " ] || fail "calib.txt rows are not P0, P1"
