@@ -165,16 +165,10 @@ std::vector<cv::Point3f> board_points(const Board& b) {
     return pts;
 }
 
-}  // namespace
-
-StereoCalib calibrate(const Detection& d, const Board& board, const CalibOptions& opt) {
-    if (d.views.empty()) throw InputError("no stereo pair shows the board: nothing to calibrate");
-    const std::vector<std::vector<cv::Point3f>> obj(d.views.size(), board_points(board));
-    std::vector<std::vector<cv::Point2f>> il, ir;
-    for (const auto& v : d.views) {
-        il.push_back(v.left);
-        ir.push_back(v.right);
-    }
+// Each camera alone, then the pair, then the rectification (calibrate without the checks).
+StereoCalib calibrate_views(const Detection& d, const std::vector<std::vector<cv::Point3f>>& obj,
+                            const std::vector<std::vector<cv::Point2f>>& il,
+                            const std::vector<std::vector<cv::Point2f>>& ir, const CalibOptions& opt) {
     StereoCalib c;
     c.image_size = d.image_size;
     c.K1 = cv::Mat::eye(3, 3, CV_64F);
@@ -203,6 +197,27 @@ StereoCalib calibrate(const Detection& d, const Board& board, const CalibOptions
         throw InputError("the cameras are stacked vertically: rectified rows would be columns; "
                          "only side-by-side rigs are supported");
     return c;
+}
+
+}  // namespace
+
+StereoCalib calibrate(const Detection& d, const Board& board, const CalibOptions& opt) {
+    if (d.views.size() < 3)
+        throw InputError(fmt::format("{} stereo pairs show the board; the calibration needs at least 3 "
+                                     "(Zhang's method solves a general camera's intrinsics from 3 or more "
+                                     "views of the plane)", d.views.size()));
+    const std::vector<std::vector<cv::Point3f>> obj(d.views.size(), board_points(board));
+    std::vector<std::vector<cv::Point2f>> il, ir;
+    for (const auto& v : d.views) {
+        il.push_back(v.left);
+        ir.push_back(v.right);
+    }
+    try {
+        return calibrate_views(d, obj, il, ir, opt);
+    } catch (const cv::Exception& e) {
+        throw InputError(fmt::format("the calibration of {} pairs failed (too few or degenerate views?): {}",
+                                     d.views.size(), e.what()));
+    }
 }
 
 std::vector<cv::Point2f> rectify_points(const StereoCalib& c, Side side,
@@ -472,6 +487,10 @@ std::string report_markdown(const StereoCalib& c, const Detection& d, const Boar
                      focal(c), baseline(c));
     s += fmt::format("- rectification check over {} corner pairs: mean |y_l - y_r| = **{:.4f} px**, "
                      "largest {:.4f} px\n\n", check.corners, check.mean_abs_dy, check.max_abs_dy);
+    if (check.mean_abs_dy > kUsableMeanDy)
+        s += fmt::format("**Warning: rectified rows differ by {:.2f} px on average (more than {} px): this "
+                         "calibration is not usable; take more views, at various angles and distances.**\n\n",
+                         check.mean_abs_dy, kUsableMeanDy);
     if (!figure.empty())
         s += fmt::format("![{0} rectified]({1})\n\n{0}, warped for this picture only (the pipeline moves "
                          "keypoints, not pixels): left and right rectified side by side, board corners "

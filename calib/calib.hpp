@@ -124,7 +124,8 @@ struct CalibOptions {
 };
 
 /// Calibrates each camera, then the pair, then rectifies: the RMS is stereoCalibrate's
-/// (over both images of every view). Throws InputError when `d` holds no view.
+/// (over both images of every view). Throws InputError when `d` holds fewer than 3 views,
+/// when OpenCV's optimisation fails on them, or for a vertical rig.
 StereoCalib calibrate(const Detection& d, const Board& board, const CalibOptions& opt = {});
 
 /// Which camera a point comes from.
@@ -144,6 +145,10 @@ struct RectificationCheck {
     std::size_t corners = 0;
 };
 RectificationCheck check_rectification(const StereoCalib& c, const Detection& d);
+/// Above this mean |y_l - y_r| (px) a calibration is reported as not usable: the thesis's
+/// epipolar test (|dy| < 5 px) would then reject good matches. A good one measures 0.1 px
+/// (docs/calibration.md).
+inline constexpr double kUsableMeanDy = 1.0;
 
 /// A picture for the eye, not for the pipeline: `left` and `right` (8-bit grey) rectified by
 /// warping (cv::initUndistortRectifyMap, cv::remap) side by side, with the board corners of

@@ -43,6 +43,9 @@ void run_calibrate(const CalibrateOptions& o) {
         opt.refine_intrinsics = !o.fix_intrinsic;
         const auto c = calib::calibrate(d, board, opt);
         const auto check = calib::check_rectification(c, d);
+        if (check.mean_abs_dy > calib::kUsableMeanDy)
+            std::fprintf(stderr, "warning: rectified rows differ by %.2f px on average: this calibration is not "
+                                 "usable (see report.md)\n", check.mean_abs_dy);
 
         const fs::path out(o.out);
         fs::create_directories(out);

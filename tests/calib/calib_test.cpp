@@ -203,7 +203,8 @@ TEST_CASE("calibrating a synthetic rig from its exact corners recovers it", "[ca
         const cv::Mat tr = R * tv + s.T;
         cv::Mat rvr;
         cv::Rodrigues(R * Rb, rvr);
-        StereoView view{"view " + std::to_string(v), {}, {}};
+        StereoView view;
+        view.name = "view " + std::to_string(v);
         cv::projectPoints(obj, rv, tv, s.K1, s.D1, view.left);
         cv::projectPoints(obj, rvr, tr, s.K2, s.D2, view.right);
         d.views.push_back(view);
@@ -233,6 +234,16 @@ TEST_CASE("calibrating a synthetic rig from its exact corners recovers it", "[ca
     CHECK(ring[2] < 50);
     CHECK_THROWS_WITH(rectified_pair_figure(c, grey(cv::Rect(0, 0, 320, 240)), grey, d.views[0]),
                       Catch::Contains("320x240"));
+    // The report: the figures above, and a warning only when the rows disagree.
+    const std::string report = report_markdown(c, d, board, chk);
+    CHECK(report.find("over 648 corner pairs") != std::string::npos);
+    CHECK(report.find("| view 3 |") != std::string::npos);
+    CHECK(report.find("not usable") == std::string::npos);
+    CHECK(report_markdown(c, d, board, RectificationCheck{1.5, 4.0, 648}).find("differ by 1.50 px") != std::string::npos);
+    // Two views are too few.
+    Detection two = d;
+    two.views.resize(2);
+    CHECK_THROWS_WITH(calibrate(two, board), Catch::Contains("2 stereo pairs") && Catch::Contains("at least 3"));
 }
 
 TEST_CASE("the OpenCV storage reads back what it wrote, in YAML and in JSON", "[calib]") {
