@@ -167,9 +167,9 @@ double baseline(const StereoCalib& c);
 /// row-major, each in the shortest scientific form that reads back to the same double.
 std::string to_kitti_calib(const StereoCalib& c);
 /// Reads a KITTI calib.txt: the rows P0 and P1 (12 numbers each) are required; other rows
-/// (P2, P3, Tr, ...) are ignored. The result is a rectified rig: K1 = K2 = P0's left 3x3,
-/// no distortion, identity rotations, T = (-baseline, 0, 0), Q from P0 and P1,
-/// rectified_input = true. Throws InputError naming `name` and the row when a row is
+/// (P2, P3, Tr, ...) are ignored. The result is a rectified rig: K1, K2 the left 3x3 of P0,
+/// P1; no distortion; identity rotations; T = (P1[3]/P1[0] - P0[3]/P0[0], 0, 0), which is
+/// -baseline for KITTI's P0 (P0[3] = 0); Q from P0 and P1; rectified_input = true. Throws InputError naming `name` and the row when a row is
 /// malformed or P0/P1 is missing.
 StereoCalib parse_kitti_calib(const std::string& text, const std::string& name);
 /// Reads the file `p` with parse_kitti_calib; InputError naming it when it cannot be read.
