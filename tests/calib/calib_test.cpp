@@ -211,10 +211,12 @@ TEST_CASE("calibrating a synthetic rig from its exact corners recovers it", "[ca
     }
     const StereoCalib c = calibrate(d, board);
     INFO("K1 " << c.K1 << "\nK2 " << c.K2 << "\nT " << c.T << "\nrms " << c.rms);
-    CHECK(c.rms < 1e-3);   // float32 corners: the residual is rounding only
-    CHECK(cv::norm(c.K1, s.K1, cv::NORM_INF) < 0.05);
-    CHECK(cv::norm(c.K2, s.K2, cv::NORM_INF) < 0.05);
-    CHECK(cv::norm(c.T, s.T, cv::NORM_INF) < 1e-5);
+    // float32 corners: the residual is rounding only. Measured: RMS 9e-6 px, K within 4.4e-5 px,
+    // T within 7e-9.
+    CHECK(c.rms < 1e-4);
+    CHECK(cv::norm(c.K1, s.K1, cv::NORM_INF) < 1e-3);
+    CHECK(cv::norm(c.K2, s.K2, cv::NORM_INF) < 1e-3);
+    CHECK(cv::norm(c.T, s.T, cv::NORM_INF) < 1e-7);
     CHECK(baseline(c) == Approx(cv::norm(s.T)).epsilon(1e-4));
     REQUIRE(c.per_view_errors.size() == 12);
     CHECK(c.view_names[3] == "view 3");
