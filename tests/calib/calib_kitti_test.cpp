@@ -1,0 +1,47 @@
+// calib_kitti_test.cpp: the KITTI reader on the sequence 01 calib.txt of the data directory
+// (tools/frames.hpp data_dir). Exits 77 (CTest: skipped) with a message when it is absent.
+#define CATCH_CONFIG_RUNNER
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "calib/calib.hpp"
+#include "frames.hpp"
+
+using namespace hc::calib;
+
+namespace {
+std::filesystem::path g_calib;
+}
+
+TEST_CASE("KITTI 01's calib.txt gives fx 718.856 px and a 0.537 m baseline", "[calib][kitti]") {
+    const StereoCalib c = read_kitti_calib(g_calib);
+    CHECK(c.rectified_input);
+    CHECK(focal(c) == 718.856);
+    CHECK(c.P1.at<double>(0, 2) == 607.1928);
+    CHECK(c.P1.at<double>(1, 2) == 185.2157);
+    CHECK(c.P2.at<double>(0, 3) == -386.1448);
+    CHECK(baseline(c) == Approx(0.537).margin(0.0005));   // 386.1448 / 718.856 = 0.53716 m
+    // 1 px of disparity at the far end: Z = f b / d = 386.1448 m.
+    const cv::Mat X = c.Q * (cv::Mat_<double>(4, 1) << 607.1928, 185.2157, 1, 1);
+    CHECK(X.at<double>(2) / X.at<double>(3) == Approx(386.1448).epsilon(1e-12));
+}
+
+int main(int argc, char** argv) {
+    std::optional<std::filesystem::path> d;
+    try {
+        d = hc::tools::data_dir("");
+    } catch (const hc::tools::InputError& e) {
+        std::printf("SKIPPED: %s\n", e.what());
+        return 77;
+    }
+    if (!d || !std::filesystem::is_regular_file(*d / "kitti/sequences/01/calib.txt")) {
+        std::printf("SKIPPED: no kitti/sequences/01/calib.txt in the data directory (set HARRIS_COSIM_DATA; "
+                    "see the data README)\n");
+        return 77;
+    }
+    g_calib = *d / "kitti/sequences/01/calib.txt";
+    return Catch::Session().run(argc, argv);
+}
