@@ -124,12 +124,17 @@ void Ekf::symmetric_columns(int j, int k, Eigen::Ref<Eigen::MatrixXd> out) const
     }
 }
 
-void Ekf::predict(const Vec2& u, const Mat2& N) {
+void Ekf::predict(const Vec2& u, const Mat2& N, double lateral_variance) {
     Mat3 R_r;
     Mat32 R_n;
     const Mat3 Prr = pose_covariance();
+    const double chord = x_(2) + u(1) / 2;
     x_.head<3>() = move(x_.head<3>(), u, Vec2::Zero(), &R_r, &R_n);
-    const Mat3 Q = R_r * Prr * R_r.transpose() + R_n * N * R_n.transpose();
+    Mat3 Q = R_r * Prr * R_r.transpose() + R_n * N * R_n.transpose();
+    if (lateral_variance > 0) {
+        const Eigen::Vector3d s(-std::sin(chord), std::cos(chord), 0);
+        Q += lateral_variance * s * s.transpose();
+    }
     P_.topLeftCorner<3, 3>() = (Q + Q.transpose()) / 2;
     // P_mr = P_rmᵀ ← (R_r P_rm)ᵀ = P_mr R_rᵀ (the product is evaluated into a temporary)
     if (n_ > 3) P_.block(3, 0, n_ - 3, 3) = P_.block(3, 0, n_ - 3, 3) * R_r.transpose();

@@ -134,22 +134,25 @@ void AssociationConfig::validate() const {
         throw InputError("the gate probability must be in (0, 1), got " + std::to_string(gate_probability));
     if (max_hamming < 0) throw InputError("--max-hamming must not be negative");
     if (forget_after < 0) throw InputError("--forget-after must not be negative");
+    if (max_observations < 0) throw InputError("--max-observations must not be negative");
     if (!(min_range >= 0 && max_range > min_range)) throw InputError("the observation range limits are not 0 <= min < max");
 }
 
 LandmarkSlam::LandmarkSlam(const Pose& start, const OdometryModel& odometry, const AssociationConfig& association)
-    : ekf_(start, Mat3::Zero(), 256), N_(odometry.covariance()), cfg_(association),
+    : ekf_(start, Mat3::Zero(), 256), N_(odometry.covariance()),
+      lateral_variance_(odometry.sigma_lateral * odometry.sigma_lateral), cfg_(association),
       gate_(chi2_quantile(association.gate_probability, 2)) {
     cfg_.validate();
     if (!(odometry.sigma_dx > 0) || !(odometry.sigma_dtheta > 0))
         throw InputError("the odometry noise must be positive");
+    if (!(odometry.sigma_lateral >= 0)) throw InputError("the lateral slip must not be negative");
 }
 
 FrameStats LandmarkSlam::first_frame(const StereoFrame& frame) { return observe(frame); }
 
 FrameStats LandmarkSlam::next_frame(const Vec2& odometry, const StereoFrame& frame) {
     ++frame_;
-    ekf_.predict(odometry, N_);
+    ekf_.predict(odometry, N_, lateral_variance_);
     return observe(frame);
 }
 
@@ -163,6 +166,22 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
         if (rb.y(0) < cfg_.min_range || rb.y(0) > cfg_.max_range) continue;
         obs.push_back(rb);
         src.push_back(&o);
+    }
+    if (cfg_.max_observations > 0 && static_cast<int>(obs.size()) > cfg_.max_observations) {
+        std::vector<int> order(obs.size());
+        for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+        std::stable_sort(order.begin(), order.end(),
+                         [&](int a, int b) { return obs[a].R.determinant() < obs[b].R.determinant(); });
+        order.resize(cfg_.max_observations);
+        std::sort(order.begin(), order.end());
+        std::vector<RangeBearing> kept_obs;
+        std::vector<const StereoLandmarkObs*> kept_src;
+        for (int i : order) {
+            kept_obs.push_back(obs[i]);
+            kept_src.push_back(src[i]);
+        }
+        obs.swap(kept_obs);
+        src.swap(kept_src);
     }
     st.observed = static_cast<int>(obs.size());
     struct Pair {

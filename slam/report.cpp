@@ -167,7 +167,7 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
        << "plot $pn u 1:2 w l lw 2 t 'mean NEES', " << mc.pose_lo << " w l dt 2 lc rgb 'red' t 'bounds', " << mc.pose_hi
        << " w l dt 2 lc rgb 'red' notitle, 3 w l lc rgb 'gray' t 'dof'\n"
        << "set title 'Map NEES per degree of freedom (all mapped landmarks jointly)'\nset ylabel 'NEES / dof'\n"
-       << "set yrange [0:2.5]\nplot $mn u 1:2 w l lw 2 t 'mean NEES / dof', $mn u 1:3 w l dt 2 lc rgb 'red' t 'bounds',"
+       << "set yrange [0.5:1.5]\nplot $mn u 1:2 w l lw 2 t 'mean NEES / dof', $mn u 1:3 w l dt 2 lc rgb 'red' t 'bounds',"
        << " $mn u 1:4 w l dt 2 lc rgb 'red' notitle, 1 w l lc rgb 'gray' notitle\nunset multiplot\n";
     const bool nees_png = plot(dir / "nees.png", ns.str());
 

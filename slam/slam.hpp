@@ -92,8 +92,10 @@ public:
     explicit Ekf(const Pose& r0 = Pose::Zero(), const Mat3& P0 = Mat3::Zero(), int capacity = 64);
 
     /// Prediction (eqs. 2.12, 2.13): r ← move(r, u, 0), P_rr ← R_r P_rr R_rᵀ + R_n N R_nᵀ,
-    /// P_rm ← R_r P_rm. N is the covariance of the perturbation of u.
-    void predict(const Vec2& u, const Mat2& N);
+    /// P_rm ← R_r P_rm. N is the covariance of the perturbation of u. `lateral_variance`
+    /// (m²) adds a sideways slip across the chord, which (dx, dθ) cannot express:
+    /// P_rr += lateral_variance · s sᵀ, s = (−sin, cos, 0)(θ + dθ/2).
+    void predict(const Vec2& u, const Mat2& N, double lateral_variance = 0);
 
     /// The innovation of observing landmark `id` at y with noise covariance R, without
     /// changing the filter (for gating). Throws std::out_of_range for an unknown id.
@@ -153,6 +155,9 @@ struct SensorModel {
 struct OdometryModel {
     double sigma_dx = 0.01;       ///< m per step
     double sigma_dtheta = 0.005;  ///< rad per step
+    /// m per step: sideways slip the filter allows for (0 in the simulator, whose robot
+    /// moves exactly as move() says; real vehicles' top-view poses do not).
+    double sigma_lateral = 0;
     Mat2 covariance() const;
 };
 
@@ -316,6 +321,9 @@ struct AssociationConfig {
     bool check_descriptor = true;
     int forget_after = 10;            ///< remove landmarks unseen for this many frames (0 = keep)
     double min_range = 1.0, max_range = 60.0;   ///< m: observations outside are ignored
+    /// Observations used per frame (0 = all): the most precise ones (smallest det R), as
+    /// each costs an O(n²) update or adds a landmark.
+    int max_observations = 60;
     void validate() const;
 };
 
@@ -342,6 +350,7 @@ private:
     FrameStats observe(const StereoFrame& frame);
     Ekf ekf_;
     Mat2 N_;
+    double lateral_variance_;
     AssociationConfig cfg_;
     double gate_;
     int frame_ = 0, next_id_ = 0;

@@ -24,7 +24,7 @@ const std::vector<Pose> poses = {Pose(0, 0, 0), Pose(1.5, -2, 0.7), Pose(-3, 1, 
 const std::vector<Vec2> points = {Vec2(3, 1), Vec2(-2, 4), Vec2(0.5, -3), Vec2(-4, -0.2)};
 }  // namespace
 
-TEST_CASE("angles are wrapped to (-pi, pi]", "[slam]") {
+TEST_CASE("angles are wrapped into the interval from -pi excluded to pi included", "[slam]") {
     CHECK(wrap_angle(0) == 0);
     CHECK(wrap_angle(pi) == Approx(pi));
     CHECK(wrap_angle(-pi) == Approx(pi));
@@ -145,6 +145,16 @@ TEST_CASE("a one-landmark scenario gives the values computed by hand", "[slam]")
         CHECK(P(0, 3) == Approx(0.01 * 0.01 / 0.03));
         CHECK(P(3, 0) == Approx(0.01 * 0.01 / 0.03));
     }
+}
+
+TEST_CASE("a lateral slip variance widens the pose covariance across the chord only", "[slam]") {
+    Ekf a(Pose(1, 2, 0.4), Mat3::Identity() * 1e-3), b = a;
+    const Mat2 N = Eigen::Vector2d(0.01, 1e-4).asDiagonal();
+    a.predict(Vec2(1, 0.2), N);
+    b.predict(Vec2(1, 0.2), N, 0.03 * 0.03);
+    const Eigen::Vector3d s(-std::sin(0.5), std::cos(0.5), 0);   // chord heading 0.4 + 0.2/2
+    CHECK((b.pose_covariance() - a.pose_covariance() - 9e-4 * s * s.transpose()).norm() < 1e-15);
+    CHECK(b.pose() == a.pose());
 }
 
 TEST_CASE("the structured, P-KZK' and (I-KH)P updates give the same state and covariance", "[slam]") {

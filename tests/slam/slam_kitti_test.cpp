@@ -29,10 +29,12 @@ TEST_CASE("on KITTI 01's trajectory with synthetic landmarks EKF-SLAM beats dead
     }
     INFO("largest lateral residual of the motion model " << lateral << " m");
     CHECK(lateral < 0.05);
-    const auto frames = synthesize_stereo_frames(poses, StereoCamera{}, 2000, 8, 1);
+    CHECK(lateral > 0.02);   // real motion is not exactly (dx, dθ): measured 0.033 m
+    const auto frames = synthesize_stereo_frames(poses, StereoCamera{}, 1000, 8, 1);
     OdometryModel om;
     om.sigma_dx = 0.1;
     om.sigma_dtheta = 0.002;
+    om.sigma_lateral = 0.03;   // the sideways slip measured above
     double slam_sum = 0, dr_sum = 0;
     for (uint64_t seed = 1; seed <= 10; ++seed) {
         const SequenceRun r = run_sequence(poses, frames, om, AssociationConfig{}, seed);
@@ -49,7 +51,8 @@ TEST_CASE("on KITTI 01's trajectory with synthetic landmarks EKF-SLAM beats dead
         CHECK(matched > observed / 2);
     }
     INFO("mean ATE over 10 odometry seeds: slam " << slam_sum / 10 << " m, dead reckoning " << dr_sum / 10 << " m");
-    CHECK(slam_sum < 0.5 * dr_sum);
+    CHECK(slam_sum < 0.25 * dr_sum);   // measured 0.09 m against 0.55..1.07 m on seeds 1..4
+    CHECK(slam_sum / 10 < 0.15);
 }
 
 int main(int argc, char** argv) {
