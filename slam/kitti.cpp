@@ -216,6 +216,10 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
     for (const auto& [i, id] : matches) {
         ekf_.correct(id, obs[i].y, obs[i].R);
         last_seen_[id] = frame_;
+        if (src[i]->id_hint >= 0 && hints_[id] >= 0) {
+            ++st.matched_with_hints;
+            st.matched_agreeing += src[i]->id_hint == hints_[id];
+        }
     }
     st.matched = static_cast<int>(matches.size());
     for (int i = 0; i < static_cast<int>(obs.size()); ++i) {
@@ -224,6 +228,7 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
         const int id = next_id_++;
         ekf_.add_landmark(id, obs[i].y, obs[i].R);
         descriptors_[id] = src[i]->descriptor;
+        hints_[id] = src[i]->id_hint;
         last_seen_[id] = frame_;
         ++st.added;
     }
@@ -234,6 +239,7 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
                 ekf_.remove_landmark(id);
                 descriptors_.erase(id);
                 last_seen_.erase(id);
+                hints_.erase(id);
                 ++st.removed;
             }
         }
@@ -318,6 +324,7 @@ std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& pose
             if (dn < 1) continue;
             StereoLandmarkObs o = triangulate(cam, un, vn, dn);
             o.descriptor = desc[i];
+            o.id_hint = i;
             for (int b = 0; b < flip_bits; ++b) {
                 const int k = bit(rng);
                 o.descriptor[k / 8] ^= static_cast<uint8_t>(1u << (k % 8));

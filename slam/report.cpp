@@ -211,7 +211,7 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
     fs::create_directories(dir);
     std::ostringstream st;
     st << "frame,true_x,true_y,true_theta,est_x,est_y,est_theta,sigma_x,sigma_y,sigma_theta,dr_x,dr_y,dr_theta,"
-          "observed,matched,added,rejected_by_descriptor,removed,map_size\n";
+          "observed,matched,added,rejected_by_descriptor,removed,map_size,matched_agreeing\n";
     for (size_t k = 0; k < r.truth.size(); ++k) {
         st << k;
         for (int i = 0; i < 3; ++i) st << ',' << num(r.truth[k](i));
@@ -220,7 +220,7 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
         for (int i = 0; i < 3; ++i) st << ',' << num(r.dead_reckoning[k](i));
         const FrameStats& f = r.frames[k];
         st << ',' << f.observed << ',' << f.matched << ',' << f.added << ',' << f.rejected_by_descriptor << ','
-           << f.removed << ',' << f.map_size << '\n';
+           << f.removed << ',' << f.map_size << ',' << f.matched_agreeing << '\n';
     }
     save(dir / "states.csv", st.str());
     save(dir / "estimate_kitti.txt", kitti_trajectory(r.estimate));
@@ -230,11 +230,13 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
     for (size_t k = 0; k < r.estimate.size(); ++k) ts.push_back(0.1 * k);   // KITTI: 10 frames/s
     save(dir / "estimate_tum.txt", tum_trajectory(r.estimate, ts));
 
-    int matched = 0, observed = 0, peak = 0;
+    int matched = 0, observed = 0, peak = 0, hinted = 0, agreeing = 0;
     for (const auto& f : r.frames) {
         matched += f.matched;
         observed += f.observed;
         peak = std::max(peak, f.map_size);
+        hinted += f.matched_with_hints;
+        agreeing += f.matched_agreeing;
     }
     nlohmann::json j;
     j["command"] = command;
@@ -243,6 +245,7 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
     j["observations"] = observed;
     j["matched"] = matched;
     j["map_size"] = {{"final", r.frames.back().map_size}, {"peak", peak}};
+    j["matches_with_id_hints"] = {{"total", hinted}, {"agreeing", agreeing}};
     save(dir / "summary.json", j.dump(2) + "\n");
 
     std::string ell;
@@ -269,6 +272,9 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
        << "| EKF-SLAM | " << r.ate_slam << " |\n| dead reckoning (same noisy odometry) | " << r.ate_dead_reckoning << " |\n\n"
        << r.truth.size() << " frames, " << observed << " observations, " << matched << " associated; map size final "
        << r.frames.back().map_size << ", peak " << peak << ".\n\n";
+    if (hinted > 0)
+        md << "Matches whose observation and landmark carry id hints: " << hinted << ", of which " << agreeing
+           << " agree (" << 100.0 * agreeing / hinted << " %).\n\n";
     if (traj_png) md << "![trajectory](trajectory.png)\n\n";
     if (map_png) md << "![map size](map_size.png)\n\n";
     md << "Files: `states.csv`, `summary.json`, `estimate_kitti.txt` and `estimate_tum.txt` (estimate), "

@@ -276,7 +276,10 @@ struct StereoLandmarkObs {
     Eigen::Vector3d p_cam = Eigen::Vector3d::Zero();
     Eigen::Matrix3d cov = Eigen::Matrix3d::Identity();
     std::vector<uint8_t> descriptor;   ///< binary descriptor (Hamming); empty = not checked
-    int id_hint = -1;                  ///< a track id from the pipeline; -1 = none (unused by association)
+    /// A track or point id from the pipeline; -1 = none. Association does not use it; when
+    /// both an observation and the observation that created its landmark carry one, a
+    /// match counts as agreeing (FrameStats::matched_agreeing) if they are equal.
+    int id_hint = -1;
 };
 using StereoFrame = std::vector<StereoLandmarkObs>;
 
@@ -330,6 +333,7 @@ struct AssociationConfig {
 /// Counts of one frame.
 struct FrameStats {
     int observed = 0, matched = 0, added = 0, rejected_by_descriptor = 0, removed = 0, map_size = 0;
+    int matched_with_hints = 0, matched_agreeing = 0;   ///< matches where both id hints are set / equal
 };
 
 /// EKF-SLAM on stereo landmark frames: prediction with odometry, association of each
@@ -355,7 +359,7 @@ private:
     double gate_;
     int frame_ = 0, next_id_ = 0;
     std::unordered_map<int, std::vector<uint8_t>> descriptors_;
-    std::unordered_map<int, int> last_seen_;
+    std::unordered_map<int, int> last_seen_, hints_;
 };
 
 /// Number of differing bits; descriptors of different lengths differ in every extra bit.
@@ -387,7 +391,8 @@ struct StereoCamera {
 /// sides of the path (lateral 4..30 m, height -3..1 m in camera y), each with a random
 /// 256-bit descriptor; frame k lists the points in front of camera k (z 2..60 m) that
 /// project inside both images, measured through the camera with pixel noise, triangulated,
-/// with their first-order covariance, and the descriptor with `flip_bits` random bits flipped.
+/// with their first-order covariance, and the descriptor with `flip_bits` random bits flipped;
+/// id_hint = the world point's index (to score the association, never used by it).
 std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const StereoCamera& camera,
                                                   int count, int flip_bits, uint64_t seed);
 /// The triangulated point of pixel (u, v) with disparity d, and its covariance from

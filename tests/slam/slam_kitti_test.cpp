@@ -49,6 +49,13 @@ TEST_CASE("on KITTI 01's trajectory with synthetic landmarks EKF-SLAM beats dead
         INFO("seed " << seed << ": ATE slam " << r.ate_slam << " m, dead reckoning " << r.ate_dead_reckoning << " m, "
              << matched << " of " << observed << " observations matched");
         CHECK(matched > observed / 2);
+        int hinted = 0, agreeing = 0;
+        for (const auto& f : r.frames) {
+            hinted += f.matched_with_hints;
+            agreeing += f.matched_agreeing;
+        }
+        CHECK(hinted == matched);
+        CHECK(agreeing >= 0.99 * hinted);   // matches to the synthetic point that made the landmark
     }
     INFO("mean ATE over 10 odometry seeds: slam " << slam_sum / 10 << " m, dead reckoning " << dr_sum / 10 << " m");
     CHECK(slam_sum < 0.25 * dr_sum);   // measured 0.09 m against 0.55..1.07 m on seeds 1..4
