@@ -25,6 +25,12 @@ fs::path temp_beside(const fs::path& target) {
     return target.parent_path() / ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()));
 }
 
+void make_dir(const fs::path& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw InputError("cannot create the output directory '" + dir.string() + "': " + ec.message());
+}
+
 void save(const fs::path& target, const std::string& text) {
     const fs::path tmp = temp_beside(target);
     {
@@ -36,7 +42,12 @@ void save(const fs::path& target, const std::string& text) {
             throw InputError("cannot write '" + target.string() + "'");
         }
     }
-    fs::rename(tmp, target);
+    std::error_code ec;
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw InputError("cannot write '" + target.string() + "'");
+    }
 }
 
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
@@ -98,7 +109,7 @@ const char* layout_name(Layout l) { return l == Layout::Cloister ? "cloister" : 
 }  // namespace
 
 void write_simulation_report(const fs::path& dir, const SimConfig& c, const MonteCarlo& mc, const std::string& command) {
-    fs::create_directories(dir);
+    make_dir(dir);
     const RunTrace& t = mc.first;
     const int T = static_cast<int>(mc.pose_nees.size());
 
@@ -208,7 +219,7 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
 }
 
 void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std::string& title, const std::string& command) {
-    fs::create_directories(dir);
+    make_dir(dir);
     std::ostringstream st;
     st << "frame,true_x,true_y,true_theta,est_x,est_y,est_theta,sigma_x,sigma_y,sigma_theta,dr_x,dr_y,dr_theta,"
           "observed,matched,added,rejected_by_descriptor,removed,map_size,matched_agreeing\n";
@@ -283,7 +294,7 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
 }
 
 void write_timing_report(const fs::path& dir, const std::vector<TimingRow>& rows) {
-    fs::create_directories(dir);
+    make_dir(dir);
     std::ostringstream csv, data;
     csv << "landmarks,state_dim,structured_ms,dense_kzk_ms,dense_ms,dense_from_single_update\n";
     for (const auto& r : rows) {

@@ -47,6 +47,7 @@ void SimConfig::validate() const {
 }
 
 World make_world(Layout layout, int count, double half_size, uint64_t seed) {
+    if (count < 1) throw InputError("the world is empty: the landmark count must be at least 1, got " + std::to_string(count));
     World w;
     w.landmarks.reserve(count);
     if (layout == Layout::Random) {
@@ -66,9 +67,16 @@ World make_world(Layout layout, int count, double half_size, uint64_t seed) {
     return w;
 }
 
+namespace {
+const SimConfig& validated(const SimConfig& c) {
+    c.validate();
+    return c;
+}
+}  // namespace
+
 Simulator::Simulator(const SimConfig& config, uint64_t seed)
-    : config_(config), world_(make_world(config.layout, config.landmarks, config.half_size, seed)), rng_(seed) {
-    config_.validate();
+    : config_(validated(config)), world_(make_world(config.layout, config.landmarks, config.half_size, seed)),
+      rng_(seed) {
     pose_ = start_pose();
 }
 

@@ -114,6 +114,11 @@ void run_sequence(const SlamOptions& o) {
 
 void run_slam(const SlamOptions& o) {
     if (o.simulate == !o.sequence.empty()) throw InputError("give exactly one of --simulate and --sequence NN");
+    if (o.world != "cloister" && o.world != "random")
+        throw InputError("--world '" + o.world + "' is neither cloister nor random");
+    if (o.landmarks_from != "synthetic")
+        throw InputError("--landmarks-from '" + o.landmarks_from +
+                         "': only synthetic landmarks are available (the stereo landmark pipeline is not linked in)");
     try {
         o.simulate ? run_simulate(o) : run_sequence(o);
     } catch (const slam::InputError& e) {
@@ -133,7 +138,7 @@ void add_slam_command(CLI::App& app) {
     cmd->add_option("--data", o->data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");
     cmd->add_option("--out", o->out, "output directory")->capture_default_str();
     cmd->add_option("--seed", o->seed, "first seed (runs use seed, seed+1, ...)")->capture_default_str();
-    cmd->add_option("--world", o->world, "simulated world layout")->check(CLI::IsMember({"cloister", "random"}))->capture_default_str();
+    cmd->add_option("--world", o->world, "simulated world layout: cloister or random")->capture_default_str();
     cmd->add_option("--landmarks", o->landmarks, "simulated world landmarks")->capture_default_str();
     cmd->add_option("--half-size", o->half_size, "world half size (m)")->capture_default_str();
     cmd->add_option("--radius", o->radius, "radius of the robot's circle (m)")->capture_default_str();
@@ -151,7 +156,6 @@ void add_slam_command(CLI::App& app) {
                     "KITTI: sideways slip per frame the filter allows for (m)")->capture_default_str();
     cmd->add_option("--landmarks-from", o->landmarks_from,
                     "landmark source of a KITTI run (the stereo landmark pipeline is not linked in: synthetic only)")
-        ->check(CLI::IsMember({"synthetic"}))
         ->capture_default_str();
     cmd->add_option("--synthetic-count", o->synthetic_count, "synthetic world points along the trajectory")->capture_default_str();
     cmd->add_option("--flip-bits", o->flip_bits, "bits flipped in each synthetic descriptor observation")->capture_default_str();
