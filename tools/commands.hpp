@@ -19,6 +19,7 @@ void add_verilate_command(CLI::App& app);   // Verilator full-frame verification
 void add_eval_command(CLI::App& app);       // precision/recall against OpenCV (cmd_eval.cpp)
 void add_sweep_command(CLI::App& app);      // bit-width exploration (cmd_sweep.cpp)
 void add_calibrate_command(CLI::App& app);  // stereo calibration of a rig (cmd_calibrate.cpp)
+void add_slam_command(CLI::App& app);       // 2-D EKF-SLAM (cmd_slam.cpp)
 
 /// The formats of `--config FILE.json` (the thesis's when `path` is empty), validated.
 /// Throws InputError naming the file when it cannot be read or holds bad formats.

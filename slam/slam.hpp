@@ -1,0 +1,426 @@
+// slam.hpp: 2-D top-view EKF-SLAM (the thesis's section 2.5 and 5.4, a port of the
+// structure of J. Solà's EKF-SLAM course code, "Simultaneous localization and mapping with
+// the extended Kalman filter", 2013/2014), with its simulator, its consistency measures
+// (NEES against chi-square bounds) and the stereo-landmark front end for KITTI sequences.
+//
+// Conventions
+// - Robot pose r = (x, y, θ), θ in radians, wrapped to (-π, π]; robot frame: x forward,
+//   y left. Landmarks are 2-D points p = (x, y) in the world frame.
+// - Observation y = (range, bearing), bearing in the robot frame, wrapped.
+// - Every event function returns its value and, when asked (non-null pointers), its
+//   Jacobians, named from the math as in Solà's slamtb: `R_r` = ∂r'/∂r, `R_n` = ∂r'/∂n,
+//   `Y_r` = ∂y/∂r, `Y_p` = ∂y/∂p, `P_r` = ∂p/∂r, `P_y` = ∂p/∂y.
+// - The filter (Ekf) stores the covariance's lower triangle only (the upper one is not
+//   maintained); covariance() returns the full symmetric matrix.
+// - Errors in user input (bad configuration values, unreadable pose files) throw
+//   hc::slam::InputError, which the command line maps to exit status 2.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Dense>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace hc::slam {
+
+/// Bad user input (configuration values, files); the CLI prints what() and exits with 2.
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+using Pose = Eigen::Vector3d;   ///< (x, y, θ)
+using Vec2 = Eigen::Vector2d;
+using Mat2 = Eigen::Matrix2d;
+using Mat3 = Eigen::Matrix3d;
+using Mat23 = Eigen::Matrix<double, 2, 3>;
+using Mat32 = Eigen::Matrix<double, 3, 2>;
+using Mat34 = Eigen::Matrix<double, 3, 4>;
+
+// ---- geometry and the events of the filter (thesis Figure 8) ----------------------------
+
+/// The angle a wrapped to (-π, π].
+double wrap_angle(double a);
+
+/// p (world) expressed in frame F = (x, y, θ) (slamtb toFrame). PF_f = ∂/∂F, PF_p = ∂/∂p.
+Vec2 to_frame(const Pose& F, const Vec2& p, Mat23* PF_f = nullptr, Mat2* PF_p = nullptr);
+/// pf (in frame F) expressed in the world (slamtb fromFrame). PW_f = ∂/∂F, PW_pf = ∂/∂pf.
+Vec2 from_frame(const Pose& F, const Vec2& pf, Mat23* PW_f = nullptr, Mat2* PW_pf = nullptr);
+/// Cartesian point -> (range, bearing) (slamtb scan). Y_p = ∂y/∂p. p must not be the origin.
+Vec2 scan(const Vec2& p, Mat2* Y_p = nullptr);
+/// (range, bearing) -> Cartesian point (slamtb invScan). P_y = ∂p/∂y.
+Vec2 inv_scan(const Vec2& y, Mat2* P_y = nullptr);
+
+/// Motion with odometry u = (dx, dθ) and perturbation n (added to u): the robot turns by
+/// (dθ+nθ)/2, advances dx+nx, turns the other half (exact for arcs of constant curvature;
+/// Solà's course code advances along the old heading, then turns).
+Pose move(const Pose& r, const Vec2& u, const Vec2& n, Mat3* R_r = nullptr, Mat32* R_n = nullptr);
+/// Observation of world point p from pose r: scan(to_frame(r, p)).
+Vec2 observe(const Pose& r, const Vec2& p, Mat23* Y_r = nullptr, Mat2* Y_p = nullptr);
+/// Inverse observation: the world point seen at y from pose r: from_frame(r, inv_scan(y)).
+Vec2 inv_observe(const Pose& r, const Vec2& y, Mat23* P_r = nullptr, Mat2* P_y = nullptr);
+
+// ---- the filter ---------------------------------------------------------------------------
+
+/// How correct() updates the covariance. All give the same state and covariance up to
+/// rounding; they differ in cost:
+/// - Structured: P·Hᵀ from the 5 non-zero columns of H (robot + one landmark), then the
+///   symmetric rank-2 update P ← P − W·Wᵀ with W = P·Hᵀ·L⁻ᵀ, Z = L·Lᵀ, on the lower
+///   triangle. O(n²) per update, half the memory traffic of a full update.
+/// - DenseKzk: dense 2×n H, K = P·Hᵀ·Z⁻¹, P ← P − K·Z·Kᵀ (the thesis's eq. 2.18). O(n²).
+/// - Dense: dense 2×n H, K = P·Hᵀ·Z⁻¹, P ← (I − K·H)·P, an n×n by n×n product. O(n³).
+enum class UpdateForm { Structured, DenseKzk, Dense };
+
+/// An innovation: z = y − h(x̂) (bearing wrapped), its covariance Z and zᵀZ⁻¹z.
+struct Innovation {
+    Vec2 z = Vec2::Zero();
+    Mat2 Z = Mat2::Zero();
+    double mahalanobis2 = 0;
+};
+
+/// EKF-SLAM: state x = (r, p_1, ..., p_m), joint covariance P (thesis eq. 2.10).
+class Ekf {
+public:
+    /// Map initialisation (eq. 2.11 with the defaults: pose 0, zero covariance).
+    /// `capacity` landmarks are reserved; the map grows beyond it when needed.
+    explicit Ekf(const Pose& r0 = Pose::Zero(), const Mat3& P0 = Mat3::Zero(), int capacity = 64);
+
+    /// Prediction (eqs. 2.12, 2.13): r ← move(r, u, 0), P_rr ← R_r P_rr R_rᵀ + R_n N R_nᵀ,
+    /// P_rm ← R_r P_rm. N is the covariance of the perturbation of u. `lateral_variance`
+    /// (m²) adds a sideways slip across the chord, which (dx, dθ) cannot express:
+    /// P_rr += lateral_variance · s sᵀ, s = (−sin, cos, 0)(θ + dθ/2).
+    void predict(const Vec2& u, const Mat2& N, double lateral_variance = 0);
+
+    /// The innovation of observing landmark `id` at y with noise covariance R, without
+    /// changing the filter (for gating). Throws std::out_of_range for an unknown id.
+    Innovation innovation(int id, const Vec2& y, const Mat2& R) const;
+
+    /// Correction with the observation y of landmark `id` (eqs. 2.14-2.18). Returns the
+    /// innovation used. Throws std::out_of_range for an unknown id.
+    Innovation correct(int id, const Vec2& y, const Mat2& R, UpdateForm form = UpdateForm::Structured);
+
+    /// Landmark initialisation by inverse observation (eqs. 2.19-2.21). Throws
+    /// std::invalid_argument when `id` is already mapped.
+    void add_landmark(int id, const Vec2& y, const Mat2& R);
+
+    /// Removes landmark `id` and its rows and columns (no effect if absent).
+    void remove_landmark(int id);
+
+    bool has_landmark(int id) const { return index_.count(id) != 0; }
+    int landmark_count() const { return static_cast<int>(ids_.size()); }
+    int dimension() const { return n_; }
+    /// Landmark ids in state order.
+    const std::vector<int>& landmark_ids() const { return ids_; }
+    /// Index in the state of landmark `id`'s x coordinate. Throws std::out_of_range.
+    int state_index(int id) const;
+
+    Pose pose() const { return x_.head<3>(); }
+    Mat3 pose_covariance() const;
+    Vec2 landmark(int id) const { return x_.segment<2>(state_index(id)); }
+    Mat2 landmark_covariance(int id) const;
+    Eigen::VectorXd mean() const { return x_.head(n_); }
+    /// The full symmetric covariance (n×n).
+    Eigen::MatrixXd covariance() const;
+
+private:
+    void reserve(int dim);
+    /// Columns j and j+1.. (k columns) of the symmetric P, read from its lower triangle.
+    void symmetric_columns(int j, int k, Eigen::Ref<Eigen::MatrixXd> out) const;
+    Eigen::MatrixXd full_covariance() const;
+
+    Eigen::VectorXd x_;
+    Eigen::MatrixXd P_;   ///< capacity × capacity; lower triangle of the top-left n×n used
+    int n_ = 3;
+    std::vector<int> ids_;
+    std::unordered_map<int, int> index_;   ///< id -> position in ids_
+};
+
+// ---- simulator ----------------------------------------------------------------------------
+
+/// A range-bearing sensor: field of view (full angle), range limit, Gaussian noise.
+struct SensorModel {
+    double sigma_range = 0.05;          ///< m
+    double sigma_bearing = 0.01745;     ///< rad (1°)
+    double max_range = 6.0;             ///< m
+    double fov = 3.14159265358979;      ///< rad, full angle centred on the heading
+};
+
+/// Odometry u = (dx, dθ) read with Gaussian noise of these standard deviations.
+struct OdometryModel {
+    double sigma_dx = 0.01;       ///< m per step
+    double sigma_dtheta = 0.005;  ///< rad per step
+    /// m per step: sideways slip the filter allows for (0 in the simulator, whose robot
+    /// moves exactly as move() says; real vehicles' top-view poses do not).
+    double sigma_lateral = 0;
+    Mat2 covariance() const;
+};
+
+enum class Layout { Cloister, Random };
+
+/// A simulated run: a world of landmarks around a circular trajectory.
+struct SimConfig {
+    Layout layout = Layout::Cloister;
+    int landmarks = 40;          ///< world landmarks (> 0)
+    double half_size = 5.0;      ///< m: the world spans [-half_size, half_size]²
+    double radius = 3.75;        ///< m: radius of the robot's circle (centred at the origin)
+    double step = 0.1;           ///< m advanced per step
+    int steps = 236;             ///< motion steps (2π·radius/step ≈ 236: one loop)
+    SensorModel sensor;
+    OdometryModel odometry;
+    /// The filter assumes noise standard deviations this many times the simulator's
+    /// (1 = matched; below 1 an over-confident filter, to show that the NEES test fails).
+    double filter_sigma_scale = 1.0;
+    /// Throws InputError naming the first bad value (non-positive noise, empty world, ...).
+    void validate() const;
+};
+
+/// A world: landmark positions (index = landmark id).
+struct World {
+    std::vector<Vec2> landmarks;
+};
+
+/// The cloister (landmarks on two concentric squares, half_size and half_size/2, like
+/// Solà's `cloister`) or a uniform random layout in [-half_size, half_size]².
+World make_world(Layout layout, int count, double half_size, uint64_t seed);
+
+/// One measured landmark.
+struct Observation {
+    int id = 0;
+    Vec2 y = Vec2::Zero();
+};
+
+/// The simulator: ground-truth robot on a circle through the world, noisy odometry and
+/// noisy range-bearing observations of the landmarks within field of view and range.
+/// Seeded: the same config and seed give the same run.
+class Simulator {
+public:
+    Simulator(const SimConfig& config, uint64_t seed);
+    const World& world() const { return world_; }
+    const Pose& true_pose() const { return pose_; }
+    /// The robot's start pose (on the circle, heading tangent to it).
+    Pose start_pose() const;
+    /// Moves the true robot one step; returns the odometry reading (with noise).
+    Vec2 step();
+    /// Noisy observations of the landmarks visible from the true pose.
+    std::vector<Observation> observe();
+    /// Noisy observations of every landmark, visible or not (the thesis's worst case).
+    std::vector<Observation> observe_all();
+
+private:
+    Observation measure(int id);
+    SimConfig config_;
+    World world_;
+    Pose pose_;
+    std::mt19937_64 rng_;
+    std::normal_distribution<double> gauss_{0.0, 1.0};
+};
+
+// ---- consistency ----------------------------------------------------------------------------
+
+/// Standard normal quantile (Acklam's rational approximation refined by one Halley step).
+double normal_quantile(double p);
+/// Regularised lower incomplete gamma P(a, x) (series / continued fraction).
+double regularized_gamma_p(double a, double x);
+/// Chi-square quantile: the x with P(dof/2, x/2) = p, by bisection to 1e-12 relative.
+double chi2_quantile(double p, double dof);
+/// Wilson-Hilferty's approximation of the chi-square quantile (for comparison).
+double chi2_quantile_wilson_hilferty(double p, double dof);
+
+/// Normalised estimation error squared eᵀ P⁻¹ e; NaN when P is not positive definite.
+double nees(const Eigen::VectorXd& e, const Eigen::MatrixXd& P);
+
+/// One simulated run, step by step (index 0 = before the first motion).
+struct RunTrace {
+    std::vector<Pose> truth, estimate;
+    std::vector<Mat3> pose_cov;
+    std::vector<double> pose_nees;     ///< NaN while P_rr is singular (first motion)
+    std::vector<double> map_nees;      ///< joint NEES of all mapped landmarks
+    std::vector<int> map_dof;          ///< 2 × mapped landmarks
+    std::vector<double> map_rmse;      ///< RMS landmark position error (m)
+    World world;
+    Ekf final_filter;
+};
+/// Runs the filter on a simulated run (known data association, landmarks initialised on
+/// first sight).
+RunTrace run_simulation(const SimConfig& config, uint64_t seed, UpdateForm form = UpdateForm::Structured);
+
+/// Monte-Carlo consistency over `runs` seeds first_seed, first_seed+1, ...
+struct MonteCarlo {
+    int runs = 0;
+    double confidence = 0.95;
+    std::vector<double> pose_nees;             ///< mean over runs, per step (NaN if undefined)
+    double pose_lo = 0, pose_hi = 0;           ///< bounds of the mean: χ²(3·runs)/runs
+    std::vector<double> map_nees_per_dof;      ///< Σ NEES / Σ dof, per step
+    std::vector<double> map_lo, map_hi;        ///< bounds per step: χ²(Σdof)/Σdof
+    std::vector<double> position_rmse, heading_rmse, map_rmse;   ///< over runs, per step
+    /// Fractions of the steps (with a defined NEES) whose mean lies inside its bounds.
+    double pose_inside = 0, map_inside = 0;
+    double pose_nees_average = 0, map_nees_per_dof_average = 0;   ///< over steps
+    RunTrace first;   ///< the run of first_seed, for the plots
+};
+/// `progress` (may be empty) is called after each run with (done, total).
+MonteCarlo monte_carlo(const SimConfig& config, int runs, uint64_t first_seed, double confidence = 0.95,
+                       const std::function<void(int, int)>& progress = {});
+
+// ---- stereo landmarks and KITTI ---------------------------------------------------------
+
+/// A 3-D landmark measured by a stereo pipeline in the left camera frame of one frame
+/// (KITTI camera: x right, y down, z forward), with its covariance.
+struct StereoLandmarkObs {
+    Eigen::Vector3d p_cam = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Identity();
+    std::vector<uint8_t> descriptor;   ///< binary descriptor (Hamming); empty = not checked
+    /// A track or point id from the pipeline; -1 = none. Association does not use it; when
+    /// both an observation and the observation that created its landmark carry one, a
+    /// match counts as agreeing (FrameStats::matched_agreeing) if they are equal.
+    int id_hint = -1;
+};
+using StereoFrame = std::vector<StereoLandmarkObs>;
+
+/// A range-bearing observation with its 2×2 covariance.
+struct RangeBearing {
+    Vec2 y = Vec2::Zero();
+    Mat2 R = Mat2::Identity();
+};
+/// The top view of a camera-frame point: robot frame x = z_cam (forward), y = −x_cam
+/// (left); y_cam (height) is dropped. R = Y_p·cov·Y_pᵀ with Y_p = ∂(range, bearing)/∂p_cam.
+RangeBearing camera_to_range_bearing(const Eigen::Vector3d& p_cam, const Eigen::Matrix3d& cov,
+                                     Eigen::Matrix<double, 2, 3>* Y_p = nullptr);
+
+/// Reads a KITTI poses file (12 numbers a line: the 3×4 [R|t] of camera 0 in the first
+/// camera's frame). Throws InputError naming the file and line when absent, unreadable,
+/// malformed or empty.
+std::vector<Mat34> read_kitti_poses(const std::filesystem::path& file);
+/// The top view of a KITTI pose: (z, −x, yaw) with yaw = atan2(−R(0,2), R(2,2)).
+Pose planar_pose(const Mat34& T);
+/// A KITTI pose from a top-view pose (height 0, rotation about the camera's y axis).
+Mat34 kitti_pose(const Pose& r);
+/// The odometry (dx, dθ) that move() turns a into b with, up to a's lateral offset:
+/// dθ = wrap(θb − θa), dx = (b − a)·(cos, sin)(θa + dθ/2).
+Vec2 odometry_between(const Pose& a, const Pose& b);
+/// Odometry between consecutive poses with Gaussian noise of `model` added (seeded).
+std::vector<Vec2> noisy_odometry(const std::vector<Pose>& truth, const OdometryModel& model, uint64_t seed);
+/// Dead reckoning: the poses that move() integrates from `start` with `odometry`.
+std::vector<Pose> dead_reckoning(const Pose& start, const std::vector<Vec2>& odometry);
+
+/// Trajectory files: KITTI (12 numbers a line) and TUM ("t tx ty tz qx qy qz qw"), in
+/// the KITTI camera frame (x right, y down, z forward), height 0.
+std::string kitti_trajectory(const std::vector<Pose>& poses);
+std::string tum_trajectory(const std::vector<Pose>& poses, const std::vector<double>& timestamps);
+/// Absolute trajectory error: RMS planar position error, poses paired by index, no
+/// alignment (both start at the same pose). Throws std::invalid_argument on size mismatch.
+double absolute_trajectory_error(const std::vector<Pose>& estimate, const std::vector<Pose>& truth);
+
+/// Data association and map management for stereo landmark frames.
+struct AssociationConfig {
+    double gate_probability = 0.99;   ///< Mahalanobis gate: χ²(2) quantile of this probability
+    int max_hamming = 64;             ///< descriptor check: Hamming distance ≤ this (bits)
+    bool check_descriptor = true;
+    int forget_after = 10;            ///< remove landmarks unseen for this many frames (0 = keep)
+    double min_range = 1.0, max_range = 60.0;   ///< m: observations outside are ignored
+    /// Observations used per frame (0 = all): the most precise ones (smallest det R), as
+    /// each costs an O(n²) update or adds a landmark.
+    int max_observations = 60;
+    void validate() const;
+};
+
+/// Counts of one frame.
+struct FrameStats {
+    int observed = 0, matched = 0, added = 0, rejected_by_descriptor = 0, removed = 0, map_size = 0;
+    int matched_with_hints = 0, matched_agreeing = 0;   ///< matches where both id hints are set / equal
+};
+
+/// EKF-SLAM on stereo landmark frames: prediction with odometry, association of each
+/// observation to the mapped landmark of smallest Mahalanobis distance inside the gate
+/// whose descriptor passes the check (one observation per landmark a frame), correction
+/// with the matched ones, initialisation of the unmatched ones, removal of landmarks
+/// unseen for `forget_after` frames.
+class LandmarkSlam {
+public:
+    LandmarkSlam(const Pose& start, const OdometryModel& odometry, const AssociationConfig& association);
+    /// The first frame: observations only (no motion before it).
+    FrameStats first_frame(const StereoFrame& frame);
+    /// A later frame: the odometry from the previous frame, then its observations.
+    FrameStats next_frame(const Vec2& odometry, const StereoFrame& frame);
+    const Ekf& filter() const { return ekf_; }
+
+private:
+    FrameStats observe(const StereoFrame& frame);
+    Ekf ekf_;
+    Mat2 N_;
+    double lateral_variance_;
+    AssociationConfig cfg_;
+    double gate_;
+    int frame_ = 0, next_id_ = 0;
+    std::unordered_map<int, std::vector<uint8_t>> descriptors_;
+    std::unordered_map<int, int> last_seen_, hints_;
+};
+
+/// Number of differing bits; descriptors of different lengths differ in every extra bit.
+int hamming_distance(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
+
+/// A run on a sequence: the filter and dead reckoning with the same noisy odometry.
+struct SequenceRun {
+    std::vector<Pose> truth, estimate, dead_reckoning;
+    std::vector<Mat3> pose_cov;
+    std::vector<FrameStats> frames;
+    std::vector<Vec2> odometry;
+    double ate_slam = 0, ate_dead_reckoning = 0;
+    std::vector<Vec2> map;   ///< final landmark positions
+    std::vector<Mat2> map_cov;
+};
+/// Runs LandmarkSlam over frames[k] seen at ground-truth poses[k] (poses.size() ==
+/// frames.size() ≥ 2), with odometry from noisy_odometry(truth, odometry, seed).
+/// Throws InputError on a size mismatch or fewer than 2 poses.
+SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<StereoFrame>& frames,
+                         const OdometryModel& odometry, const AssociationConfig& association, uint64_t seed);
+
+/// Stereo camera for synthetic landmarks (KITTI's rectified camera 0/1 by default).
+struct StereoCamera {
+    double fx = 718.856, cx = 607.1928, cy = 185.2157, baseline = 0.5372;
+    int width = 1241, height = 376;
+    double sigma_pixel = 0.5;       ///< px, on u, v and the disparity
+};
+/// Synthetic stereo landmarks along a trajectory: `count` world points scattered on both
+/// sides of the path (lateral 4..30 m, height -3..1 m in camera y), each with a random
+/// 256-bit descriptor; frame k lists the points in front of camera k (z 2..60 m) that
+/// project inside both images, measured through the camera with pixel noise, triangulated,
+/// with their first-order covariance, and the descriptor with `flip_bits` random bits flipped;
+/// id_hint = the world point's index (to score the association, never used by it).
+std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const StereoCamera& camera,
+                                                  int count, int flip_bits, uint64_t seed);
+/// The triangulated point of pixel (u, v) with disparity d, and its covariance from
+/// σ = camera.sigma_pixel on each of u, v, d.
+StereoLandmarkObs triangulate(const StereoCamera& camera, double u, double v, double d);
+
+// ---- reports ------------------------------------------------------------------------------
+
+/// Writes the Monte-Carlo report into `dir`: report.md, nees.csv, states.csv (the first
+/// run), summary.json, trajectory.png (trajectory and map with 3σ ellipses), nees.png,
+/// rmse.png. `command` is quoted in report.md. PNGs need gnuplot; without it they are
+/// skipped with a note in the report. Files are written atomically.
+void write_simulation_report(const std::filesystem::path& dir, const SimConfig& config, const MonteCarlo& mc,
+                             const std::string& command);
+
+/// Writes the sequence report: report.md, states.csv, summary.json, estimate_kitti.txt,
+/// estimate_tum.txt, dead_reckoning_kitti.txt, trajectory.png, map_size.png.
+void write_sequence_report(const std::filesystem::path& dir, const SequenceRun& run, const std::string& title,
+                           const std::string& command);
+
+/// One point of the update timing: landmarks, milliseconds per step, per form.
+struct TimingRow {
+    int landmarks = 0;
+    double structured_ms = 0, dense_kzk_ms = 0, dense_ms = 0;   ///< 0 = not measured
+    /// dense_ms is k times one measured (I − KH)P update, not a measured step.
+    bool dense_from_single_update = false;
+};
+/// Writes timing.csv and timing.png (log-log, with the thesis's Table 3 figures).
+void write_timing_report(const std::filesystem::path& dir, const std::vector<TimingRow>& rows);
+
+}  // namespace hc::slam

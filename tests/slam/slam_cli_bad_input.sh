@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# slam_cli_bad_input.sh: `harris-cosim slam` refuses bad input with a message naming it and
+# exit status 2: a non-positive noise, an empty world, a sequence without poses, and a
+# run that is neither --simulate nor --sequence.
+# usage: slam_cli_bad_input.sh HARRIS_COSIM WORK_DIR
+set -u
+exe=$1
+work=$2
+mkdir -p "$work/kitti/poses"
+: > "$work/kitti/poses/07.txt"   # a sequence whose poses file is empty
+fail=0
+out_dir=$work/out
+expect2() {
+    local what=$1 pattern=$2
+    shift 2
+    local err
+    err=$("$exe" slam "$@" --out "$out_dir" 2>&1 >/dev/null)
+    local rc=$?
+    if [ $rc -ne 2 ] || ! grep -q -- "$pattern" <<<"$err"; then
+        echo "FAIL: $what: status $rc, message: $err"
+        fail=1
+    else
+        echo "ok: $what -> status 2: $err"
+    fi
+}
+expect2 "zero range noise" "--sigma-range" --simulate --sigma-range 0
+expect2 "negative odometry noise" "--sigma-dx" --simulate --sigma-dx -0.1
+expect2 "empty world" "world is empty" --simulate --landmarks 0
+expect2 "sequence without poses" "holds no pose" --sequence 07 --kitti "$work/kitti"
+expect2 "missing poses file" "cannot read the poses file" --sequence 99 --kitti "$work/kitti"
+expect2 "neither mode" "exactly one of" --runs 3
+expect2 "unknown world" "neither cloister nor random" --simulate --world maze
+expect2 "negative runs" "--runs" --simulate --runs -1
+out_dir=/proc/slam-report expect2 "unwritable output" "cannot create the output directory" --simulate --runs 1 --steps 2
+out_dir=$work/out
+[ -e "$work/out/report.md" ] && { echo "FAIL: a report was written for bad input"; fail=1; }
+exit $fail

@@ -1,0 +1,198 @@
+// slam_stereo_test.cpp: the stereo-landmark front end without data: KITTI pose files,
+// top-view poses and odometry, trajectory writers, triangulation covariance, Hamming
+// distance, association by Mahalanobis gate and descriptor, and a synthetic sequence.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include <unistd.h>
+
+#include "numeric_jacobian.hpp"
+#include "slam.hpp"
+
+using namespace hc::slam;
+using hc::slam::test::numeric_jacobian;
+namespace fs = std::filesystem;
+
+namespace {
+fs::path temp_file(const std::string& name, const std::string& text) {
+    const fs::path p = fs::temp_directory_path() / ("slam_test_" + std::to_string(::getpid()) + "_" + name);
+    std::ofstream(p) << text;
+    return p;
+}
+
+// KITTI-like poses: straight ahead 1 m a frame, turning left by `turn` rad a frame.
+std::vector<Mat34> arc_poses(int count, double turn) {
+    std::vector<Mat34> out;
+    Pose r(0, 0, 0);
+    for (int k = 0; k < count; ++k) {
+        out.push_back(kitti_pose(r));
+        r = move(r, Vec2(1.0, turn), Vec2::Zero());
+    }
+    return out;
+}
+}  // namespace
+
+TEST_CASE("a KITTI poses file is read line by line and bad files name file and line", "[slam]") {
+    const fs::path good = temp_file("good.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n\n1 0 0 0.5 0 1 0 -0.1 0 0 1 2\n");
+    const auto poses = read_kitti_poses(good);
+    REQUIRE(poses.size() == 2);
+    CHECK(poses[1](0, 3) == 0.5);
+    CHECK(poses[1](1, 3) == -0.1);
+    CHECK(poses[1](2, 3) == 2);
+    const fs::path short_line = temp_file("short.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1\n");
+    CHECK_THROWS_WITH(read_kitti_poses(short_line), Catch::Contains("line 2") && Catch::Contains("12 numbers"));
+    const fs::path long_line = temp_file("long.txt", "1 0 0 0 0 1 0 0 0 0 1 0 7\n");
+    CHECK_THROWS_WITH(read_kitti_poses(long_line), Catch::Contains("more than 12"));
+    const fs::path empty = temp_file("empty.txt", "");
+    CHECK_THROWS_WITH(read_kitti_poses(empty), Catch::Contains("holds no pose"));
+    CHECK_THROWS_AS(read_kitti_poses("/nonexistent/poses/01.txt"), InputError);
+    for (const auto& p : {good, short_line, long_line, empty}) fs::remove(p);
+}
+
+TEST_CASE("a top-view pose survives the round trip through a KITTI pose", "[slam]") {
+    for (const Pose& r : {Pose(3, -2, 0.4), Pose(-1, 5, -2.8), Pose(0, 0, 0)}) {
+        const Mat34 T = kitti_pose(r);
+        CHECK((T.leftCols<3>().transpose() * T.leftCols<3>() - Eigen::Matrix3d::Identity()).norm() < 1e-15);
+        CHECK((planar_pose(T) - r).norm() < 1e-14);
+    }
+    // forward (camera z) is the top view's x, the camera's left (−x) its y
+    const Mat34 T = kitti_pose(Pose(2, 1, std::numbers::pi / 2));
+    CHECK(T(2, 3) == 2);
+    CHECK(T(0, 3) == -1);
+    CHECK(T.col(2).dot(Eigen::Vector3d(-1, 0, 0)) == Approx(1));   // heading π/2 = the camera looks left
+}
+
+TEST_CASE("odometry between poses on an arc reproduces them through move", "[slam]") {
+    const auto poses = arc_poses(20, 0.05);
+    std::vector<Pose> truth;
+    for (const auto& T : poses) truth.push_back(planar_pose(T));
+    std::vector<Vec2> u;
+    for (size_t k = 1; k < truth.size(); ++k) {
+        u.push_back(odometry_between(truth[k - 1], truth[k]));
+        CHECK(u.back()(0) == Approx(1.0));
+        CHECK(u.back()(1) == Approx(0.05));
+    }
+    const auto dr = dead_reckoning(truth[0], u);
+    CHECK(absolute_trajectory_error(dr, truth) < 1e-12);
+    OdometryModel m;
+    m.sigma_dx = 0.1;
+    const auto noisy = noisy_odometry(truth, m, 1);
+    REQUIRE(noisy.size() == 19);
+    CHECK(noisy == noisy_odometry(truth, m, 1));
+    CHECK(noisy != noisy_odometry(truth, m, 2));
+    CHECK(absolute_trajectory_error(dead_reckoning(truth[0], noisy), truth) > 0.01);
+}
+
+TEST_CASE("trajectories are written in the KITTI and TUM formats", "[slam]") {
+    const std::vector<Pose> p = {Pose(0, 0, 0), Pose(2, -1, std::numbers::pi / 2)};
+    CHECK(kitti_trajectory(p) == "1 0 -0 -0 0 1 0 0 0 0 1 0\n6.123234e-17 0 -1 1 0 1 0 0 1 0 6.123234e-17 2\n");
+    CHECK(tum_trajectory({p[1]}, {0.1}) == "0.1 1 0 2 0 -0.707106781 0 0.707106781\n");
+    CHECK_THROWS_AS(tum_trajectory(p, {0.0}), std::invalid_argument);
+    CHECK(absolute_trajectory_error({Pose(0, 0, 0), Pose(3, 4, 0)}, {Pose(0, 0, 1), Pose(0, 0, 0)}) ==
+          Approx(std::sqrt(25.0 / 2)));
+}
+
+TEST_CASE("triangulation covariance is the pixel noise through the Jacobian of (u, v, d)", "[slam]") {
+    const StereoCamera cam;
+    const double u = 800, v = 150, d = 20;
+    const StereoLandmarkObs o = triangulate(cam, u, v, d);
+    CHECK(o.p_cam.z() == Approx(cam.fx * cam.baseline / d));
+    const auto f = [&](const Eigen::Vector3d& x) { return triangulate(cam, x(0), x(1), x(2)).p_cam; };
+    const Eigen::Matrix3d J = numeric_jacobian<3, 3>(f, Eigen::Vector3d(u, v, d));
+    CHECK((o.cov - cam.sigma_pixel * cam.sigma_pixel * J * J.transpose()).norm() < 1e-6 * o.cov.norm());
+    // depth error grows with z²: σ_z = z²/(f b) σ_d
+    CHECK(std::sqrt(o.cov(2, 2)) == Approx(o.p_cam.z() * o.p_cam.z() / (cam.fx * cam.baseline) * cam.sigma_pixel));
+}
+
+TEST_CASE("the Hamming distance counts differing bits and extra bytes", "[slam]") {
+    CHECK(hamming_distance({0xff, 0x00}, {0x0f, 0x01}) == 5);
+    CHECK(hamming_distance({0xff}, {0xff, 0x00}) == 8);
+    CHECK(hamming_distance({}, {}) == 0);
+}
+
+TEST_CASE("association matches inside the gate and refuses a descriptor that differs", "[slam]") {
+    OdometryModel om;
+    AssociationConfig ac;
+    ac.forget_after = 0;
+    LandmarkSlam s(Pose::Zero(), om, ac);
+    StereoFrame f0;
+    const StereoCamera cam;
+    StereoLandmarkObs a = triangulate(cam, 700, 200, 30), b = triangulate(cam, 400, 200, 25);
+    a.descriptor = std::vector<uint8_t>(32, 0x00);
+    b.descriptor = std::vector<uint8_t>(32, 0xff);
+    f0 = {a, b};
+    const FrameStats s0 = s.first_frame(f0);
+    CHECK(s0.observed == 2);
+    CHECK(s0.added == 2);
+    CHECK(s0.matched == 0);
+    // the same two points after no motion: both matched
+    const FrameStats s1 = s.next_frame(Vec2(0, 0), f0);
+    CHECK(s1.matched == 2);
+    CHECK(s1.added == 0);
+    CHECK(s1.map_size == 2);
+    // point a with b's descriptor: inside the gate, refused by the descriptor, added as new
+    StereoLandmarkObs a2 = a;
+    a2.descriptor = b.descriptor;
+    const FrameStats s2 = s.next_frame(Vec2(0, 0), {a2});
+    CHECK(s2.matched == 0);
+    CHECK(s2.rejected_by_descriptor == 1);
+    CHECK(s2.added == 1);
+    CHECK(s2.map_size == 3);
+    // without the descriptor check the same observation is matched
+    ac.check_descriptor = false;
+    LandmarkSlam t(Pose::Zero(), om, ac);
+    t.first_frame(f0);
+    CHECK(t.next_frame(Vec2(0, 0), {a2}).matched == 1);
+}
+
+TEST_CASE("landmarks unseen for forget_after frames are removed", "[slam]") {
+    AssociationConfig ac;
+    ac.forget_after = 2;
+    LandmarkSlam s(Pose::Zero(), OdometryModel{}, ac);
+    const StereoCamera cam;
+    StereoLandmarkObs a = triangulate(cam, 700, 200, 30);
+    s.first_frame({a});
+    CHECK(s.next_frame(Vec2(0, 0), {}).removed == 0);
+    const FrameStats f = s.next_frame(Vec2(0, 0), {});
+    CHECK(f.removed == 1);
+    CHECK(f.map_size == 0);
+}
+
+TEST_CASE("bad association settings and sequences are refused with InputError", "[slam]") {
+    AssociationConfig ac;
+    ac.gate_probability = 1.5;
+    CHECK_THROWS_AS(ac.validate(), InputError);
+    OdometryModel om;
+    om.sigma_dx = 0;
+    CHECK_THROWS_AS(LandmarkSlam(Pose::Zero(), om, AssociationConfig{}), InputError);
+    const auto poses = arc_poses(3, 0);
+    CHECK_THROWS_WITH(run_sequence(poses, std::vector<StereoFrame>(2), OdometryModel{}, AssociationConfig{}, 1),
+                      Catch::Contains("one landmark frame per pose"));
+    CHECK_THROWS_AS(run_sequence({poses[0]}, std::vector<StereoFrame>(1), OdometryModel{}, AssociationConfig{}, 1),
+                    InputError);
+    CHECK_THROWS_AS(synthesize_stereo_frames(poses, StereoCamera{}, 0, 0, 1), InputError);
+}
+
+TEST_CASE("on a synthetic curved drive EKF-SLAM beats dead reckoning with the same odometry", "[slam]") {
+    const auto poses = arc_poses(80, 0.01);
+    const auto frames = synthesize_stereo_frames(poses, StereoCamera{}, 300, 8, 3);
+    OdometryModel om;
+    om.sigma_dx = 0.05;
+    om.sigma_dtheta = 0.005;
+    const SequenceRun r = run_sequence(poses, frames, om, AssociationConfig{}, 7);
+    int matched = 0, observed = 0;
+    for (const auto& f : r.frames) {
+        matched += f.matched;
+        observed += f.observed;
+    }
+    INFO("ATE slam " << r.ate_slam << " m, dead reckoning " << r.ate_dead_reckoning << " m; " << matched << " of "
+         << observed << " observations matched");
+    CHECK(observed > 80 * 20);
+    CHECK(matched > observed / 2);
+    CHECK(r.ate_slam < 0.5 * r.ate_dead_reckoning);
+    CHECK(r.estimate.size() == 80);
+}
