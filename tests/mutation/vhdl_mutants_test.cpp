@@ -51,7 +51,7 @@ TEST_CASE("every mutant of a small design is the expected single edit", "[mutati
     const std::set<std::string> expected = {
         "cnt.vhd:13:8 negate `rst = '0'` -> `not (rst = '0')`",
         "cnt.vhd:13:12 rel `=` -> `/=`",
-        "cnt.vhd:14:25 literal `0` -> `1`",
+        "cnt.vhd:14:24 literal `0` -> `1`",
         "cnt.vhd:15:11 negate `clk'event and clk = '1'` -> `not (clk'event and clk = '1')`",
         "cnt.vhd:15:21 logic `and` -> `or`",
         "cnt.vhd:15:29 rel `=` -> `/=`",
