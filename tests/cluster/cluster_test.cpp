@@ -1,0 +1,164 @@
+// cluster_test: shards, result files, the local runner, resume after a failed and a killed
+// shard, and (with a running Slurm cluster, tag [slurm]) the Slurm runner. Every run's
+// merged result must equal the single-process result exactly.
+#define CATCH_CONFIG_MAIN
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+
+#include "cluster/cluster.hpp"
+#include "squares_job.hpp"
+
+extern char** environ;
+
+using namespace hc::cluster;
+using hc::cluster::test::squares_manifest;
+using hc::cluster::test::squares_registry;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+    fs::path d = fs::temp_directory_path() / ("hc-cluster-test-" + std::to_string(::getpid())) / name;
+    fs::remove_all(d);
+    return d;
+}
+
+RunOptions local_options(int jobs) {
+    RunOptions o;
+    o.jobs = jobs;
+    o.worker = {HC_TEST_WORKER};
+    return o;
+}
+
+long sum_of_squares_below(long n) { return (n - 1) * n * (2 * n - 1) / 6; }
+
+}  // namespace
+
+TEST_CASE("a range splits into contiguous parts whose sizes differ by at most one", "[cluster]") {
+    using V = std::vector<std::pair<long, long>>;
+    CHECK(split_range(0, 10, 4) == V{{0, 3}, {3, 6}, {6, 8}, {8, 10}});
+    CHECK(split_range(5, 7, 4) == V{{5, 6}, {6, 7}});
+    CHECK(split_range(3, 3, 2) == V{{3, 3}});
+    CHECK_THROWS_AS(split_range(4, 3, 2), ClusterInputError);
+    CHECK_THROWS_AS(split_range(0, 3, 0), ClusterInputError);
+}
+
+TEST_CASE("a run directory refuses the manifest of another run", "[cluster]") {
+    const fs::path d = scratch("foreign");
+    prepare_run(d, squares_manifest(20, 2));
+    REQUIRE_NOTHROW(prepare_run(d, squares_manifest(20, 2)));
+    CHECK_THROWS_AS(prepare_run(d, squares_manifest(20, 3)), ClusterInputError);
+    CHECK(read_manifest(d).hash() == squares_manifest(20, 2).hash());
+}
+
+TEST_CASE("the local runner's merged result equals the single-process result", "[cluster]") {
+    const fs::path d = scratch("local");
+    const Manifest m = squares_manifest(100, 7);
+    prepare_run(d, m);
+    std::size_t last_done = 0, calls = 0;
+    RunOptions o = local_options(2);
+    o.progress = [&](const Progress& p) {
+        ++calls;
+        CHECK(p.total == 7);
+        CHECK(p.done >= last_done);
+        last_done = p.done;
+    };
+    const RunSummary s = run(d, o);
+    CHECK(s.ran == 7);
+    CHECK(s.failed.empty());
+    CHECK(calls == 7);
+    CHECK(last_done == 7);
+    const json merged = merge(squares_registry(), d);
+    CHECK(merged == run_in_process(squares_registry(), m));
+    CHECK(merged.at("sum").get<long>() == sum_of_squares_below(100));
+    CHECK(merged.at("items").size() == 100);
+}
+
+TEST_CASE("a failed shard stays missing, the merge names it, and a resume runs only it", "[cluster]") {
+    const fs::path d = scratch("failed");
+    const Manifest m = squares_manifest(40, 4);
+    prepare_run(d, m);
+    ::setenv("HC_TEST_FAIL_INDEX", "2", 1);
+    RunOptions o = local_options(2);
+    o.retries = 1;
+    const RunSummary s1 = run(d, o);
+    ::unsetenv("HC_TEST_FAIL_INDEX");
+    CHECK(s1.ran == 5);   // four shards, shard 2 twice
+    CHECK(s1.failed == std::vector<std::size_t>{2});
+    CHECK(missing_shards(d, m) == std::vector<std::size_t>{2});
+    CHECK_THROWS_WITH(merge(squares_registry(), d), Catch::Contains("shards without a result: 2"));
+    const RunSummary s2 = run(d, o);
+    CHECK(s2.ran == 1);
+    CHECK(s2.skipped == 3);
+    CHECK(s2.failed.empty());
+    CHECK(merge(squares_registry(), d) == run_in_process(squares_registry(), m));
+}
+
+TEST_CASE("a shard killed mid-run leaves no result, and a resume completes the run exactly once",
+          "[cluster]") {
+    const fs::path d = scratch("killed");
+    const Manifest m = squares_manifest(30, 3);
+    prepare_run(d, m);
+    // Shard 1's worker sleeps before computing: it is killed while it runs.
+    std::vector<std::string> a = {HC_TEST_WORKER, d.string(), "1"};
+    std::vector<char*> argv;
+    for (auto& s : a) argv.push_back(s.data());
+    argv.push_back(nullptr);
+    ::setenv("HC_TEST_SLEEP_INDEX", "1", 1);
+    pid_t pid = 0;
+    REQUIRE(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) == 0);
+    ::unsetenv("HC_TEST_SLEEP_INDEX");
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    REQUIRE(::kill(pid, SIGKILL) == 0);
+    int st = 0;
+    ::waitpid(pid, &st, 0);
+    CHECK(WIFSIGNALED(st));
+    CHECK(missing_shards(d, m) == std::vector<std::size_t>{0, 1, 2});
+    const RunSummary s = run(d, local_options(2));
+    CHECK(s.ran == 3);
+    CHECK(s.failed.empty());
+    std::size_t files = 0;
+    for (const auto& e : fs::directory_iterator(d / "shards")) {
+        ++files;
+        CHECK(e.path().extension() == ".json");
+    }
+    CHECK(files == 3);
+    const json merged = merge(squares_registry(), d);
+    CHECK(merged == run_in_process(squares_registry(), m));
+    CHECK(merged.at("items").size() == 30);
+}
+
+TEST_CASE("a result file of another run is refused, not merged", "[cluster]") {
+    const fs::path a = scratch("run-a"), b = scratch("run-b");
+    const Manifest ma = squares_manifest(10, 2), mb = squares_manifest(12, 2);
+    prepare_run(a, ma);
+    prepare_run(b, mb);
+    REQUIRE(run(a, local_options(1)).failed.empty());
+    fs::copy_file(result_path(a, 0), result_path(b, 0));
+    CHECK_THROWS_WITH(read_result(b, mb, 0), Catch::Contains("belongs to another run"));
+}
+
+TEST_CASE("the Slurm runner's merged result equals the single-process result", "[slurm]") {
+    const char* conf = std::getenv("SLURM_CONF");
+    if (!conf || !fs::exists(conf)) {
+        WARN("no Slurm cluster (SLURM_CONF unset): skipped");
+        return;
+    }
+    const fs::path d = scratch("slurm");
+    const Manifest m = squares_manifest(50, 4);
+    prepare_run(d, m);
+    RunOptions o = local_options(1);
+    o.runner = RunnerKind::slurm;
+    o.slurm.poll_s = 0.5;
+    const RunSummary s = run(d, o);
+    CHECK(!s.slurm_array_job.empty());
+    CHECK(s.failed.empty());
+    CHECK(merge(squares_registry(), d) == run_in_process(squares_registry(), m));
+}
