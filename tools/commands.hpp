@@ -18,6 +18,7 @@ void add_mutate_command(CLI::App& app);     // mutation campaign (cmd_mutate.cpp
 void add_verilate_command(CLI::App& app);   // Verilator full-frame verification (cmd_verilate.cpp)
 void add_eval_command(CLI::App& app);       // precision/recall against OpenCV (cmd_eval.cpp)
 void add_sweep_command(CLI::App& app);      // bit-width exploration (cmd_sweep.cpp)
+void add_landmarks_command(CLI::App& app);  // descriptors, stereo matches, landmarks (cmd_landmarks.cpp)
 
 /// The formats of `--config FILE.json` (the thesis's when `path` is empty), validated.
 /// Throws InputError naming the file when it cannot be read or holds bad formats.

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
     hc::tools::add_verilate_command(app);
     hc::tools::add_eval_command(app);
     hc::tools::add_sweep_command(app);
+    hc::tools::add_landmarks_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
