@@ -15,8 +15,11 @@
 namespace hc::features {
 namespace {
 
-/// Grey 8-bit copy of `image` (1 or 3/4 channels, CV_8U); InputError otherwise.
-cv::Mat grey8(cv::InputArray image, const char* who) {
+/// Grey 8-bit copy of `image` (1 or 3/4 channels, CV_8U) for a descriptor that describes
+/// given keypoints; InputError otherwise, or when asked to detect keypoints.
+cv::Mat descriptor_input(cv::InputArray image, bool useProvidedKeypoints, const char* who) {
+    if (!useProvidedKeypoints)
+        throw InputError(std::string(who) + ": a descriptor only (call compute with keypoints)");
     const cv::Mat m = image.getMat();
     if (m.empty()) throw InputError(std::string(who) + ": empty image");
     if (m.depth() != CV_8U)
@@ -174,29 +177,37 @@ const std::vector<cv::Vec4i>& BriefDescriptor::pattern() {
 void BriefDescriptor::detectAndCompute(cv::InputArray image, cv::InputArray,
                                        std::vector<cv::KeyPoint>& keypoints,
                                        cv::OutputArray descriptors, bool useProvidedKeypoints) {
-    if (!useProvidedKeypoints)
-        throw InputError("BRIEF: a descriptor only (call compute with keypoints)");
-    const cv::Mat grey = grey8(image, "BRIEF");
+    const cv::Mat grey = descriptor_input(image, useProvidedKeypoints, "BRIEF");
     // the patch reaches S/2 pixels left/up and S/2 - 1 right/down, the kernel K/2 more
     const int margin = patch_size / 2 + brief_kernel / 2;
     apply_border(keypoints, grey.size(), margin, border_);
     cv::Mat smooth;
     cv::GaussianBlur(padded(grey, margin), smooth, cv::Size(brief_kernel, brief_kernel),
                      brief_sigma, brief_sigma, cv::BORDER_REFLECT_101);
+    // each test's two points as offsets from the centre pixel in this image's memory
     const auto& pat = pattern();
-    cv::Mat d = cv::Mat::zeros(static_cast<int>(keypoints.size()), brief_bits / 8, CV_8U);
+    const auto step = static_cast<std::ptrdiff_t>(smooth.step1());
+    std::vector<std::ptrdiff_t> off_a(brief_bits), off_b(brief_bits);
+    for (size_t k = 0; k < brief_bits; ++k) {
+        off_a[k] = pat[k][1] * step + pat[k][0];
+        off_b[k] = pat[k][3] * step + pat[k][2];
+    }
+    cv::Mat d(static_cast<int>(keypoints.size()), brief_bits / 8, CV_8U);
     const cv::Size inner(smooth.cols - 2 * (patch_size / 2), smooth.rows - 2 * (patch_size / 2));
     for (size_t i = 0; i < keypoints.size(); ++i) {
         // the centre, clamped so that the whole patch stays on the padded image
         cv::Point c = pixel_of(keypoints[i]) + cv::Point(margin, margin);
         c = clamp_into(c - cv::Point(patch_size / 2, patch_size / 2), inner) +
             cv::Point(patch_size / 2, patch_size / 2);
+        const uchar* centre = smooth.ptr<uchar>(c.y) + c.x;
         uchar* row = d.ptr<uchar>(static_cast<int>(i));
-        for (int k = 0; k < brief_bits; ++k) {
-            const cv::Vec4i& t = pat[static_cast<size_t>(k)];
-            const uchar a = smooth.at<uchar>(c.y + t[1], c.x + t[0]);
-            const uchar b = smooth.at<uchar>(c.y + t[3], c.x + t[2]);
-            if (a < b) row[k >> 3] = static_cast<uchar>(row[k >> 3] | (1 << (k & 7)));
+        for (size_t byte = 0; byte < brief_bits / 8; ++byte) {
+            unsigned v = 0;
+            for (size_t bit = 0; bit < 8; ++bit) {
+                const size_t k = 8 * byte + bit;
+                v |= static_cast<unsigned>(centre[off_a[k]] < centre[off_b[k]]) << bit;
+            }
+            row[byte] = static_cast<uchar>(v);
         }
     }
     d.copyTo(descriptors);
@@ -234,9 +245,7 @@ const std::vector<cv::Vec2i>& FreakDescriptor::pairs() {
 void FreakDescriptor::detectAndCompute(cv::InputArray image, cv::InputArray,
                                        std::vector<cv::KeyPoint>& keypoints,
                                        cv::OutputArray descriptors, bool useProvidedKeypoints) {
-    if (!useProvidedKeypoints)
-        throw InputError("FREAK: a descriptor only (call compute with keypoints)");
-    const cv::Mat grey = grey8(image, "FREAK");
+    const cv::Mat grey = descriptor_input(image, useProvidedKeypoints, "FREAK");
     const auto& f = fields();
     const auto& pr = pairs();
     static const std::vector<cv::Vec2i> orient = make_orientation_pairs();

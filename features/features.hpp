@@ -38,7 +38,10 @@ struct InputError : std::runtime_error {
 ///   so cell (g, Y) and cell (0, Y + 1) share a bit; (g(g+1) >> 3) + 1 bytes (35 at g = 16);
 ///   the keypoint sits in cell centre = g/2 + 1 (integer division); a neighbour's cell is the
 ///   int conversion (truncation toward zero) of the single-precision sum
-///   p_j / 2^h + (centre - p_i / 2^h), so offsets in (-1, 0) land in cell 0 with [0, 1).
+///   p_j / 2^h + (centre - p_i / 2^h), so sums in (-1, 0) land in cell 0 with those in
+///   [0, 1): cell 0 is two cells wide and the reach is (-g/2 - 2, g - g/2) cells. For
+///   coordinates >= 0 the keypoint's own sum is exactly centre; a negative sub-pixel one can
+///   round one cell low.
 /// `corrected`: a true g x g grid: X = floor((x_j - x_i) / 2^h) + g/2 in [0, g), bit g*Y + X,
 ///   ceil(g^2 / 8) bytes (32 at g = 16); every cell is 2^h pixels wide; no shared bits.
 /// Both set the keypoint's own (centre) bit and use every keypoint of the set as neighbour.
@@ -58,13 +61,14 @@ int grid_descriptor_bytes(int g, GridVariant v);
 /// The descriptors of every keypoint of `keypoints`, each against all keypoints of the set
 /// (its neighbours are the keypoints within the grid's reach). One CV_8U row per keypoint,
 /// in input order; bit b of a row is byte b >> 3, bit b & 7 (LSB first), as appendix E.
-/// Cost O(n (g + k)) with k neighbours per keypoint: keypoints are bucketed by grid cell.
+/// Cost O(n (g + k)) with k neighbours per keypoint: keypoints are bucketed by scaled pixel
+/// (p / 2^h), so each descriptor reads only the bucket rows within its grid's reach.
 /// Throws InputError for out-of-range g/h or non-finite / huge (|p| >= 2^24) coordinates.
 cv::Mat grid_describe(const std::vector<cv::KeyPoint>& keypoints, int g, int h, GridVariant v);
 
 /// The cell (X, Y) keypoint `p` falls in on the grid of keypoint `ref` (either variant), or
-/// nothing when outside; and the bit that cell sets. Exposes the per-pair rule for tests and
-/// the quirk measurements.
+/// nothing when outside (`inside` false; corrected x/y then clamped to [-1, g]); and the bit
+/// that cell sets. Exposes the per-pair rule for tests and the quirk measurements.
 struct GridCell {
     bool inside = false;
     int x = 0;
@@ -219,7 +223,7 @@ struct MatchOptions {
 /// show up in `symmetry` when their left partner loses its reverse match).
 struct MatchCounts {
     int left_queries = 0;    ///< left descriptors with at least one neighbour
-    int right_queries = 0;   ///< right descriptors with at least one neighbour
+    int right_queries = 0;   ///< right descriptors with at least one neighbour (0 without symmetry)
     int ratio_left = 0;      ///< left 2-NN lists removed by the ratio test
     int ratio_right = 0;     ///< right 2-NN lists removed by the ratio test
     int ratio_nan_left = 0;  ///< left lists with d0 = d1 = 0 (ratio NaN), removed or not

@@ -49,7 +49,8 @@ bool thesis_truncated_negative(float scaled_ref, float scaled_p, int centre) {
 /// Computed in double: the difference of two floats and the division by 2^h are exact.
 long long corrected_coordinate(float ref, float p, int h, int centre) {
     const double cells = (static_cast<double>(p) - static_cast<double>(ref)) / double(1 << h);
-    return static_cast<long long>(std::floor(cells)) + centre;
+    const auto t = static_cast<long long>(cells);           // toward zero (|cells| < 2^26)
+    return t - static_cast<long long>(cells < double(t)) + centre;  // floor
 }
 
 void check_coordinates(const std::vector<cv::KeyPoint>& kps) {
@@ -93,20 +94,30 @@ public:
         for (size_t j = 0; j < n; ++j) index_[static_cast<size_t>(fill[key[j]]++)] = static_cast<int>(j);
     }
 
-    /// Calls f(j) for every keypoint j whose scaled position may lie in [lo_x, hi_x] x
-    /// [lo_y, hi_y] (a superset: whole buckets), in increasing bucket order.
+    /// Calls f(b, e) for each range [b, e) of bucket order positions whose keypoints' scaled
+    /// positions may lie in [lo_x, hi_x] x [lo_y, hi_y] (a superset: whole buckets), one
+    /// range per bucket row.
     template <class F>
-    void for_each_in(double lo_x, double hi_x, double lo_y, double hi_y, F&& f) const {
+    void for_each_range(double lo_x, double hi_x, double lo_y, double hi_y, F&& f) const {
         if (index_.empty()) return;
         const long long c0 = std::max(0LL, col(lo_x)), c1 = std::min(cols_ - 1, col(hi_x));
         const long long r0 = std::max(0LL, row(lo_y)), r1 = std::min(rows_ - 1, row(hi_y));
         if (c0 > c1) return;
-        for (long long r = r0; r <= r1; ++r) {
-            const int b = start_[static_cast<size_t>(r * cols_ + c0)];
-            const int e = start_[static_cast<size_t>(r * cols_ + c1 + 1)];
-            for (int k = b; k < e; ++k) f(index_[static_cast<size_t>(k)]);
-        }
+        for (long long r = r0; r <= r1; ++r)
+            f(start_[static_cast<size_t>(r * cols_ + c0)], start_[static_cast<size_t>(r * cols_ + c1 + 1)]);
     }
+
+    /// Calls f(j) for every keypoint j of for_each_range.
+    template <class F>
+    void for_each_in(double lo_x, double hi_x, double lo_y, double hi_y, F&& f) const {
+        for_each_range(lo_x, hi_x, lo_y, hi_y, [&](int b, int e) {
+            for (int k = b; k < e; ++k) f(index_[static_cast<size_t>(k)]);
+        });
+    }
+
+    /// The keypoint at bucket order position k.
+    int index(int k) const { return index_[static_cast<size_t>(k)]; }
+    size_t size() const { return index_.size(); }
 
 private:
     long long col(double x) const { return static_cast<long long>(std::floor((std::floor(x) - min_x_) / side_)); }
@@ -136,14 +147,32 @@ Scaled scale_all(const std::vector<cv::KeyPoint>& kps, int h) {
     return s;
 }
 
-/// Visits every j whose scaled position may fall on keypoint i's grid of either variant:
-/// thesis reach (-1 - lx, g + 1 - lx), corrected reach [x_i - g/2, x_i + g - g/2), one
-/// scaled unit of margin for float rounding.
+/// The scaled window that holds keypoint i's grid of either variant: thesis reach x_j in
+/// (x_i - centre - 1, x_i - centre + g + 1) = (x_i - g/2 - 2, x_i + g - g/2), corrected
+/// reach [x_i - g/2, x_i + g - g/2) (exact), widened by the float rounding of the thesis's
+/// sum: a few units in the last place of the largest operand (2^-21 relative, and 1e-3).
+struct Reach {
+    double lo_x, hi_x, lo_y, hi_y;
+};
+Reach reach_of(const Scaled& s, size_t i, int g) {
+    const auto margin = [&](float v) { return 1e-3 + (std::fabs(double(v)) + 2.0 * g + 4.0) * 0x1p-21; };
+    const double lo = -double(thesis_centre(g)) - 1.0, hi = double(g - g / 2);
+    const double mx = margin(s.x[i]), my = margin(s.y[i]);
+    return {s.x[i] + lo - mx, s.x[i] + hi + mx, s.y[i] + lo - my, s.y[i] + hi + my};
+}
+
+/// Visits every j whose scaled position may fall on keypoint i's grid of either variant.
 template <class F>
 void for_each_candidate(const Buckets& b, const Scaled& s, size_t i, int g, F&& f) {
-    const double reach_lo = -double(thesis_centre(g)) - 2.0;
-    const double reach_hi = double(g) + 2.0;
-    b.for_each_in(s.x[i] + reach_lo, s.x[i] + reach_hi, s.y[i] + reach_lo, s.y[i] + reach_hi, f);
+    const Reach r = reach_of(s, i, g);
+    b.for_each_in(r.lo_x, r.hi_x, r.lo_y, r.hi_y, f);
+}
+
+/// `v` permuted into the buckets' order, so a bucket row's keypoints are read sequentially.
+std::vector<float> in_bucket_order(const std::vector<float>& v, const Buckets& b) {
+    std::vector<float> o(b.size());
+    for (size_t k = 0; k < o.size(); ++k) o[k] = v[static_cast<size_t>(b.index(static_cast<int>(k)))];
+    return o;
 }
 
 inline void set_bit(uchar* row, int bit) { row[bit >> 3] = static_cast<uchar>(row[bit >> 3] | (1 << (bit & 7))); }
@@ -193,23 +222,43 @@ cv::Mat grid_describe(const std::vector<cv::KeyPoint>& keypoints, int g, int h, 
     if (keypoints.empty()) return dp;
     const Scaled s = scale_all(keypoints, h);
     const Buckets buckets(s.x, s.y, bucket_budget(keypoints.size()));
+    // coordinates in bucket order: scaled for the thesis variant, pixels for the corrected one
+    Scaled px;
+    if (v == GridVariant::corrected) {
+        px.x.resize(keypoints.size());
+        px.y.resize(keypoints.size());
+        for (size_t j = 0; j < keypoints.size(); ++j) {
+            px.x[j] = keypoints[j].pt.x;
+            px.y[j] = keypoints[j].pt.y;
+        }
+    }
+    const Scaled& src = v == GridVariant::thesis ? s : px;
+    const std::vector<float> ox = in_bucket_order(src.x, buckets), oy = in_bucket_order(src.y, buckets);
     for (size_t i = 0; i < keypoints.size(); ++i) {
         uchar* row = dp.ptr<uchar>(static_cast<int>(i));
+        const Reach r = reach_of(s, i, g);
         if (v == GridVariant::thesis) {
             const int centre = thesis_centre(g);
-            for_each_candidate(buckets, s, i, g, [&](int j) {
-                const int X = thesis_coordinate(s.x[i], s.x[static_cast<size_t>(j)], centre);
-                const int Y = thesis_coordinate(s.y[i], s.y[static_cast<size_t>(j)], centre);
-                if (X >= 0 && Y >= 0 && X <= g && Y <= g) set_bit(row, g * Y + X);
+            buckets.for_each_range(r.lo_x, r.hi_x, r.lo_y, r.hi_y, [&](int b, int e) {
+                for (size_t k = static_cast<size_t>(b); k < static_cast<size_t>(e); ++k) {
+                    const int X = thesis_coordinate(s.x[i], ox[k], centre);
+                    const int Y = thesis_coordinate(s.y[i], oy[k], centre);
+                    // X >= 0 && Y >= 0 && X <= g && Y <= g, without branches (most
+                    // candidates of a bucket row fall outside: branches mispredict)
+                    const unsigned in = unsigned(unsigned(X) <= unsigned(g)) & unsigned(unsigned(Y) <= unsigned(g));
+                    const int bit = in ? g * Y + X : 0;
+                    row[bit >> 3] = static_cast<uchar>(row[bit >> 3] | (in << (bit & 7)));
+                }
             });
         } else {
             const int centre = corrected_centre(g);
             const cv::Point2f ref = keypoints[i].pt;
-            for_each_candidate(buckets, s, i, g, [&](int j) {
-                const cv::Point2f p = keypoints[static_cast<size_t>(j)].pt;
-                const long long X = corrected_coordinate(ref.x, p.x, h, centre);
-                const long long Y = corrected_coordinate(ref.y, p.y, h, centre);
-                if (X >= 0 && Y >= 0 && X < g && Y < g) set_bit(row, static_cast<int>(g * Y + X));
+            buckets.for_each_range(r.lo_x, r.hi_x, r.lo_y, r.hi_y, [&](int b, int e) {
+                for (size_t k = static_cast<size_t>(b); k < static_cast<size_t>(e); ++k) {
+                    const long long X = corrected_coordinate(ref.x, ox[k], h, centre);
+                    const long long Y = corrected_coordinate(ref.y, oy[k], h, centre);
+                    if (X >= 0 && Y >= 0 && X < g && Y < g) set_bit(row, static_cast<int>(g * Y + X));
+                }
             });
         }
     }

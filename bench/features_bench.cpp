@@ -1,0 +1,192 @@
+// features_bench.cpp: descriptor extraction + stereo matching per stereo pair, one thread:
+// the grid descriptor (thesis variant, g = 16, h = 3: the thesis's Harris choice; and the
+// corrected variant) against BRIEF, each followed by the same brute-force Hamming matcher
+// (hc::features::match_stereo: 2-NN both ways, symmetry, printed ratio test, |dy| < 5), on
+// the same keypoints, in the same run. Goal: grid + matching faster than BRIEF + matching
+// (thesis Tables 9-10: 1.72-1.88 times slower on a PC). Also each stage alone, and FREAK.
+// Pair: KITTI 01 pair 0 from the data directory ($HARRIS_COSIM_DATA, else the build
+// default), else opencv-doc's aloeL/aloeR; keypoints: the 1,000 strongest Harris corners
+// per image at least 28 px inside it (BRIEF's margin), so every descriptor sees the same ones.
+#include <benchmark/benchmark.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <string>
+
+#include "features/features.hpp"
+#include "stereo_sample.hpp"
+
+namespace {
+
+using namespace hc::features;
+
+hc::features_test::StereoSample g_pair;
+
+struct Described {
+    cv::Mat l, r;
+};
+
+Described describe(cv::Feature2D& f) {
+    Described d;
+    auto kl = g_pair.kp_l, kr = g_pair.kp_r;
+    f.compute(g_pair.left, kl, d.l);
+    f.compute(g_pair.right, kr, d.r);
+    return d;
+}
+
+void run_describe_and_match(benchmark::State& st, const cv::Ptr<cv::Feature2D>& f) {
+    MatchOptions o;
+    o.norm = f->defaultNorm();
+    size_t matches = 0;
+    for (auto _ : st) {
+        const Described d = describe(*f);
+        const auto m = match_stereo(d.l, g_pair.kp_l, d.r, g_pair.kp_r, o);
+        matches = m.size();
+        benchmark::DoNotOptimize(m.data());
+    }
+    st.counters["matches"] = double(matches);
+    st.counters["bytes"] = f->descriptorSize();
+}
+
+void run_describe(benchmark::State& st, const cv::Ptr<cv::Feature2D>& f) {
+    for (auto _ : st) {
+        const Described d = describe(*f);
+        benchmark::DoNotOptimize(d.l.data);
+    }
+}
+
+void run_match(benchmark::State& st, const cv::Ptr<cv::Feature2D>& f) {
+    const Described d = describe(*f);
+    MatchOptions o;
+    o.norm = f->defaultNorm();
+    for (auto _ : st) {
+        const auto m = match_stereo(d.l, g_pair.kp_l, d.r, g_pair.kp_r, o);
+        benchmark::DoNotOptimize(m.data());
+    }
+}
+
+cv::Ptr<cv::Feature2D> grid_thesis() { return GridDescriptor::create(16, 3, GridVariant::thesis); }
+cv::Ptr<cv::Feature2D> grid_corrected() { return GridDescriptor::create(16, 3, GridVariant::corrected); }
+cv::Ptr<cv::Feature2D> brief() { return BriefDescriptor::create(); }
+cv::Ptr<cv::Feature2D> freak() { return FreakDescriptor::create(); }
+
+void BM_grid_thesis_describe_and_match(benchmark::State& st) { run_describe_and_match(st, grid_thesis()); }
+void BM_grid_corrected_describe_and_match(benchmark::State& st) { run_describe_and_match(st, grid_corrected()); }
+void BM_brief_describe_and_match(benchmark::State& st) { run_describe_and_match(st, brief()); }
+void BM_freak_describe_and_match(benchmark::State& st) { run_describe_and_match(st, freak()); }
+void BM_grid_thesis_describe(benchmark::State& st) { run_describe(st, grid_thesis()); }
+void BM_brief_describe(benchmark::State& st) { run_describe(st, brief()); }
+void BM_grid_thesis_match(benchmark::State& st) { run_match(st, grid_thesis()); }
+void BM_brief_match(benchmark::State& st) { run_match(st, brief()); }
+
+/// Grid extraction of n keypoints spread uniformly at KITTI's density (1,000 per 1241 x 376
+/// image): time per keypoint stays flat as n grows when extraction is O(n (g + k)), not O(n^2).
+void BM_grid_thesis_describe_n_keypoints(benchmark::State& st) {
+    const int n = static_cast<int>(st.range(0));
+    const double side = std::sqrt(1241.0 * 376.0 * n / 1000.0);
+    cv::RNG rng(12345);
+    std::vector<cv::KeyPoint> k(static_cast<size_t>(n));
+    for (auto& p : k) p = cv::KeyPoint(float(rng.uniform(0.0, side)), float(rng.uniform(0.0, side)), 7.f);
+    for (auto _ : st) {
+        const cv::Mat d = grid_describe(k, 16, 3, GridVariant::thesis);
+        benchmark::DoNotOptimize(d.data);
+    }
+    st.SetItemsProcessed(st.iterations() * n);
+}
+BENCHMARK(BM_grid_thesis_describe_n_keypoints)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// BRIEF's smoothing alone (the paper's 9 x 9 Gaussian of sigma 2 on both images, padded by
+/// the 28-px margin as BriefDescriptor does): the share of BRIEF's extraction that the
+/// authors' box filter on an integral image would make cheaper.
+void BM_brief_smoothing_only(benchmark::State& st) {
+    cv::Mat padded, smooth;
+    for (auto _ : st) {
+        for (const cv::Mat* img : {&g_pair.left, &g_pair.right}) {
+            cv::copyMakeBorder(*img, padded, 28, 28, 28, 28, cv::BORDER_REFLECT_101);
+            cv::GaussianBlur(padded, smooth, cv::Size(9, 9), 2.0, 2.0, cv::BORDER_REFLECT_101);
+            benchmark::DoNotOptimize(smooth.data);
+        }
+    }
+}
+BENCHMARK(BM_brief_smoothing_only)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+BENCHMARK(BM_grid_thesis_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_grid_corrected_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_brief_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_freak_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_grid_thesis_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_brief_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_grid_thesis_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_brief_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// Keeps every benchmark's real time per iteration (the median over repetitions when
+/// --benchmark_repetitions is given) to print the ratios after the run.
+class RatioReporter : public benchmark::ConsoleReporter {
+public:
+    void ReportRuns(const std::vector<Run>& runs) override {
+        for (const auto& r : runs) {
+            const std::string name = r.run_name.function_name;
+            if (r.run_type == Run::RT_Aggregate && r.aggregate_name == "median") {
+                ms[name] = r.GetAdjustedRealTime();
+                cpu[name] = r.GetAdjustedCPUTime();
+                median.insert(name);
+            } else if (r.run_type == Run::RT_Iteration && r.iterations > 0 && !median.count(name)) {
+                ms[name] = r.GetAdjustedRealTime();
+                cpu[name] = r.GetAdjustedCPUTime();
+            }
+        }
+        ConsoleReporter::ReportRuns(runs);
+    }
+    std::set<std::string> median;
+    /// Real-time ratio a / b, and the CPU-time ratio (the fairer one on a loaded machine).
+    void ratio(const char* what, const std::string& a, const std::string& b) const {
+        const auto x = ms.find(a), y = ms.find(b);
+        if (x == ms.end() || y == ms.end() || y->second <= 0) return;
+        const double ca = cpu.at(a), cb = cpu.at(b);
+        std::printf("%s: real %.3f ms / %.3f ms = %.3f; CPU %.3f ms / %.3f ms = %.3f\n", what, x->second,
+                    y->second, x->second / y->second, ca, cb, cb > 0 ? ca / cb : 0.0);
+    }
+    std::map<std::string, double> ms, cpu;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    cv::setNumThreads(1);
+    // the strongest 1,000 corners at least BRIEF's margin (28 px) inside each image, so that
+    // BRIEF keeps them all and every descriptor describes the same ones
+    auto s = hc::features_test::load_stereo_sample(1000, 28);
+    if (!s) {
+        std::fprintf(stderr, "features_bench: no KITTI 01 pair 0 and no opencv-doc aloe pair\n");
+        return 2;
+    }
+    g_pair = std::move(*s);
+    {
+        const size_t l = g_pair.kp_l.size(), r = g_pair.kp_r.size();
+        cv::Mat unused;
+        BriefDescriptor::create()->compute(g_pair.left, g_pair.kp_l, unused);
+        BriefDescriptor::create()->compute(g_pair.right, g_pair.kp_r, unused);
+        if (g_pair.kp_l.size() != l || g_pair.kp_r.size() != r) {
+            std::fprintf(stderr, "features_bench: BRIEF dropped keypoints inside its margin\n");
+            return 1;
+        }
+    }
+    std::printf("pair: %s (%dx%d), keypoints %zu left, %zu right\n", g_pair.name.c_str(), g_pair.left.cols,
+                g_pair.left.rows, g_pair.kp_l.size(), g_pair.kp_r.size());
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    RatioReporter rep;
+    benchmark::RunSpecifiedBenchmarks(&rep);
+    benchmark::Shutdown();
+    rep.ratio("grid (thesis) + matching / BRIEF + matching (goal < 1)", "BM_grid_thesis_describe_and_match",
+              "BM_brief_describe_and_match");
+    rep.ratio("grid (corrected) + matching / BRIEF + matching", "BM_grid_corrected_describe_and_match",
+              "BM_brief_describe_and_match");
+    rep.ratio("grid (thesis) extraction / BRIEF extraction", "BM_grid_thesis_describe", "BM_brief_describe");
+    rep.ratio("matching 35-byte grid / matching 32-byte BRIEF", "BM_grid_thesis_match", "BM_brief_match");
+    return 0;
+}
