@@ -152,3 +152,31 @@ TEST_CASE("impossible or out-of-range requests are refused with InputError", "[l
     StereoImages a = shifted_pair(), b = shifted_pair(160, 120);
     CHECK_THROWS_WITH(detect_pairs(Detector::spec, {a, b}), Catch::Contains("streams one image size"));
 }
+
+TEST_CASE("score_formats scores a configuration as the comparison scores grid on the spec source's corners", "[landmarks]") {
+    Dataset ds;
+    ds.name = "shifted";
+    ds.pairs = {shifted_pair()};
+    ds.disparity = {shifted_truth()};
+    StereoCalib c;
+    c.P0 = cv::Matx34d(700, 0, 160, 0, 0, 700, 120, 0, 0, 0, 1, 0);
+    c.P1 = cv::Matx34d(700, 0, 160, -350, 0, 700, 120, 0, 0, 0, 1, 0);
+    ds.calib = {c};
+    const Totals t = score_formats(ds, hc::Formats{}, Detector::spec, GridParams{16, 2});
+    ComparisonOptions o;
+    o.detectors = {Detector::spec};
+    o.descriptors = {Descriptor::grid};
+    o.grid = {16, 2};
+    const auto rows = compare(ds, o);
+    REQUIRE(rows.size() == 1);
+    CHECK(t.correct == rows[0].totals.correct);
+    CHECK(t.truth_correct == rows[0].totals.truth_correct);
+    CHECK(t.all == rows[0].totals.all);
+    CHECK(t.correct > 50);
+    hc::Formats narrow;
+    narrow.m_prod_w = 12;   // a configuration that loses most of M's bits scores differently
+    narrow.m_drop = 5;
+    const Totals tn = score_formats(ds, narrow, Detector::spec, GridParams{16, 2});
+    CHECK(tn.keypoints != t.keypoints);
+    CHECK_THROWS_AS(score_formats(ds, hc::Formats{}, Detector::opencv), InputError);
+}
