@@ -191,6 +191,8 @@ void run_landmarks(const LandmarksOptions& o) {
                           "(ground truth)* counts, of those with a known disparity, the ones with |x_l - x_r - d| <= 1 px. "
                           "Time: extraction of both images + matching, one thread.\n\n",
                           ds.pairs.size(), o.ratio > 0 ? o.ratio : 1.0, o.drop_ties ? ", ties dropped" : " as printed");
+        md << fmt::format("Co-processor formats (spec, cycle, rtl corners): {}.\n\n",
+                          o.config.empty() ? "the thesis's" : "--config " + o.config);
         md << landmarks::comparison_markdown(rows) << "\n";
         if (any_truth)
             md << "## Depth error against the ground truth\n\nRelative |Z - Z_gt| / Z_gt of correct (thesis) matches with a "
