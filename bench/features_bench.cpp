@@ -3,7 +3,9 @@
 // corrected variant) against BRIEF, each followed by the same brute-force Hamming matcher
 // (hc::features::match_stereo: 2-NN both ways, symmetry, printed ratio test, |dy| < 5), on
 // the same keypoints, in the same run. Goal: grid + matching faster than BRIEF + matching
-// (thesis Tables 9-10: 1.72-1.88 times slower on a PC). Also each stage alone, and FREAK.
+// (thesis Tables 9-10: 1.72-1.88 times slower on a PC), measured by BM_grid_vs_brief_interleaved
+// (both chains alternately in every iteration: robust to a changing machine load). Also each
+// chain and stage alone, FREAK, and grid extraction against the keypoint count.
 // Pair: KITTI 01 pair 0 from the data directory ($HARRIS_COSIM_DATA, else the build
 // default), else opencv-doc's aloeL/aloeR; keypoints: the 1,000 strongest Harris corners
 // per image at least 28 px inside it (BRIEF's margin), so every descriptor sees the same ones.
@@ -11,7 +13,9 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <map>
 #include <set>
@@ -69,6 +73,21 @@ void run_match(benchmark::State& st, const cv::Ptr<cv::Feature2D>& f) {
     }
 }
 
+/// This thread's CPU time in ms.
+double thread_cpu_ms() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+/// Describe both images and match, once.
+size_t describe_and_match_once(cv::Feature2D& f) {
+    MatchOptions o;
+    o.norm = f.defaultNorm();
+    const Described d = describe(f);
+    return match_stereo(d.l, g_pair.kp_l, d.r, g_pair.kp_r, o).size();
+}
+
 cv::Ptr<cv::Feature2D> grid_thesis() { return GridDescriptor::create(16, 3, GridVariant::thesis); }
 cv::Ptr<cv::Feature2D> grid_corrected() { return GridDescriptor::create(16, 3, GridVariant::corrected); }
 cv::Ptr<cv::Feature2D> brief() { return BriefDescriptor::create(); }
@@ -79,9 +98,44 @@ void BM_grid_corrected_describe_and_match(benchmark::State& st) { run_describe_a
 void BM_brief_describe_and_match(benchmark::State& st) { run_describe_and_match(st, brief()); }
 void BM_freak_describe_and_match(benchmark::State& st) { run_describe_and_match(st, freak()); }
 void BM_grid_thesis_describe(benchmark::State& st) { run_describe(st, grid_thesis()); }
+void BM_grid_corrected_describe(benchmark::State& st) { run_describe(st, grid_corrected()); }
 void BM_brief_describe(benchmark::State& st) { run_describe(st, brief()); }
 void BM_grid_thesis_match(benchmark::State& st) { run_match(st, grid_thesis()); }
+void BM_grid_corrected_match(benchmark::State& st) { run_match(st, grid_corrected()); }
 void BM_brief_match(benchmark::State& st) { run_match(st, brief()); }
+
+/// Grid (thesis) + matching and BRIEF + matching alternately in every iteration, each timed
+/// (real and thread CPU time), so that a changing machine load hits both alike; counters:
+/// the two mean times per pair and their ratios.
+void BM_grid_vs_brief_interleaved(benchmark::State& st) {
+    const auto grid = grid_thesis(), br = brief();
+    double grid_real = 0, brief_real = 0, grid_cpu = 0, brief_cpu = 0;
+    size_t sink = 0;
+    using clock = std::chrono::steady_clock;
+    for (auto _ : st) {
+        const auto r0 = clock::now();
+        const double c0 = thread_cpu_ms();
+        sink += describe_and_match_once(*grid);
+        const auto r1 = clock::now();
+        const double c1 = thread_cpu_ms();
+        sink += describe_and_match_once(*br);
+        const auto r2 = clock::now();
+        const double c2 = thread_cpu_ms();
+        grid_real += std::chrono::duration<double, std::milli>(r1 - r0).count();
+        brief_real += std::chrono::duration<double, std::milli>(r2 - r1).count();
+        grid_cpu += c1 - c0;
+        brief_cpu += c2 - c1;
+    }
+    benchmark::DoNotOptimize(sink);
+    const double n = double(st.iterations());
+    st.counters["grid_real_ms"] = grid_real / n;
+    st.counters["brief_real_ms"] = brief_real / n;
+    st.counters["grid_cpu_ms"] = grid_cpu / n;
+    st.counters["brief_cpu_ms"] = brief_cpu / n;
+    st.counters["real_ratio"] = grid_real / brief_real;
+    st.counters["cpu_ratio"] = grid_cpu / brief_cpu;
+}
+BENCHMARK(BM_grid_vs_brief_interleaved)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 
 /// Grid extraction of n keypoints spread uniformly at KITTI's density (1,000 per 1241 x 376
 /// image): time per keypoint stays flat as n grows when extraction is O(n (g + k)), not O(n^2).
@@ -119,8 +173,10 @@ BENCHMARK(BM_grid_corrected_describe_and_match)->Unit(benchmark::kMillisecond)->
 BENCHMARK(BM_brief_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_freak_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_grid_thesis_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_grid_corrected_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_brief_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_grid_thesis_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_grid_corrected_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_brief_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// Keeps every benchmark's real time per iteration (the median over repetitions when
@@ -139,9 +195,14 @@ public:
                 cpu[name] = r.GetAdjustedCPUTime();
             }
         }
+        for (const auto& r : runs)
+            if (r.run_name.function_name == "BM_grid_vs_brief_interleaved" &&
+                (r.run_type == Run::RT_Iteration || r.aggregate_name == "median"))
+                for (const auto& [k, v] : r.counters) interleaved[k] = v.value;
         ConsoleReporter::ReportRuns(runs);
     }
     std::set<std::string> median;
+    std::map<std::string, double> interleaved;
     /// Real-time ratio a / b, and the CPU-time ratio (the fairer one on a loaded machine).
     void ratio(const char* what, const std::string& a, const std::string& b) const {
         const auto x = ms.find(a), y = ms.find(b);
@@ -182,6 +243,11 @@ int main(int argc, char** argv) {
     RatioReporter rep;
     benchmark::RunSpecifiedBenchmarks(&rep);
     benchmark::Shutdown();
+    if (!rep.interleaved.empty())
+        std::printf("interleaved, grid (thesis) + matching / BRIEF + matching (goal < 1): real %.3f ms / %.3f ms = "
+                    "%.3f; CPU %.3f ms / %.3f ms = %.3f\n",
+                    rep.interleaved["grid_real_ms"], rep.interleaved["brief_real_ms"], rep.interleaved["real_ratio"],
+                    rep.interleaved["grid_cpu_ms"], rep.interleaved["brief_cpu_ms"], rep.interleaved["cpu_ratio"]);
     rep.ratio("grid (thesis) + matching / BRIEF + matching (goal < 1)", "BM_grid_thesis_describe_and_match",
               "BM_brief_describe_and_match");
     rep.ratio("grid (corrected) + matching / BRIEF + matching", "BM_grid_corrected_describe_and_match",

@@ -47,8 +47,12 @@ bool thesis_truncated_negative(float scaled_ref, float scaled_p, int centre) {
 
 /// The corrected cell coordinate: floor of the offset in cells, plus the centre.
 /// Computed in double: the difference of two floats and the division by 2^h are exact.
-long long corrected_coordinate(float ref, float p, int h, int centre) {
-    const double cells = (static_cast<double>(p) - static_cast<double>(ref)) / double(1 << h);
+/// 2^-h, the corrected grid's cells per pixel.
+double inv_cell(int h) { return 1.0 / double(1 << h); }
+
+/// `cells_per_pixel` = inv_cell(h) (a product by 2^-h is exact, and cheaper than a division).
+long long corrected_coordinate(float ref, float p, double cells_per_pixel, int centre) {
+    const double cells = (static_cast<double>(p) - static_cast<double>(ref)) * cells_per_pixel;
     const auto t = static_cast<long long>(cells);           // toward zero (|cells| < 2^26)
     return t - static_cast<long long>(cells < double(t)) + centre;  // floor
 }
@@ -204,8 +208,8 @@ GridCell grid_cell(cv::Point2f ref, cv::Point2f p, int g, int h, GridVariant v) 
         c.inside = c.x >= 0 && c.y >= 0 && c.x <= g && c.y <= g;
     } else {
         const int centre = corrected_centre(g);
-        const long long x = corrected_coordinate(ref.x, p.x, h, centre);
-        const long long y = corrected_coordinate(ref.y, p.y, h, centre);
+        const long long x = corrected_coordinate(ref.x, p.x, inv_cell(h), centre);
+        const long long y = corrected_coordinate(ref.y, p.y, inv_cell(h), centre);
         c.inside = x >= 0 && y >= 0 && x < g && y < g;
         c.x = static_cast<int>(std::clamp<long long>(x, -1, g));
         c.y = static_cast<int>(std::clamp<long long>(y, -1, g));
@@ -252,12 +256,17 @@ cv::Mat grid_describe(const std::vector<cv::KeyPoint>& keypoints, int g, int h, 
             });
         } else {
             const int centre = corrected_centre(g);
+            const double inv = inv_cell(h);
             const cv::Point2f ref = keypoints[i].pt;
             buckets.for_each_range(r.lo_x, r.hi_x, r.lo_y, r.hi_y, [&](int b, int e) {
                 for (size_t k = static_cast<size_t>(b); k < static_cast<size_t>(e); ++k) {
-                    const long long X = corrected_coordinate(ref.x, ox[k], h, centre);
-                    const long long Y = corrected_coordinate(ref.y, oy[k], h, centre);
-                    if (X >= 0 && Y >= 0 && X < g && Y < g) set_bit(row, static_cast<int>(g * Y + X));
+                    const long long X = corrected_coordinate(ref.x, ox[k], inv, centre);
+                    const long long Y = corrected_coordinate(ref.y, oy[k], inv, centre);
+                    // X, Y in [0, g), without branches (as the thesis variant)
+                    const unsigned in = unsigned((unsigned long long)X < (unsigned long long)g) &
+                                        unsigned((unsigned long long)Y < (unsigned long long)g);
+                    const int bit = in ? static_cast<int>(g * Y + X) : 0;
+                    row[bit >> 3] = static_cast<uchar>(row[bit >> 3] | (in << (bit & 7)));
                 }
             });
         }
@@ -306,8 +315,8 @@ GridQuirkStats grid_quirk_stats(const std::vector<cv::KeyPoint>& keypoints, int 
                         ++st.truncation_hits;
                 }
             }
-            const long long cx = corrected_coordinate(keypoints[i].pt.x, keypoints[j].pt.x, h, cc);
-            const long long cy = corrected_coordinate(keypoints[i].pt.y, keypoints[j].pt.y, h, cc);
+            const long long cx = corrected_coordinate(keypoints[i].pt.x, keypoints[j].pt.x, inv_cell(h), cc);
+            const long long cy = corrected_coordinate(keypoints[i].pt.y, keypoints[j].pt.y, inv_cell(h), cc);
             const bool in_c = cx >= 0 && cy >= 0 && cx < g && cy < g;
             if (in_c) rel_c.push_back({jj, static_cast<int>(cx - cc), static_cast<int>(cy - cc)});
             if (j != i && in_t && !in_c) ++st.neighbours_thesis_only;

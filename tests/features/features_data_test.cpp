@@ -44,6 +44,10 @@ TEST_CASE("grid quirks on a real stereo pair: counts per h at g = 16", "[landmar
                         q.descriptors_differing, q.bits_set_thesis, q.bits_set_corrected,
                         q.empty_neighbourhood_thesis, q.empty_neighbourhood_corrected, q.self_bit_off_centre);
             CHECK(q.self_bit_off_centre == 0);
+            // the corrected reach [-8, 8) lies inside the thesis reach (-10, 8), and where both
+            // see a neighbour, truncation and floor agree (integer corner coordinates)
+            CHECK(q.neighbours_corrected_only == 0);
+            CHECK(q.relative_cell_differs == 0);
             CHECK(q.shared_bit_collisions <= q.shared_bit_hits);
             CHECK(q.descriptors_with_collision <= q.shared_bit_collisions);
             // every bit the thesis grid loses to a collision is a hit it could not record

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <random>
 #include <vector>
@@ -202,4 +203,37 @@ TEST_CASE("descriptor and norm pairs that cannot work are input errors", "[landm
     const cv::Mat b32(3, 32, CV_8U, cv::Scalar(0)), b35(3, 35, CV_8U, cv::Scalar(0));
     CHECK_THROWS_WITH(match_stereo(b32, k3, b35, k3, MatchOptions{}), Catch::Contains("differ"));
     CHECK_THROWS_WITH(match_stereo(b32, at_rows({1, 2}), b32, k3, MatchOptions{}), Catch::Contains("2 left keypoints"));
+}
+
+TEST_CASE("SIFT descriptors at shifted keypoints of a shifted image match one to one with NORM_L2", "[landmarks][matcher]") {
+    cv::Mat big(220, 260, CV_8U);
+    cv::RNG rng(21);
+    rng.fill(big, cv::RNG::UNIFORM, 0, 256);
+    cv::GaussianBlur(big, big, cv::Size(7, 7), 2.0);
+    const int dx = 6, dy = 3;
+    const cv::Mat left = big(cv::Rect(30, 30, 200, 160)).clone();
+    const cv::Mat right = big(cv::Rect(30 - dx, 30 - dy, 200, 160)).clone();  // content moved by (dx, dy)
+    std::vector<cv::KeyPoint> kl, kr;
+    for (int y = 40; y < 120; y += 16)
+        for (int x = 40; x < 160; x += 16) {
+            kl.emplace_back(float(x), float(y), 12.f, 0.f);
+            kr.emplace_back(float(x + dx), float(y + dy), 12.f, 0.f);
+        }
+    const auto sift = cv::SIFT::create();
+    cv::Mat dl, dr;
+    sift->compute(left, kl, dl);
+    sift->compute(right, kr, dr);
+    REQUIRE(dl.type() == CV_32F);
+    REQUIRE(kl.size() == kr.size());
+    MatchOptions o;
+    o.norm = cv::NORM_L2;
+    o.ratio = RatioTest::drop_ties;
+    o.max_ratio = 0.8;  // Lowe's ratio, as the thesis's SIFT reference
+    MatchCounts c;
+    const auto m = match_stereo(dl, kl, dr, kr, o, &c);
+    CHECK(int(m.size()) == int(kl.size()));
+    for (const auto& x : m) CHECK(x.queryIdx == x.trainIdx);  // (SIFT is not bit-exact under shifts)
+    CHECK(c.ratio_left == 0);
+    CHECK(c.symmetry == 0);
+    CHECK(c.epipolar == 0);
 }
