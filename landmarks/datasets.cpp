@@ -51,7 +51,7 @@ MiddleburyScene load_middlebury(const fs::path& dir, bool need_truth) {
         throw InputError("Middlebury scene '" + dir.string() + "': view1.png and view5.png differ in size");
     s.scale = middlebury_scale(s.images.left.rows);
     const fs::path disp = dir / "disp1.png";
-    if (fs::exists(disp)) {
+    if (need_truth && fs::exists(disp)) {
         cv::Mat d = cv::imread(disp.string(), cv::IMREAD_UNCHANGED);
         if (d.empty() || d.type() != CV_8UC1) throw InputError("'" + disp.string() + "' is not an 8-bit grey disparity PNG");
         if (d.size() != s.images.left.size())
@@ -78,11 +78,11 @@ std::vector<fs::path> middlebury_scenes(const fs::path& root) {
     return v;
 }
 
-Dataset middlebury_dataset(const fs::path& root) {
+Dataset middlebury_dataset(const fs::path& root, bool need_truth) {
     Dataset ds;
     ds.name = "middlebury-" + root.filename().string();
     for (const auto& dir : middlebury_scenes(root)) {
-        MiddleburyScene s = load_middlebury(dir);
+        MiddleburyScene s = load_middlebury(dir, need_truth);
         ds.calib.push_back(middlebury_calib(s.scale, s.dmin_full, s.images.left.size()));
         ds.pairs.push_back(std::move(s.images));
         ds.disparity.push_back(std::move(s.disparity));

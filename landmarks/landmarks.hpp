@@ -175,7 +175,7 @@ float middlebury_disparity(std::uint8_t value, double scale);
 /// The scale of a Middlebury 2006 folder from its height (1110 full, 555 half, 370 third).
 double middlebury_scale(int height);
 /// Loads a scene; throws InputError naming the missing file (e.g. disp1.png) or the size
-/// mismatch. `need_truth` false accepts a folder without disp1.png (disparity left empty).
+/// mismatch. `need_truth` false reads no disp1.png (disparity left empty).
 MiddleburyScene load_middlebury(const std::filesystem::path& dir, bool need_truth = true);
 /// The scene folders under `root` (sorted; those holding view1.png).
 std::vector<std::filesystem::path> middlebury_scenes(const std::filesystem::path& root);
@@ -286,7 +286,9 @@ struct Dataset {
     std::vector<cv::Mat> disparity;      ///< per pair, empty if unknown
     std::vector<StereoCalib> calib;      ///< per pair
 };
-Dataset middlebury_dataset(const std::filesystem::path& root);   ///< all scenes; InputError
+/// All scenes under `root`; InputError for a scene without disp1.png unless `need_truth` is
+/// false (then its ground-truth columns stay empty).
+Dataset middlebury_dataset(const std::filesystem::path& root, bool need_truth = true);
 /// KITTI odometry pairs [first, last) of a sequence (calib.txt of the sequence).
 Dataset kitti_dataset(const std::filesystem::path& kitti_root, const std::string& sequence, int first, int last);
 

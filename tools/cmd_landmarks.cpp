@@ -25,7 +25,7 @@ struct LandmarksOptions {
     std::string dataset = "middlebury", middlebury, kitti, sequence = "01", frames = "0:10", data;
     int g = 16, h = 3, overlays = 2, threads = 0;
     double ratio = 0, sigma = 0.5;
-    bool drop_ties = false, compare = false, study = false, corrected = false, landmark_files = true;
+    bool drop_ties = false, compare = false, study = false, corrected = false, landmark_files = true, no_truth = false;
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -64,7 +64,7 @@ landmarks::Dataset load_dataset(const LandmarksOptions& o) {
             if (!data) throw InputError("no --middlebury folder and no data directory (--data, $HARRIS_COSIM_DATA)");
             root = *data / "middlebury2006" / "half";
         }
-        return landmarks::middlebury_dataset(root);
+        return landmarks::middlebury_dataset(root, !o.no_truth);
     }
     if (o.dataset == "kitti") {
         fs::path root = o.kitti;
@@ -231,6 +231,7 @@ void add_landmarks_command(CLI::App& app) {
     cmd->add_flag("--corrected", o->corrected, "study the corrected g x g grid instead of the thesis's");
     cmd->add_option("--dataset", o->dataset, "middlebury or kitti")->capture_default_str();
     cmd->add_option("--middlebury", o->middlebury, "Middlebury 2006 folder of scenes, or one scene (default: <data>/middlebury2006/half)");
+    cmd->add_flag("--no-truth", o->no_truth, "accept Middlebury scenes without disp1.png (e.g. third/): no ground-truth scoring");
     cmd->add_option("--kitti", o->kitti, "KITTI odometry root holding sequences/ (default: <data>/kitti)");
     cmd->add_option("--sequence", o->sequence, "KITTI sequence")->capture_default_str();
     cmd->add_option("--frames", o->frames, "KITTI stereo pair range a:b (b excluded)")->capture_default_str();
