@@ -152,12 +152,8 @@ void score(const std::vector<cv::DMatch>& dm, const std::vector<cv::KeyPoint>& k
 
 std::vector<cv::DMatch> run_matcher(const cv::Mat& dl, const std::vector<cv::KeyPoint>& kl, const cv::Mat& dr,
                                     const std::vector<cv::KeyPoint>& kr, const features::MatchOptions& o) {
-    if (dl.empty() || dr.empty()) return {};
-    try {
-        return features::match_stereo(dl, kl, dr, kr, o);
-    } catch (const features::InputError& e) {
-        throw InputError(e.what());
-    }
+    if (dl.empty() || dr.empty()) return {};   // no keypoints on a side: no matches
+    return features::match_stereo(dl, kl, dr, kr, o);
 }
 
 }  // namespace
@@ -176,9 +172,14 @@ PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descript
     const auto opts = match_options(d, mp);
     cv::Mat dr;
     const auto t0 = std::chrono::steady_clock::now();
-    desc->compute(img.left, r.kp_left, r.desc_left);
-    desc->compute(img.right, r.kp_right, dr);
-    const auto dm = run_matcher(r.desc_left, r.kp_left, dr, r.kp_right, opts);
+    std::vector<cv::DMatch> dm;
+    try {
+        desc->compute(img.left, r.kp_left, r.desc_left);
+        desc->compute(img.right, r.kp_right, dr);
+        dm = run_matcher(r.desc_left, r.kp_left, dr, r.kp_right, opts);
+    } catch (const features::InputError& e) {
+        throw InputError("pair '" + img.name + "', " + descriptor_name(d) + ": " + e.what());
+    }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.descriptor_bytes = desc->descriptorSize() * (desc->descriptorType() == CV_32F ? 4 : 1);
     r.keypoints_left = static_cast<int>(r.kp_left.size());
