@@ -20,6 +20,7 @@ void add_eval_command(CLI::App& app);       // precision/recall against OpenCV (
 void add_sweep_command(CLI::App& app);      // bit-width exploration (cmd_sweep.cpp)
 void add_calibrate_command(CLI::App& app);  // stereo calibration of a rig (cmd_calibrate.cpp)
 void add_slam_command(CLI::App& app);       // 2-D EKF-SLAM (cmd_slam.cpp)
+void add_landmarks_command(CLI::App& app);  // descriptors, stereo matches, landmarks (cmd_landmarks.cpp)
 
 /// The formats of `--config FILE.json` (the thesis's when `path` is empty), validated.
 /// Throws InputError naming the file when it cannot be read or holds bad formats.

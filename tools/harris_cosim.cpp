@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     hc::tools::add_sweep_command(app);
     hc::tools::add_calibrate_command(app);
     hc::tools::add_slam_command(app);
+    hc::tools::add_landmarks_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

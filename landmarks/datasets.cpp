@@ -1,0 +1,143 @@
+// datasets.cpp: Middlebury 2006 scenes and KITTI odometry pairs as stereo datasets, with
+// ground-truth disparity (Middlebury) and the rectified projection matrices of each pair.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "landmarks.hpp"
+
+namespace fs = std::filesystem;
+
+namespace hc::landmarks {
+
+namespace {
+
+cv::Mat read_grey(const fs::path& p) {
+    if (!fs::exists(p)) throw InputError("'" + p.string() + "' does not exist");
+    cv::Mat m = cv::imread(p.string(), cv::IMREAD_GRAYSCALE);
+    if (m.empty()) throw InputError("'" + p.string() + "' is not a readable image");
+    return m;
+}
+
+}  // namespace
+
+// The 2006 datasets come in full (1110 rows), half (555) and third (370) size; the
+// disparity PNGs of the reduced sizes hold the disparity in the reduced image's pixels
+// multiplied by the reduction factor (2 or 3), i.e. value = d * (1/scale), 0 = unknown.
+// Pinned by tests/landmarks/middlebury_test.cpp on pixels checked against the images.
+float middlebury_disparity(std::uint8_t value, double scale) {
+    return value == 0 ? 0.f : static_cast<float>(value * scale);
+}
+
+double middlebury_scale(int height) {
+    if (height == 1110) return 1.0;
+    if (height == 555) return 0.5;
+    if (height == 370) return 1.0 / 3.0;
+    throw InputError("a Middlebury 2006 image has 1110, 555 or 370 rows, not " + std::to_string(height));
+}
+
+MiddleburyScene load_middlebury(const fs::path& dir, bool need_truth) {
+    if (!fs::is_directory(dir)) throw InputError("Middlebury scene '" + dir.string() + "' is not a directory");
+    MiddleburyScene s;
+    s.name = dir.filename().string();
+    s.images.name = s.name;
+    s.images.left = read_grey(dir / "view1.png");
+    s.images.right = read_grey(dir / "view5.png");
+    if (s.images.left.size() != s.images.right.size())
+        throw InputError("Middlebury scene '" + dir.string() + "': view1.png and view5.png differ in size");
+    s.scale = middlebury_scale(s.images.left.rows);
+    const fs::path disp = dir / "disp1.png";
+    if (need_truth && fs::exists(disp)) {
+        cv::Mat d = cv::imread(disp.string(), cv::IMREAD_UNCHANGED);
+        if (d.empty() || d.type() != CV_8UC1) throw InputError("'" + disp.string() + "' is not an 8-bit grey disparity PNG");
+        if (d.size() != s.images.left.size())
+            throw InputError("'" + disp.string() + "' differs in size from view1.png");
+        s.disparity.create(d.size(), CV_32F);
+        for (int r = 0; r < d.rows; ++r)
+            for (int c = 0; c < d.cols; ++c) s.disparity.at<float>(r, c) = middlebury_disparity(d.at<std::uint8_t>(r, c), s.scale);
+    } else if (need_truth) {
+        throw InputError("Middlebury scene '" + dir.string() + "' has no disp1.png (the ground truth the scoring needs)");
+    }
+    std::ifstream dm(dir / "dmin.txt");
+    if (dm && !(dm >> s.dmin_full)) throw InputError("'" + (dir / "dmin.txt").string() + "' holds no number");
+    return s;
+}
+
+std::vector<fs::path> middlebury_scenes(const fs::path& root) {
+    std::vector<fs::path> v;
+    if (!fs::is_directory(root)) throw InputError("Middlebury folder '" + root.string() + "' is not a directory");
+    if (fs::exists(root / "view1.png")) return {root};
+    for (const auto& e : fs::directory_iterator(root))
+        if (e.is_directory() && fs::exists(e.path() / "view1.png")) v.push_back(e.path());
+    std::sort(v.begin(), v.end());
+    if (v.empty()) throw InputError("Middlebury folder '" + root.string() + "' holds no scene (a folder with view1.png)");
+    return v;
+}
+
+Dataset middlebury_dataset(const fs::path& root, bool need_truth) {
+    Dataset ds;
+    ds.name = "middlebury-" + root.filename().string();
+    for (const auto& dir : middlebury_scenes(root)) {
+        MiddleburyScene s = load_middlebury(dir, need_truth);
+        ds.calib.push_back(middlebury_calib(s.scale, s.dmin_full, s.images.left.size()));
+        ds.pairs.push_back(std::move(s.images));
+        ds.disparity.push_back(std::move(s.disparity));
+    }
+    return ds;
+}
+
+// ---- KITTI ----------------------------------------------------------------------------
+
+StereoCalib load_kitti_calib(const fs::path& calib_txt) {
+    std::ifstream in(calib_txt);
+    if (!in) throw InputError("KITTI calibration '" + calib_txt.string() + "' cannot be read");
+    StereoCalib c;
+    bool got0 = false, got1 = false;
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream ls(line);
+        std::string key;
+        ls >> key;
+        if (key != "P0:" && key != "P1:") continue;
+        cv::Matx34d P;
+        for (int i = 0; i < 12; ++i)
+            if (!(ls >> P(i / 4, i % 4)))
+                throw InputError("KITTI calibration '" + calib_txt.string() + "': row " + key + " has fewer than 12 numbers");
+        (key == "P0:" ? c.P0 : c.P1) = P;
+        (key == "P0:" ? got0 : got1) = true;
+    }
+    if (!got0 || !got1) throw InputError("KITTI calibration '" + calib_txt.string() + "' lacks a P0: or P1: row");
+    c.validate();
+    return c;
+}
+
+Dataset kitti_dataset(const fs::path& kitti_root, const std::string& sequence, int first, int last) {
+    const fs::path seq = kitti_root / "sequences" / sequence;
+    if (!fs::is_directory(seq / "image_0") || !fs::is_directory(seq / "image_1"))
+        throw InputError("'" + seq.string() + "' is not a KITTI odometry sequence (image_0/, image_1/)");
+    const StereoCalib calib = load_kitti_calib(seq / "calib.txt");
+    Dataset ds;
+    ds.name = "kitti-" + sequence;
+    for (int k = first; k < last; ++k) {
+        char stem[16];
+        std::snprintf(stem, sizeof stem, "%06d.png", k);
+        const fs::path l = seq / "image_0" / stem, r = seq / "image_1" / stem;
+        if (!fs::exists(l) || !fs::exists(r)) {
+            if (k == first) throw InputError("KITTI sequence '" + seq.string() + "' has no stereo pair " + stem);
+            break;
+        }
+        StereoImages p{read_grey(l), read_grey(r), sequence + "/" + std::string(stem).substr(0, 6)};
+        if (p.left.size() != p.right.size())
+            throw InputError("KITTI pair '" + l.string() + "': left and right images differ in size");
+        ds.pairs.push_back(std::move(p));
+        ds.disparity.emplace_back();
+        ds.calib.push_back(calib);
+    }
+    return ds;
+}
+
+}  // namespace hc::landmarks

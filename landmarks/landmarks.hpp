@@ -1,0 +1,364 @@
+// landmarks.hpp: landmark acquisition downstream of the Harris co-processor (Schulz 2015,
+// Figure 1, sections 4.3, 5.1, 6.1, 6.4): corners from any source -> descriptor -> stereo
+// correspondence -> 3D landmarks with covariance, and the descriptor comparison of the
+// thesis's Tables 6-10 scored, beyond the thesis, against ground-truth disparity.
+//
+// Purpose: one typed API for the `landmarks` command, the sweep (score a bit-width
+// configuration by correct stereo matches) and an EKF-SLAM front end (acquire() per frame).
+//
+//   corners      detect_pairs(): OpenCV's Harris reference (docs/metrics.md), OpenCV's
+//                SIFT (all points, or the 512 strongest), ORB, BRISK, and the co-processor
+//                as `spec` (frame model), `cycle` (HarrisTop through the host driver) and
+//                `rtl` (the GHDL-synthesised netlist under Verilator) for any Formats.
+//   descriptors  make_descriptor(): grid (thesis or corrected), sift, orb, brisk, brief, freak
+//                (hc::features for grid, brief, freak; OpenCV for the others).
+//   matching     hc::features::match_stereo (cross-check, 2-NN ratio, epipolar |y_r - y_l| < 5).
+//   scoring      a match is "correct (thesis)" when it passes all three tests; "correct
+//                (ground truth)" when besides |x_l - x_r - d(x_l, y_l)| <= 1 px with d the
+//                dataset's disparity at the left keypoint's pixel (0 = unknown: excluded).
+//   geometry     triangulate(): rectified projection matrices P0, P1 (KITTI calib.txt, or
+//                Middlebury's focal length, baseline and offset), covariance by Jacobian
+//                propagation of an isotropic pixel noise.
+//
+// Errors: bad input (missing files, sizes, impossible combinations, out-of-range parameters)
+// throws landmarks::InputError naming the input; the CLI maps it to exit status 2.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+
+#include "harris/harris_pkg.hpp"
+
+namespace hc::landmarks {
+
+/// Bad user input (files, sizes, parameter ranges, impossible combinations).
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// ---- corner sources -------------------------------------------------------------------
+
+enum class Detector {
+    opencv,    ///< OpenCV Harris reference: hc::spec::opencv_corners (docs/metrics.md)
+    sift,      ///< cv::SIFT detector, all points
+    sift512,   ///< cv::SIFT detector, the 512 strongest points by response (thesis 6.4.1)
+    orb,       ///< cv::ORB detector (nfeatures = CornerOptions::orb_features)
+    brisk,     ///< cv::BRISK detector
+    spec,      ///< co-processor, frame-level spec model (hc::spec::SpecModel)
+    cycle,     ///< co-processor, cycle model hc::HarrisTop through the host driver
+    rtl,       ///< co-processor, Verilator netlist of rtl/ (GHDL synthesis), after its gate
+};
+Detector parse_detector(const std::string& s);   ///< "opencv", "sift", "sift512", ...; InputError
+std::string detector_name(Detector d);
+bool is_hardware(Detector d);                    ///< spec, cycle, rtl
+std::vector<Detector> all_detectors();
+
+struct CornerOptions {
+    Formats formats{};          ///< bit widths of spec/cycle/rtl (thesis defaults)
+    float keypoint_size = 7.f;  ///< cv::KeyPoint::size given to Harris and hardware corners
+                                ///< (the 7x7 window a co-processor corner is decided on)
+    int orb_features = 2000;    ///< cv::ORB nfeatures
+    bool progress = false;      ///< progress lines on stderr for cycle/rtl
+};
+
+/// The corners of one image, with where they come from. Each point's `pt` is the pixel
+/// (x = column, y = row; integer for Harris and hardware sources), `class_id` the frame.
+struct FrameKeypoints {
+    Detector source = Detector::opencv;
+    int frame = 0;                       ///< index of the image in the caller's stream
+    std::string name;                    ///< e.g. "Aloe/L" or "01/L000003"
+    std::vector<cv::KeyPoint> points;
+};
+
+struct StereoImages {
+    cv::Mat left, right;   ///< 8-bit grey, same size
+    std::string name;
+};
+
+struct PairKeypoints {
+    FrameKeypoints left, right;
+};
+
+/// Corners of each stereo pair. All pairs must have one size for the hardware sources, whose
+/// threshold comes from the previous frame's maximum: they stream the first pair once more
+/// in front as a seed (not returned), and cycle/rtl append the last pair once more as a
+/// flush (its windows come back only while later pixels are written), as docs/metrics.md's
+/// protocol does. Frame numbers are 2k (left) and 2k+1 (right) of pair k.
+std::vector<PairKeypoints> detect_pairs(Detector d, const std::vector<StereoImages>& pairs,
+                                        const CornerOptions& o = {});
+
+// ---- descriptors and matching ----------------------------------------------------------
+
+enum class Descriptor { grid, grid_corrected, sift, orb, brisk, brief, freak };
+Descriptor parse_descriptor(const std::string& s);   ///< "grid", "grid-corrected", ...; InputError
+std::string descriptor_name(Descriptor d);
+std::vector<Descriptor> comparison_descriptors();   ///< grid sift orb brisk brief freak
+
+struct GridParams {
+    int g = 16;   ///< grid side (cells)
+    int h = 3;    ///< resolution reduction 2^h
+};
+/// Throws InputError when g or h is outside hc::features' ranges (features::check_grid_params).
+void validate(const GridParams& p);
+
+/// The OpenCV Feature2D that computes `d` (g, h used by grid only).
+cv::Ptr<cv::Feature2D> make_descriptor(Descriptor d, const GridParams& p = {});
+
+enum class Norm { automatic, hamming, l2 };
+Norm parse_norm(const std::string& s);   ///< "auto", "hamming", "l2"; InputError
+
+/// Throws InputError when the pair cannot work: a float descriptor (SIFT) under a Hamming
+/// matcher or a binary descriptor under L2.
+void check_combination(Descriptor d, Detector det, Norm n);
+
+struct MatchParams {
+    Norm norm = Norm::automatic;
+    /// 2-NN ratio: the thesis's 1 (printed test, drops ratio > 1: never on Hamming; see
+    /// docs/landmarks.md) for binary descriptors, 0.8 (Lowe) for SIFT; <= 0: by descriptor.
+    double ratio = 0;
+    bool drop_ties = false;    ///< the evidently intended ratio test: also drop d0 == d1
+    double epipolar_px = 5;    ///< |y_r - y_l| < epipolar_px
+};
+
+/// One match of a stereo pair with everything the scoring and the landmark need.
+struct StereoMatch {
+    cv::Point2f left, right;
+    float distance = 0;
+    int left_index = 0, right_index = 0;   ///< into the described keypoints
+    bool epipolar = false;                 ///< passes |y_r - y_l| < epipolar_px
+    int truth = -1;                        ///< -1 unknown disparity, 0 wrong, 1 within 1 px
+};
+
+struct PairResult {
+    std::string name;
+    int keypoints_left = 0, keypoints_right = 0;     ///< described (after the descriptor's border)
+    std::vector<StereoMatch> matches;                ///< pass cross-check and ratio
+    long all() const { return static_cast<long>(matches.size()); }
+    long correct() const;          ///< thesis: all tests incl. epipolar
+    long truth_known() const;      ///< correct, with a known ground-truth disparity
+    long truth_correct() const;    ///< correct, and within 1 px of the ground truth
+    bool has_truth = false;        ///< scored against a ground-truth disparity map
+    int descriptor_bytes = 0;
+    double seconds = 0;            ///< extraction (both images) + matching, this thread
+    cv::Mat desc_left;             ///< descriptors of the described keypoints (rows)
+    std::vector<cv::KeyPoint> kp_left, kp_right;
+};
+
+/// Describes and matches one pair on given keypoints, timed on the calling thread (set
+/// cv::setNumThreads(1) for one-thread figures). `disparity` (CV_32F, left image's size,
+/// <= 0 unknown) scores the ground truth when non-empty.
+PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descriptor d, const GridParams& gp,
+                      const MatchParams& mp, const cv::Mat& disparity = {});
+
+// ---- datasets -------------------------------------------------------------------------
+
+/// A Middlebury 2006 scene folder: view1.png (left), view5.png (right), disp1.png (ground
+/// truth of the left view), dmin.txt (full-size disparity offset).
+struct MiddleburyScene {
+    std::string name;
+    StereoImages images;        ///< grey
+    cv::Mat disparity;          ///< CV_32F disparity in this image's pixels, 0 = unknown
+    double scale = 0.5;         ///< image size / full size
+    double dmin_full = 0;       ///< dmin.txt
+};
+/// How disp1.png encodes disparity: the 2006 set stores the disparity of the image's own
+/// size times the reduction factor (full 1, half 2, third 3), so d = value * scale; 0 unknown.
+float middlebury_disparity(std::uint8_t value, double scale);
+/// The scale of a Middlebury 2006 folder from its height (1110 full, 555 half, 370 third).
+double middlebury_scale(int height);
+/// Loads a scene; throws InputError naming the missing file (e.g. disp1.png) or the size
+/// mismatch. `need_truth` false reads no disp1.png (disparity left empty).
+MiddleburyScene load_middlebury(const std::filesystem::path& dir, bool need_truth = true);
+/// The scene folders under `root` (sorted; those holding view1.png).
+std::vector<std::filesystem::path> middlebury_scenes(const std::filesystem::path& root);
+
+// ---- geometry ---------------------------------------------------------------------------
+
+/// A rectified stereo rig: the projection matrices of the rectified left and right cameras
+/// (KITTI calib.txt P0, P1). The rig must be rectified: same fx, fy, cy, no skew, P1's
+/// translation along x only (P1[0][3] = -fx * baseline); cx may differ (Middlebury's offset).
+struct StereoCalib {
+    cv::Matx34d P0, P1;
+    double fx() const { return P0(0, 0); }
+    double fy() const { return P0(1, 1); }
+    double baseline() const { return (P0(0, 3) - P1(0, 3)) / P1(0, 0); }   ///< metres (KITTI)
+    /// Throws InputError when P0, P1 are not a rectified pair as above.
+    void validate() const;
+};
+/// Reads P0 and P1 of a KITTI calib.txt; throws InputError naming the file.
+StereoCalib load_kitti_calib(const std::filesystem::path& calib_txt);
+/// The Middlebury 2006 rig at image scale s: focal length 3740 px and baseline 160 mm at full
+/// size (the dataset's description), principal point at the image centre, the right
+/// camera's cx at cx + dmin * s so that Z = b f s / (x_l - x_r + dmin s). Units: metres.
+StereoCalib middlebury_calib(double scale, double dmin_full, cv::Size image);
+
+/// Pixel-noise model: each measured coordinate (x_l, y_l, x_r, y_r) carries independent
+/// zero-mean noise of standard deviation sigma_px; y enters the point through the mean of
+/// y_l and y_r. The landmark covariance is J diag(sigma^2) J^T with J = d(X,Y,Z)/d(x_l, y_l, x_r, y_r).
+struct PixelNoise {
+    double sigma_px = 0.5;
+};
+
+/// A triangulated point in the left rectified camera's frame (x right, y down, z forward).
+struct Triangulated {
+    cv::Vec3d p;
+    cv::Matx33d cov;
+    cv::Matx<double, 3, 4> J;   ///< d(X,Y,Z)/d(x_l, y_l, x_r, y_r)
+    bool valid = false;         ///< disparity > 0 (point in front of both cameras)
+};
+Triangulated triangulate(const StereoCalib& c, cv::Point2d left, cv::Point2d right, const PixelNoise& n = {});
+
+/// A landmark as an EKF-SLAM front end consumes it.
+struct Landmark {
+    cv::Vec3d p_cam;                      ///< position in the left rectified camera (metres)
+    cv::Matx33d cov;                      ///< 3x3 covariance of p_cam (m^2)
+    std::vector<std::uint8_t> descriptor; ///< the descriptor's bytes (SIFT: 128 floats, raw bytes)
+    cv::Point2f left, right;              ///< image coordinates (pixels)
+    float match_distance = 0;             ///< descriptor distance of the stereo match
+};
+
+struct PipelineOptions {
+    Detector detector = Detector::opencv;
+    Descriptor descriptor = Descriptor::grid;
+    GridParams grid{};
+    MatchParams match{};
+    CornerOptions corners{};
+    PixelNoise noise{};
+    double min_disparity = 0.5;   ///< px; closer to 0 the point is dropped (depth unbounded)
+};
+
+/// One stereo frame to landmarks: corners, description, matching (all three tests), and
+/// triangulation of each correct match. Throws InputError for images of different sizes or
+/// not 8-bit. (Hardware sources stream the pair with a seed and a flush, see detect_pairs.)
+std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const StereoCalib& calib,
+                              const PipelineOptions& o);
+/// The same from matches already computed (the command's path, which also scores them).
+std::vector<Landmark> landmarks_from(const PairResult& r, const StereoCalib& calib, const PipelineOptions& o);
+
+/// Landmark files: CSV (one landmark a line, header names the columns) and ASCII PLY.
+std::string landmarks_csv(const std::vector<Landmark>& l);
+std::string landmarks_ply(const std::vector<Landmark>& l);
+
+/// Depth error of matches against a ground-truth disparity map: relative |Z - Z_gt| / Z_gt
+/// of every correct (thesis) match with a known disparity.
+struct DepthError {
+    long n = 0;
+    double median = 0, mean = 0, p90 = 0;   ///< relative errors
+};
+DepthError depth_error(const PairResult& r, const cv::Mat& disparity, const StereoCalib& calib);
+struct Dataset;
+struct ComparisonRow;
+/// The same over all pairs of a comparison row (pairs without ground truth skipped).
+DepthError depth_error(const ComparisonRow& row, const Dataset& ds);
+
+// ---- evaluation: comparison and the g x h study ------------------------------------------
+
+struct Totals {
+    long all = 0, correct = 0, truth_known = 0, truth_correct = 0;
+    long keypoints = 0;
+    double seconds = 0;
+    int pairs = 0;
+    void add(const PairResult& r);
+};
+
+/// Summed counts of one descriptor on one detector's corners over a set of pairs.
+struct ComparisonRow {
+    Descriptor descriptor = Descriptor::grid;
+    Detector detector = Detector::opencv;
+    GridParams grid{};
+    int descriptor_bytes = 0;
+    Totals totals;
+    std::vector<PairResult> pairs;   ///< per pair (matches kept for overlays and landmarks)
+};
+
+/// A dataset: stereo pairs with optional ground truth and a calibration per pair.
+struct Dataset {
+    std::string name;                    ///< "middlebury-half", "kitti-01"
+    std::vector<StereoImages> pairs;
+    std::vector<cv::Mat> disparity;      ///< per pair, empty if unknown
+    std::vector<StereoCalib> calib;      ///< per pair
+};
+/// All scenes under `root`; InputError for a scene without disp1.png unless `need_truth` is
+/// false (then its ground-truth columns stay empty).
+Dataset middlebury_dataset(const std::filesystem::path& root, bool need_truth = true);
+/// KITTI odometry pairs [first, last) of a sequence (calib.txt of the sequence).
+Dataset kitti_dataset(const std::filesystem::path& kitti_root, const std::string& sequence, int first, int last);
+
+struct ComparisonOptions {
+    std::vector<Detector> detectors{Detector::sift512, Detector::sift, Detector::opencv};
+    std::vector<Descriptor> descriptors = comparison_descriptors();
+    GridParams grid{16, 3};
+    MatchParams match{};
+    CornerOptions corners{};
+    std::function<void(const std::string&)> progress;   ///< one line per finished row
+};
+/// Corners of every pair of a dataset. Hardware sources stream the pairs of one size together
+/// (seed and flush as detect_pairs), and a dataset of several sizes scene by scene.
+std::vector<PairKeypoints> detect_dataset(const Dataset& ds, Detector d, const CornerOptions& o = {});
+
+/// Corners once per detector, then every descriptor on them; extraction and matching on one
+/// thread (cv::setNumThreads(1) while timing). `keypoints`, when given, receives the corners
+/// of each detector (o.detectors order) for reuse, e.g. by study().
+std::vector<ComparisonRow> compare(const Dataset& ds, const ComparisonOptions& o,
+                                   std::vector<std::vector<PairKeypoints>>* keypoints = nullptr);
+
+/// Correct matches (thesis and ground truth) of the grid descriptor over g x h.
+struct StudyCell {
+    int g = 0, h = 0;
+    long all = 0, correct = 0, truth_correct = 0;
+};
+struct StudyResult {
+    Detector detector = Detector::opencv;
+    std::vector<StudyCell> cells;   ///< g-major
+    StudyCell best_correct() const;         ///< most thesis-correct matches (ties: smaller g, h)
+    StudyCell best_truth() const;           ///< most ground-truth-correct matches
+};
+struct StudyOptions {
+    int g_min = 4, g_max = 32, h_min = 0, h_max = 5;
+    bool corrected = false;                 ///< the corrected g x g grid instead of the thesis's
+    MatchParams match{};
+    CornerOptions corners{};
+    int threads = 0;                        ///< 0: all cores (cells in parallel)
+};
+StudyResult study(const Dataset& ds, Detector d, const StudyOptions& o);
+/// The same on keypoints already detected (one entry per pair of ds).
+StudyResult study(const Dataset& ds, Detector d, const std::vector<PairKeypoints>& kp, const StudyOptions& o);
+
+/// Scoring a bit-width configuration downstream (for the sweep): the co-processor's corners
+/// (spec model, or cycle) with `formats` on a dataset, grid descriptor (g, h), matched with the
+/// thesis's tests. Returns the summed totals (correct = thesis, truth_correct = ground truth).
+Totals score_formats(const Dataset& ds, const Formats& formats, Detector source = Detector::spec,
+                     const GridParams& gp = {16, 3}, const MatchParams& mp = {});
+
+// ---- reports -----------------------------------------------------------------------------
+
+/// Writes `bytes` to `target` through a temporary beside it and a rename (never half a file).
+void write_atomic(const std::filesystem::path& target, const std::string& bytes);
+/// Left and right images side by side, each match a line: green when correct (within 1 px of
+/// the ground truth, or without ground truth passing the epipolar test), red when wrong,
+/// yellow when the ground truth is unknown at the left pixel. Unmatched keypoints grey.
+cv::Mat match_overlay(const StereoImages& img, const PairResult& r);
+void write_png(const std::filesystem::path& target, const cv::Mat& img);   ///< atomic
+
+/// The comparison as CSV (one row per detector x descriptor, summed over pairs; plus the
+/// SURF row marked unavailable), Markdown and JSON (per pair as well).
+std::string comparison_csv(const std::string& dataset, const std::vector<ComparisonRow>& rows);
+std::string comparison_markdown(const std::vector<ComparisonRow>& rows);
+std::string comparison_json(const std::string& dataset, const std::vector<ComparisonRow>& rows);
+
+std::string study_csv(const std::string& dataset, const StudyResult& s);
+/// Correct matches over g, one curve per h (as the thesis's Figures 29-34), `reference` a
+/// dashed line (e.g. the SIFT descriptor's count on the same corners; < 0: none), through
+/// gnuplot (false when gnuplot is not installed). `truth` plots ground-truth-correct counts.
+bool plot_study(const StudyResult& s, bool truth, double reference, const std::string& title,
+                const std::filesystem::path& png);
+
+}  // namespace hc::landmarks

@@ -1,0 +1,359 @@
+// pipeline.cpp: descriptors, stereo matching and scoring of a pair, landmarks of a frame,
+// the descriptor comparison and the g x h study of the grid descriptor.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+
+#include <opencv2/core/utility.hpp>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "features/features.hpp"
+#include "landmarks.hpp"
+
+namespace hc::landmarks {
+
+// ---- descriptors ------------------------------------------------------------------------
+
+Descriptor parse_descriptor(const std::string& s) {
+    for (Descriptor d : {Descriptor::grid, Descriptor::grid_corrected, Descriptor::sift, Descriptor::orb, Descriptor::brisk,
+                         Descriptor::brief, Descriptor::freak})
+        if (descriptor_name(d) == s) return d;
+    throw InputError("unknown descriptor '" + s + "' (grid, grid-corrected, sift, orb, brisk, brief or freak)");
+}
+
+std::string descriptor_name(Descriptor d) {
+    switch (d) {
+    case Descriptor::grid: return "grid";
+    case Descriptor::grid_corrected: return "grid-corrected";
+    case Descriptor::sift: return "sift";
+    case Descriptor::orb: return "orb";
+    case Descriptor::brisk: return "brisk";
+    case Descriptor::brief: return "brief";
+    case Descriptor::freak: return "freak";
+    }
+    return "?";
+}
+
+std::vector<Descriptor> comparison_descriptors() {
+    return {Descriptor::grid, Descriptor::sift, Descriptor::orb, Descriptor::brisk, Descriptor::brief, Descriptor::freak};
+}
+
+void validate(const GridParams& p) {
+    try {
+        features::check_grid_params(p.g, p.h);
+    } catch (const features::InputError& e) {
+        throw InputError(e.what());
+    }
+}
+
+cv::Ptr<cv::Feature2D> make_descriptor(Descriptor d, const GridParams& p) {
+    switch (d) {
+    case Descriptor::grid:
+    case Descriptor::grid_corrected:
+        validate(p);
+        return features::GridDescriptor::create(
+            p.g, p.h, d == Descriptor::grid ? features::GridVariant::thesis : features::GridVariant::corrected);
+    case Descriptor::sift: return cv::SIFT::create();
+    case Descriptor::orb: return cv::ORB::create();
+    case Descriptor::brisk: return cv::BRISK::create();
+    case Descriptor::brief: return features::BriefDescriptor::create();
+    case Descriptor::freak: return features::FreakDescriptor::create();
+    }
+    throw std::logic_error("make_descriptor");
+}
+
+Norm parse_norm(const std::string& s) {
+    if (s == "auto") return Norm::automatic;
+    if (s == "hamming") return Norm::hamming;
+    if (s == "l2") return Norm::l2;
+    throw InputError("unknown matcher norm '" + s + "' (auto, hamming or l2)");
+}
+
+namespace {
+
+bool binary(Descriptor d) { return d != Descriptor::sift; }
+
+int cv_norm(Descriptor d, Norm n) {
+    if (n == Norm::automatic) return binary(d) ? cv::NORM_HAMMING : cv::NORM_L2;
+    return n == Norm::hamming ? cv::NORM_HAMMING : cv::NORM_L2;
+}
+
+/// Keypoints handed to a descriptor from another detector: OpenCV's SIFT and ORB read
+/// cv::KeyPoint::octave in their own encodings (SIFT packs octave and layer; ORB indexes its
+/// 1.2-step pyramid), so a foreign keypoint enters at octave 0 (the image's own scale). Its
+/// size and angle are kept.
+std::vector<cv::KeyPoint> adapt(const std::vector<cv::KeyPoint>& kp, Descriptor d, Detector det) {
+    const bool sift_kp = det == Detector::sift || det == Detector::sift512;
+    const bool own = (d == Descriptor::sift && sift_kp) || (d == Descriptor::orb && det == Detector::orb);
+    if (own || (d != Descriptor::sift && d != Descriptor::orb)) return kp;
+    std::vector<cv::KeyPoint> out = kp;
+    for (auto& k : out) k.octave = 0;
+    return out;
+}
+
+}  // namespace
+
+void check_combination(Descriptor d, Detector, Norm n) {
+    if (n == Norm::automatic) return;
+    if (!binary(d) && n == Norm::hamming)
+        throw InputError("descriptor " + descriptor_name(d) + " is a float vector: it cannot be matched with the Hamming norm");
+    if (binary(d) && n == Norm::l2)
+        throw InputError("descriptor " + descriptor_name(d) + " is binary: it cannot be matched with the L2 norm");
+}
+
+// ---- one pair ---------------------------------------------------------------------------
+
+long PairResult::correct() const {
+    return std::count_if(matches.begin(), matches.end(), [](const StereoMatch& m) { return m.epipolar; });
+}
+long PairResult::truth_known() const {
+    return std::count_if(matches.begin(), matches.end(), [](const StereoMatch& m) { return m.epipolar && m.truth >= 0; });
+}
+long PairResult::truth_correct() const {
+    return std::count_if(matches.begin(), matches.end(), [](const StereoMatch& m) { return m.epipolar && m.truth == 1; });
+}
+
+namespace {
+
+features::MatchOptions match_options(Descriptor d, const MatchParams& mp) {
+    features::MatchOptions o;
+    o.norm = cv_norm(d, mp.norm);
+    o.symmetry = true;
+    o.ratio = mp.drop_ties ? features::RatioTest::drop_ties : features::RatioTest::printed;
+    o.max_ratio = mp.ratio > 0 ? mp.ratio : (binary(d) ? 1.0 : 0.8);
+    o.epipolar = false;   // scored here: matches failing it still count as "all"
+    return o;
+}
+
+/// Matches of described keypoints, scored by the epipolar test and the ground truth.
+void score(const std::vector<cv::DMatch>& dm, const std::vector<cv::KeyPoint>& kl, const std::vector<cv::KeyPoint>& kr,
+           const MatchParams& mp, const cv::Mat& disparity, std::vector<StereoMatch>& out) {
+    out.clear();
+    out.reserve(dm.size());
+    for (const auto& m : dm) {
+        StereoMatch s;
+        s.left_index = m.queryIdx;
+        s.right_index = m.trainIdx;
+        s.left = kl[static_cast<size_t>(m.queryIdx)].pt;
+        s.right = kr[static_cast<size_t>(m.trainIdx)].pt;
+        s.distance = m.distance;
+        s.epipolar = std::abs(s.right.y - s.left.y) < mp.epipolar_px;
+        if (!disparity.empty()) {
+            const int x = static_cast<int>(std::lround(s.left.x)), y = static_cast<int>(std::lround(s.left.y));
+            const float d = x >= 0 && y >= 0 && x < disparity.cols && y < disparity.rows ? disparity.at<float>(y, x) : 0.f;
+            if (d > 0) s.truth = std::abs(s.left.x - s.right.x - d) <= 1.0f ? 1 : 0;
+        }
+        out.push_back(s);
+    }
+}
+
+std::vector<cv::DMatch> run_matcher(const cv::Mat& dl, const std::vector<cv::KeyPoint>& kl, const cv::Mat& dr,
+                                    const std::vector<cv::KeyPoint>& kr, const features::MatchOptions& o) {
+    if (dl.empty() || dr.empty()) return {};   // no keypoints on a side: no matches
+    return features::match_stereo(dl, kl, dr, kr, o);
+}
+
+}  // namespace
+
+PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descriptor d, const GridParams& gp,
+                      const MatchParams& mp, const cv::Mat& disparity) {
+    check_combination(d, kp.left.source, mp.norm);
+    if (img.left.size() != img.right.size()) throw InputError("pair '" + img.name + "': images differ in size");
+    if (!disparity.empty() && disparity.size() != img.left.size())
+        throw InputError("pair '" + img.name + "': the ground-truth disparity differs in size from the left image");
+    auto desc = make_descriptor(d, gp);
+    PairResult r;
+    r.name = img.name;
+    r.kp_left = adapt(kp.left.points, d, kp.left.source);
+    r.kp_right = adapt(kp.right.points, d, kp.right.source);
+    const auto opts = match_options(d, mp);
+    cv::Mat dr;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<cv::DMatch> dm;
+    try {
+        desc->compute(img.left, r.kp_left, r.desc_left);
+        desc->compute(img.right, r.kp_right, dr);
+        dm = run_matcher(r.desc_left, r.kp_left, dr, r.kp_right, opts);
+    } catch (const features::InputError& e) {
+        throw InputError("pair '" + img.name + "', " + descriptor_name(d) + ": " + e.what());
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.descriptor_bytes = desc->descriptorSize() * (desc->descriptorType() == CV_32F ? 4 : 1);
+    r.keypoints_left = static_cast<int>(r.kp_left.size());
+    r.keypoints_right = static_cast<int>(r.kp_right.size());
+    r.has_truth = !disparity.empty();
+    score(dm, r.kp_left, r.kp_right, mp, disparity, r.matches);
+    return r;
+}
+
+// ---- landmarks ----------------------------------------------------------------------------
+
+std::vector<Landmark> landmarks_from(const PairResult& r, const StereoCalib& calib, const PipelineOptions& o) {
+    std::vector<Landmark> out;
+    const size_t row_bytes = r.desc_left.empty() ? 0 : r.desc_left.cols * r.desc_left.elemSize();
+    for (const auto& m : r.matches) {
+        if (!m.epipolar) continue;
+        const Triangulated t = triangulate(calib, m.left, m.right, o.noise);
+        const double D = m.left.x - m.right.x - (calib.P0(0, 2) - calib.P1(0, 2));
+        if (!t.valid || D < o.min_disparity) continue;
+        Landmark l;
+        l.p_cam = t.p;
+        l.cov = t.cov;
+        l.left = m.left;
+        l.right = m.right;
+        l.match_distance = m.distance;
+        const std::uint8_t* row = r.desc_left.ptr<std::uint8_t>(m.left_index);
+        l.descriptor.assign(row, row + row_bytes);
+        out.push_back(std::move(l));
+    }
+    return out;
+}
+
+std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const StereoCalib& calib,
+                              const PipelineOptions& o) {
+    calib.validate();
+    const StereoImages img{left, right, "frame"};
+    const auto kp = detect_pairs(o.detector, {img}, o.corners);
+    return landmarks_from(match_pair(img, kp.at(0), o.descriptor, o.grid, o.match), calib, o);
+}
+
+// ---- comparison and study -------------------------------------------------------------------
+
+void Totals::add(const PairResult& r) {
+    all += r.all();
+    correct += r.correct();
+    truth_known += r.truth_known();
+    truth_correct += r.truth_correct();
+    keypoints += r.keypoints_left + r.keypoints_right;
+    seconds += r.seconds;
+    ++pairs;
+}
+
+std::vector<PairKeypoints> detect_dataset(const Dataset& ds, Detector d, const CornerOptions& co) {
+    if (!is_hardware(d)) return detect_pairs(d, ds.pairs, co);
+    bool one_size = true;
+    for (const auto& p : ds.pairs) one_size = one_size && p.left.size() == ds.pairs.at(0).left.size();
+    if (one_size) return detect_pairs(d, ds.pairs, co);
+    std::vector<PairKeypoints> out;
+    for (size_t k = 0; k < ds.pairs.size(); ++k) {
+        auto one = detect_pairs(d, {ds.pairs[k]}, co).at(0);
+        one.left.frame = static_cast<int>(2 * k);
+        one.right.frame = static_cast<int>(2 * k + 1);
+        out.push_back(std::move(one));
+    }
+    return out;
+}
+
+namespace {
+
+const cv::Mat& truth_of(const Dataset& ds, size_t k) {
+    static const cv::Mat none;
+    return k < ds.disparity.size() ? ds.disparity[k] : none;
+}
+
+/// Runs `fn` with OpenCV on one thread, restoring the previous count.
+template <class F>
+auto one_thread(F&& fn) {
+    const int before = cv::getNumThreads();
+    cv::setNumThreads(1);
+    struct Restore {
+        int n;
+        ~Restore() { cv::setNumThreads(n); }
+    } restore{before};
+    return fn();
+}
+
+}  // namespace
+
+std::vector<ComparisonRow> compare(const Dataset& ds, const ComparisonOptions& o,
+                                   std::vector<std::vector<PairKeypoints>>* keypoints) {
+    std::vector<ComparisonRow> rows;
+    if (keypoints) keypoints->clear();
+    for (Detector det : o.detectors) {
+        const auto kp = detect_dataset(ds, det, o.corners);
+        if (keypoints) keypoints->push_back(kp);
+        for (Descriptor d : o.descriptors) {
+            check_combination(d, det, o.match.norm);
+            ComparisonRow row;
+            row.descriptor = d;
+            row.detector = det;
+            row.grid = o.grid;
+            one_thread([&] {
+                for (size_t k = 0; k < ds.pairs.size(); ++k) {
+                    row.pairs.push_back(match_pair(ds.pairs[k], kp[k], d, o.grid, o.match, truth_of(ds, k)));
+                    row.totals.add(row.pairs.back());
+                }
+                return 0;
+            });
+            row.descriptor_bytes = row.pairs.empty() ? 0 : row.pairs.front().descriptor_bytes;
+            if (o.progress)
+                o.progress(detector_name(det) + " x " + descriptor_name(d) + ": " + std::to_string(row.totals.correct) +
+                           " correct of " + std::to_string(row.totals.all));
+            rows.push_back(std::move(row));
+        }
+    }
+    return rows;
+}
+
+StudyCell StudyResult::best_correct() const {
+    StudyCell b;
+    for (const auto& c : cells)
+        if (c.correct > b.correct) b = c;
+    return b;
+}
+
+StudyCell StudyResult::best_truth() const {
+    StudyCell b;
+    for (const auto& c : cells)
+        if (c.truth_correct > b.truth_correct) b = c;
+    return b;
+}
+
+StudyResult study(const Dataset& ds, Detector d, const StudyOptions& o) {
+    return study(ds, d, detect_dataset(ds, d, o.corners), o);
+}
+
+StudyResult study(const Dataset& ds, Detector d, const std::vector<PairKeypoints>& kp, const StudyOptions& o) {
+    if (kp.size() != ds.pairs.size()) throw std::invalid_argument("study: one keypoint pair per dataset pair");
+    validate(GridParams{o.g_min, o.h_min});
+    validate(GridParams{o.g_max, o.h_max});
+    if (o.g_max < o.g_min || o.h_max < o.h_min) throw InputError("study: empty g or h range");
+    StudyResult res;
+    res.detector = d;
+    for (int g = o.g_min; g <= o.g_max; ++g)
+        for (int h = o.h_min; h <= o.h_max; ++h) res.cells.push_back(StudyCell{g, h, 0, 0, 0});
+    const Descriptor desc = o.corrected ? Descriptor::grid_corrected : Descriptor::grid;
+    tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
+    const int before = cv::getNumThreads();
+    cv::setNumThreads(1);   // cells run in parallel; OpenCV inside each on one thread
+    arena.execute([&] {
+        tbb::parallel_for(size_t{0}, res.cells.size(), [&](size_t i) {
+            StudyCell& c = res.cells[i];
+            for (size_t k = 0; k < ds.pairs.size(); ++k) {
+                const PairResult r = match_pair(ds.pairs[k], kp[k], desc, GridParams{c.g, c.h}, o.match, truth_of(ds, k));
+                c.all += r.all();
+                c.correct += r.correct();
+                c.truth_correct += r.truth_correct();
+            }
+        });
+    });
+    cv::setNumThreads(before);
+    return res;
+}
+
+Totals score_formats(const Dataset& ds, const Formats& formats, Detector source, const GridParams& gp,
+                     const MatchParams& mp) {
+    if (!is_hardware(source)) throw InputError("score_formats: the source must be spec, cycle or rtl");
+    CornerOptions co;
+    co.formats = formats;
+    const auto kp = detect_dataset(ds, source, co);
+    Totals t;
+    for (size_t k = 0; k < ds.pairs.size(); ++k)
+        t.add(match_pair(ds.pairs[k], kp[k], Descriptor::grid, gp, mp, truth_of(ds, k)));
+    return t;
+}
+
+}  // namespace hc::landmarks

@@ -1,0 +1,182 @@
+// pipeline_test.cpp: corner sources, matching and scoring on a synthetic stereo pair whose
+// right image is the left shifted by a known disparity, and the refusals of bad input.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include <opencv2/imgproc.hpp>
+
+#include "landmarks/landmarks.hpp"
+#include "spec/opencv_reference.hpp"
+#include "spec/spec_model.hpp"
+
+using namespace hc::landmarks;
+
+namespace {
+
+constexpr int kShift = 8;   // disparity of every scene point
+
+/// Random grey rectangles on a dark background (many Harris corners); the right view is the
+/// left moved kShift px to the left, so x_r = x_l - kShift on every row.
+StereoImages shifted_pair(int w = 320, int h = 240) {
+    cv::Mat scene(h, w + kShift, CV_8UC1, cv::Scalar(20));
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<int> ux(0, w + kShift - 1), uy(0, h - 1), us(6, 30), uv(60, 250);
+    for (int i = 0; i < 120; ++i)
+        cv::rectangle(scene, cv::Rect(ux(rng), uy(rng), us(rng), us(rng)), cv::Scalar(uv(rng)), cv::FILLED);
+    StereoImages p;
+    p.left = scene(cv::Rect(0, 0, w, h)).clone();
+    p.right = scene(cv::Rect(kShift, 0, w, h)).clone();
+    p.name = "shifted";
+    return p;
+}
+
+cv::Mat shifted_truth(int w = 320, int h = 240) {
+    cv::Mat d(h, w, CV_32F, cv::Scalar(kShift));
+    d(cv::Rect(0, 0, kShift, h)).setTo(0);   // no right-image pixel: unknown
+    return d;
+}
+
+hc::Image to_image(const cv::Mat& m) {
+    hc::Image im(m.cols, m.rows);
+    for (int r = 0; r < m.rows; ++r) std::copy_n(m.ptr<std::uint8_t>(r), m.cols, &im.at(r, 0));
+    return im;
+}
+
+}  // namespace
+
+TEST_CASE("the opencv corner source returns the reference mask of docs/metrics.md as keypoints", "[landmarks]") {
+    const StereoImages p = shifted_pair();
+    const auto kp = detect_pairs(Detector::opencv, {p});
+    std::vector<std::uint8_t> mask;
+    hc::spec::opencv_corners(to_image(p.left), hc::spec::ReferenceOptions{}, mask);
+    long n = 0;
+    for (auto v : mask) n += v;
+    REQUIRE(static_cast<long>(kp[0].left.points.size()) == n);
+    for (const auto& k : kp[0].left.points) {
+        INFO("x=" << k.pt.x << " y=" << k.pt.y);
+        CHECK(mask[static_cast<size_t>(k.pt.y) * p.left.cols + static_cast<size_t>(k.pt.x)] == 1);
+        CHECK(k.class_id == 0);
+    }
+    CHECK(kp[0].right.frame == 1);
+    CHECK(kp[0].left.source == Detector::opencv);
+}
+
+TEST_CASE("the spec corner source streams a seed pair first: its corners are the model's on L R L R, frames 2 and 3",
+          "[landmarks]") {
+    const StereoImages p = shifted_pair();
+    const auto kp = detect_pairs(Detector::spec, {p});
+    const hc::spec::SpecModel m{};
+    const hc::Image l = to_image(p.left), r = to_image(p.right);
+    std::int64_t prev = m.reset_max();
+    const auto fc = m.run({&l, &r, &l, &r}, prev, 1);
+    REQUIRE(static_cast<long>(kp[0].left.points.size()) == fc[2].count);
+    REQUIRE(static_cast<long>(kp[0].right.points.size()) == fc[3].count);
+    for (const auto& k : kp[0].right.points)
+        CHECK(fc[3].mask[static_cast<size_t>(k.pt.y) * p.left.cols + static_cast<size_t>(k.pt.x)] == 1);
+}
+
+TEST_CASE("the SIFT 512 source keeps the 512 strongest SIFT points", "[landmarks]") {
+    StereoImages p;   // blurred noise: thousands of SIFT blobs
+    p.left.create(480, 640, CV_8UC1);
+    cv::randu(p.left, 0, 256);
+    cv::GaussianBlur(p.left, p.left, cv::Size(9, 9), 2.0);
+    p.right = p.left.clone();
+    p.name = "noise";
+    const auto all = detect_pairs(Detector::sift, {p});
+    const auto best = detect_pairs(Detector::sift512, {p});
+    REQUIRE(all[0].left.points.size() > 512);
+    CHECK(best[0].left.points.size() >= 512);   // retainBest keeps ties at the 512th response
+    float weakest = 1e9f;
+    for (const auto& k : best[0].left.points) weakest = std::min(weakest, k.response);
+    long stronger = 0;
+    for (const auto& k : all[0].left.points) stronger += k.response > weakest;
+    CHECK(stronger < 512);
+}
+
+TEST_CASE("grid on OpenCV corners of a shifted pair: its correct matches agree with the ground truth", "[landmarks]") {
+    const StereoImages p = shifted_pair();
+    const auto kp = detect_pairs(Detector::opencv, {p});
+    const PairResult r = match_pair(p, kp[0], Descriptor::grid, GridParams{16, 2}, MatchParams{}, shifted_truth());
+    INFO("all " << r.all() << " correct " << r.correct() << " known " << r.truth_known() << " truth " << r.truth_correct());
+    CHECK(r.descriptor_bytes == 35);
+    CHECK(r.correct() >= 100);
+    CHECK(r.truth_correct() >= 0.95 * r.truth_known());
+    CHECK(r.has_truth);
+}
+
+TEST_CASE("every ground-truth-correct match has |x_l - x_r - d| <= 1 and every wrong one more", "[landmarks]") {
+    const StereoImages p = shifted_pair();
+    const auto kp = detect_pairs(Detector::opencv, {p});
+    for (Descriptor d : {Descriptor::brief, Descriptor::orb, Descriptor::sift}) {
+        const PairResult r = match_pair(p, kp[0], d, {}, MatchParams{}, shifted_truth());
+        REQUIRE(r.all() > 0);
+        for (const auto& m : r.matches) {
+            if (m.truth < 0) continue;
+            INFO(descriptor_name(d) << " x_l=" << m.left.x << " x_r=" << m.right.x);
+            CHECK((m.truth == 1) == (std::abs(m.left.x - m.right.x - kShift) <= 1.0f));
+        }
+    }
+}
+
+TEST_CASE("acquire puts the landmarks of a shifted pair at fx * b / disparity", "[landmarks]") {
+    StereoCalib c;
+    c.P0 = cv::Matx34d(718.856, 0, 160, 0, 0, 718.856, 120, 0, 0, 0, 1, 0);
+    c.P1 = cv::Matx34d(718.856, 0, 160, -386.1448, 0, 718.856, 120, 0, 0, 0, 1, 0);
+    const StereoImages p = shifted_pair();
+    PipelineOptions o;
+    o.descriptor = Descriptor::grid;
+    o.grid = {16, 2};
+    const auto lm = acquire(p.left, p.right, c, o);
+    REQUIRE(lm.size() >= 100);
+    long at_depth = 0;
+    for (const auto& l : lm) {
+        at_depth += std::abs(l.p_cam[2] - 386.1448 / kShift) <= 1e-12 * l.p_cam[2];
+        CHECK(l.descriptor.size() == 35u);
+        CHECK(l.cov(2, 2) > 0);
+    }
+    CHECK(at_depth >= 0.95 * static_cast<double>(lm.size()));
+}
+
+TEST_CASE("impossible or out-of-range requests are refused with InputError", "[landmarks]") {
+    CHECK_THROWS_AS(check_combination(Descriptor::sift, Detector::opencv, Norm::hamming), InputError);
+    CHECK_THROWS_AS(check_combination(Descriptor::grid, Detector::opencv, Norm::l2), InputError);
+    CHECK_NOTHROW(check_combination(Descriptor::sift, Detector::opencv, Norm::l2));
+    CHECK_THROWS_AS(validate(GridParams{1000, 3}), InputError);
+    CHECK_THROWS_AS(validate(GridParams{16, -1}), InputError);
+    CHECK_THROWS_AS(parse_detector("surf"), InputError);
+    CHECK_THROWS_AS(parse_descriptor("surf"), InputError);
+    StereoImages bad = shifted_pair();
+    bad.right = bad.right(cv::Rect(0, 0, 300, 240)).clone();
+    CHECK_THROWS_WITH(detect_pairs(Detector::opencv, {bad}), Catch::Contains("differ in size"));
+    StereoImages a = shifted_pair(), b = shifted_pair(160, 120);
+    CHECK_THROWS_WITH(detect_pairs(Detector::spec, {a, b}), Catch::Contains("streams one image size"));
+}
+
+TEST_CASE("score_formats scores a configuration as the comparison scores grid on the spec source's corners", "[landmarks]") {
+    Dataset ds;
+    ds.name = "shifted";
+    ds.pairs = {shifted_pair()};
+    ds.disparity = {shifted_truth()};
+    StereoCalib c;
+    c.P0 = cv::Matx34d(700, 0, 160, 0, 0, 700, 120, 0, 0, 0, 1, 0);
+    c.P1 = cv::Matx34d(700, 0, 160, -350, 0, 700, 120, 0, 0, 0, 1, 0);
+    ds.calib = {c};
+    const Totals t = score_formats(ds, hc::Formats{}, Detector::spec, GridParams{16, 2});
+    ComparisonOptions o;
+    o.detectors = {Detector::spec};
+    o.descriptors = {Descriptor::grid};
+    o.grid = {16, 2};
+    const auto rows = compare(ds, o);
+    REQUIRE(rows.size() == 1);
+    CHECK(t.correct == rows[0].totals.correct);
+    CHECK(t.truth_correct == rows[0].totals.truth_correct);
+    CHECK(t.all == rows[0].totals.all);
+    CHECK(t.correct > 50);
+    hc::Formats narrow;
+    narrow.m_prod_w = 12;   // a configuration that loses most of M's bits scores differently
+    narrow.m_drop = 5;
+    const Totals tn = score_formats(ds, narrow, Detector::spec, GridParams{16, 2});
+    CHECK(tn.keypoints != t.keypoints);
+    CHECK_THROWS_AS(score_formats(ds, hc::Formats{}, Detector::opencv), InputError);
+}
