@@ -291,6 +291,11 @@ struct Dataset {
 Dataset middlebury_dataset(const std::filesystem::path& root, bool need_truth = true);
 /// KITTI odometry pairs [first, last) of a sequence (calib.txt of the sequence).
 Dataset kitti_dataset(const std::filesystem::path& kitti_root, const std::string& sequence, int first, int last);
+/// Landmarks of every pair of a dataset, pair by pair: the corners of all pairs first (a
+/// hardware source streams them once, carrying its state from frame to frame as the
+/// co-processor does, see detect_dataset), then description, matching and triangulation of
+/// each pair with its own calibration.
+std::vector<std::vector<Landmark>> acquire_dataset(const Dataset& ds, const PipelineOptions& o);
 
 struct ComparisonOptions {
     std::vector<Detector> detectors{Detector::sift512, Detector::sift, Detector::opencv};

@@ -220,6 +220,19 @@ std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const S
     return landmarks_from(match_pair(img, kp.at(0), o.descriptor, o.grid, o.match), calib, o);
 }
 
+std::vector<std::vector<Landmark>> acquire_dataset(const Dataset& ds, const PipelineOptions& o) {
+    for (const auto& c : ds.calib) c.validate();
+    const auto kp = detect_dataset(ds, o.detector, o.corners);
+    std::vector<std::vector<Landmark>> out;
+    out.reserve(ds.pairs.size());
+    for (size_t i = 0; i < ds.pairs.size(); ++i) {
+        const cv::Mat truth = i < ds.disparity.size() ? ds.disparity[i] : cv::Mat();
+        out.push_back(landmarks_from(match_pair(ds.pairs[i], kp.at(i), o.descriptor, o.grid, o.match, truth),
+                                     ds.calib.at(i), o));
+    }
+    return out;
+}
+
 // ---- comparison and study -------------------------------------------------------------------
 
 void Totals::add(const PairResult& r) {

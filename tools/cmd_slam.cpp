@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "frames.hpp"
+#include "landmarks/landmarks.hpp"
 #include "slam.hpp"
 
 namespace hc::tools {
@@ -30,6 +31,9 @@ struct SlamOptions {
     std::optional<double> sigma_dx, sigma_dtheta_deg;
     double sigma_lateral = 0.03;
     bool descriptor = true;
+    // --landmarks-from stereo: the landmark pipeline's options
+    std::string corners = "opencv", descriptor_name = "grid", config;
+    int g = 16, h = 3;
 };
 
 std::string num(double v) {
@@ -73,6 +77,44 @@ void run_simulate(const SlamOptions& o) {
     std::printf("report: %s/report.md\n", o.out.c_str());
 }
 
+/// The landmark pipeline on the sequence's stereo pairs, one frame per pose (a sequence with
+/// fewer pairs than poses is cut to its pairs): camera-frame points with their covariance
+/// and descriptor, as the filter's front end takes them.
+std::vector<slam::StereoFrame> stereo_landmark_frames(const SlamOptions& o, const std::filesystem::path& kitti,
+                                                      const std::vector<slam::Mat34>& poses) {
+    landmarks::PipelineOptions po;
+    po.detector = landmarks::parse_detector(o.corners);
+    po.descriptor = landmarks::parse_descriptor(o.descriptor_name);
+    po.grid = {o.g, o.h};
+    landmarks::validate(po.grid);
+    landmarks::check_combination(po.descriptor, po.detector, landmarks::Norm::automatic);
+    if (o.descriptor && landmarks::make_descriptor(po.descriptor, po.grid)->descriptorType() != CV_8U)
+        throw InputError("--descriptor " + o.descriptor_name +
+                         " is not binary: the association's descriptor check compares Hamming distances "
+                         "(use a binary descriptor or --no-descriptor)");
+    po.corners.formats = load_config_formats(o.config);
+    po.corners.progress = true;
+    const auto ds = landmarks::kitti_dataset(kitti, o.sequence, 0, static_cast<int>(poses.size()));
+    if (ds.pairs.size() < 2) throw InputError("KITTI sequence " + o.sequence + " has fewer than 2 stereo pairs");
+    std::fprintf(stderr, "slam: landmarks of %zu stereo pairs (%s corners, %s descriptor)\n", ds.pairs.size(),
+                 o.corners.c_str(), o.descriptor_name.c_str());
+    const auto lms = landmarks::acquire_dataset(ds, po);
+    std::vector<slam::StereoFrame> frames;
+    for (const auto& frame : lms) {
+        slam::StereoFrame f;
+        for (const auto& l : frame) {
+            slam::StereoLandmarkObs obs;
+            obs.p_cam = Eigen::Vector3d(l.p_cam[0], l.p_cam[1], l.p_cam[2]);
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c) obs.cov(r, c) = l.cov(r, c);
+            if (o.descriptor) obs.descriptor = l.descriptor;
+            f.push_back(std::move(obs));
+        }
+        frames.push_back(std::move(f));
+    }
+    return frames;
+}
+
 void run_sequence(const SlamOptions& o) {
     std::filesystem::path kitti = o.kitti;
     if (kitti.empty()) {
@@ -80,7 +122,7 @@ void run_sequence(const SlamOptions& o) {
         if (!d) throw InputError("no data directory: give --kitti or --data, or set HARRIS_COSIM_DATA");
         kitti = *d / "kitti";
     }
-    const auto poses = slam::read_kitti_poses(kitti / "poses" / (o.sequence + ".txt"));
+    auto poses = slam::read_kitti_poses(kitti / "poses" / (o.sequence + ".txt"));
     if (poses.size() < 2) throw InputError("sequence " + o.sequence + " has fewer than 2 poses");
     slam::OdometryModel om;
     om.sigma_dx = o.sigma_dx.value_or(0.1);
@@ -94,19 +136,30 @@ void run_sequence(const SlamOptions& o) {
     ac.forget_after = o.forget_after;
     ac.max_observations = o.max_observations;
     ac.validate();
-    if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
-    const auto frames = slam::synthesize_stereo_frames(poses, slam::StereoCamera{}, o.synthetic_count, o.flip_bits, o.seed);
+    std::vector<slam::StereoFrame> frames;
+    std::string source_args, title;
+    if (o.landmarks_from == "stereo") {
+        frames = stereo_landmark_frames(o, kitti, poses);
+        poses.resize(frames.size());
+        source_args = " --corners " + o.corners + " --descriptor " + o.descriptor_name + " --g " + std::to_string(o.g) +
+                      " --h " + std::to_string(o.h) + (o.config.empty() ? "" : " --config " + o.config);
+        title = "KITTI " + o.sequence + " (ground-truth trajectory, stereo landmarks: " + o.descriptor_name + " on " +
+                o.corners + " corners)";
+    } else {
+        if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
+        frames = slam::synthesize_stereo_frames(poses, slam::StereoCamera{}, o.synthetic_count, o.flip_bits, o.seed);
+        source_args = " --synthetic-count " + std::to_string(o.synthetic_count) + " --flip-bits " + std::to_string(o.flip_bits);
+        title = "KITTI " + o.sequence + " (ground-truth trajectory, synthetic landmarks)";
+    }
     const auto run = slam::run_sequence(poses, frames, om, ac, o.seed);
     const std::string command = "harris-cosim slam --sequence " + o.sequence + " --landmarks-from " + o.landmarks_from +
-                                " --synthetic-count " + std::to_string(o.synthetic_count) + " --flip-bits " +
-                                std::to_string(o.flip_bits) + " --sigma-dx " + num(om.sigma_dx) + " --sigma-dtheta " +
+                                source_args + " --sigma-dx " + num(om.sigma_dx) + " --sigma-dtheta " +
                                 num(om.sigma_dtheta / deg) + " --sigma-lateral " + num(om.sigma_lateral) + " --gate " + num(o.gate) + " --max-hamming " +
                                 std::to_string(o.max_hamming) + (o.descriptor ? "" : " --no-descriptor") +
                                 " --forget-after " + std::to_string(o.forget_after) + " --max-observations " +
                                 std::to_string(o.max_observations) + " --seed " +
                                 std::to_string(o.seed) + " --out " + o.out;
-    slam::write_sequence_report(o.out, run, "KITTI " + o.sequence + " (ground-truth trajectory, synthetic landmarks)",
-                                command);
+    slam::write_sequence_report(o.out, run, title, command);
     std::printf("%zu frames; ATE: EKF-SLAM %.3f m, dead reckoning %.3f m; final map %d landmarks\n", run.truth.size(),
                 run.ate_slam, run.ate_dead_reckoning, run.frames.back().map_size);
     std::printf("report: %s/report.md\n", o.out.c_str());
@@ -116,12 +169,13 @@ void run_slam(const SlamOptions& o) {
     if (o.simulate == !o.sequence.empty()) throw InputError("give exactly one of --simulate and --sequence NN");
     if (o.world != "cloister" && o.world != "random")
         throw InputError("--world '" + o.world + "' is neither cloister nor random");
-    if (o.landmarks_from != "synthetic")
-        throw InputError("--landmarks-from '" + o.landmarks_from +
-                         "': only synthetic landmarks are available (the stereo landmark pipeline is not linked in)");
+    if (o.landmarks_from != "synthetic" && o.landmarks_from != "stereo")
+        throw InputError("--landmarks-from '" + o.landmarks_from + "' is neither stereo nor synthetic");
     try {
         o.simulate ? run_simulate(o) : run_sequence(o);
     } catch (const slam::InputError& e) {
+        throw InputError(e.what());
+    } catch (const landmarks::InputError& e) {
         throw InputError(e.what());
     }
 }
@@ -155,8 +209,17 @@ void add_slam_command(CLI::App& app) {
     cmd->add_option("--sigma-lateral", o->sigma_lateral,
                     "KITTI: sideways slip per frame the filter allows for (m)")->capture_default_str();
     cmd->add_option("--landmarks-from", o->landmarks_from,
-                    "landmark source of a KITTI run (the stereo landmark pipeline is not linked in: synthetic only)")
+                    "landmark source of a KITTI run: stereo (the landmark pipeline on the sequence's stereo pairs) "
+                    "or synthetic (points laid along the ground-truth trajectory)")
         ->capture_default_str();
+    cmd->add_option("--corners", o->corners,
+                    "stereo: corner source (opencv, sift, sift512, orb, brisk, spec, cycle, rtl)")->capture_default_str();
+    cmd->add_option("--descriptor", o->descriptor_name,
+                    "stereo: descriptor (grid, grid-corrected, orb, brisk, brief, freak; binary for the descriptor check)")
+        ->capture_default_str();
+    cmd->add_option("--g", o->g, "stereo: grid side (cells)")->capture_default_str();
+    cmd->add_option("--h", o->h, "stereo: grid resolution reduction 2^h")->capture_default_str();
+    cmd->add_option("--config", o->config, "stereo: bit-width formats (JSON) of the spec/cycle/rtl corner sources");
     cmd->add_option("--synthetic-count", o->synthetic_count, "synthetic world points along the trajectory")->capture_default_str();
     cmd->add_option("--flip-bits", o->flip_bits, "bits flipped in each synthetic descriptor observation")->capture_default_str();
     cmd->add_option("--gate", o->gate, "Mahalanobis gate probability (chi-square, 2 dof)")->capture_default_str();
