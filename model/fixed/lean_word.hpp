@@ -63,8 +63,12 @@ struct LeanWord {
 
     // numeric_std RESIZE. Signed shrink keeps the sign bit and the n-1 LSBs: take the n-1
     // LSBs as an unsigned field and subtract 2^(n-1) when the value is negative. For a
-    // signed grow this is the identity (the value fits), so one formula serves both.
+    // signed grow this is the identity (the value fits), so one formula serves both. When
+    // the compiler knows the widths (formats fixed at compile time) a grow is taken as the
+    // identity it is; with run-time widths that test is left out (it costs more than the
+    // formula: docs/performance.md, cycle model).
     friend constexpr LeanWord resize(const LeanWord& x, int n) {
+        if (__builtin_constant_p(x.s && n >= x.w) && x.s && n >= x.w) return {x.v, n, true};
         if (!x.s) return {wrap(static_cast<URep>(x.v), n, false), n, false};
         const URep low_mask = (static_cast<URep>(1) << (n - 1)) - 1U;
         const URep low = static_cast<URep>(x.v) & low_mask;
