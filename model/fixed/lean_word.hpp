@@ -3,11 +3,11 @@
 // frame-level spec model can run the shared stage functions over whole images.
 //
 // Purpose: the stage functions (model/harris/*.hpp) are templates over the number type.
-// The cycle model instantiates them with Word (checked, any width 1..62); the spec model
-// instantiates them with LeanWord<int32_t> (Sobel, M, block sum: every width <= 32) and
-// LeanWord<int64_t> (response: (a+c)^2 needs 34 bits). With the Formats known at compile
-// time every width below constant-folds and the wraps become two shifts the vectoriser
-// handles.
+// The unit tests instantiate them with Word (checked, any width 1..62); the spec model and
+// the cycle model (harris/harris_top_t.hpp) with LeanWord<int32_t> (Sobel, M, block sum,
+// when every width there is <= 32) and LeanWord<int64_t> (response: (a+c)^2 needs 34 bits).
+// With the Formats known at compile time every width below constant-folds and the wraps
+// become two shifts the vectoriser handles.
 //
 // Semantics (identical to Word, property-tested in tests/model/spec_model_test.cpp):
 //   make(v, w, s)      v wrapped to w bits (keep w LSBs, read back signed or unsigned)
