@@ -3,11 +3,11 @@
 // frame-level spec model can run the shared stage functions over whole images.
 //
 // Purpose: the stage functions (model/harris/*.hpp) are templates over the number type.
-// The cycle model instantiates them with Word (checked, any width 1..62); the spec model
-// instantiates them with LeanWord<int32_t> (Sobel, M, block sum: every width <= 32) and
-// LeanWord<int64_t> (response: (a+c)^2 needs 34 bits). With the Formats known at compile
-// time every width below constant-folds and the wraps become two shifts the vectoriser
-// handles.
+// The unit tests instantiate them with Word (checked, any width 1..62); the spec model and
+// the cycle model (harris/harris_top_t.hpp) with LeanWord<int32_t> (Sobel, M, block sum,
+// when every width there is <= 32) and LeanWord<int64_t> (response: (a+c)^2 needs 34 bits).
+// With the Formats known at compile time every width below constant-folds and the wraps
+// become two shifts the vectoriser handles.
 //
 // Semantics (identical to Word, property-tested in tests/model/spec_model_test.cpp):
 //   make(v, w, s)      v wrapped to w bits (keep w LSBs, read back signed or unsigned)
@@ -63,8 +63,12 @@ struct LeanWord {
 
     // numeric_std RESIZE. Signed shrink keeps the sign bit and the n-1 LSBs: take the n-1
     // LSBs as an unsigned field and subtract 2^(n-1) when the value is negative. For a
-    // signed grow this is the identity (the value fits), so one formula serves both.
+    // signed grow this is the identity (the value fits), so one formula serves both. When
+    // the compiler knows the widths (formats fixed at compile time) a grow is taken as the
+    // identity it is; with run-time widths that test is left out (it costs more than the
+    // formula: docs/performance.md, cycle model).
     friend constexpr LeanWord resize(const LeanWord& x, int n) {
+        if (__builtin_constant_p(x.s && n >= x.w) && x.s && n >= x.w) return {x.v, n, true};
         if (!x.s) return {wrap(static_cast<URep>(x.v), n, false), n, false};
         const URep low_mask = (static_cast<URep>(1) << (n - 1)) - 1U;
         const URep low = static_cast<URep>(x.v) & low_mask;

@@ -4,6 +4,8 @@
 // find_max_period enabled steps the running maximum is published and restarts from the
 // most negative value (the response of the step that ends a period is not counted).
 // Only `max` is reset.
+// Template over the number type T of the response (Word, or LeanWord in the cycle model's
+// format-specialised instances); FindMax is the Word instance.
 #pragma once
 
 #include "harris/harris_pkg.hpp"
@@ -11,28 +13,30 @@
 
 namespace hc {
 
-struct FindMax {
+template <class T>
+struct FindMaxT {
     long count = 1;
-    Word running;
-    Word max;
+    T running;
+    T max;
 
-    explicit FindMax(const Formats& f)
-        : running(Word::most_negative(f.resp_w)), max(Word::most_negative(f.resp_w)) {}
+    explicit FindMaxT(const Formats& f)
+        : running(T::most_negative(f.resp_w)), max(T::most_negative(f.resp_w)) {}
 
-    void reset(const Formats& f) { max = Word::most_negative(f.resp_w); }
+    void reset(const Formats& f) { max = T::most_negative(f.resp_w); }
 
-    FindMax next(const Word& response, const Geometry& g) const {
-        FindMax n = *this;
+    FindMaxT next(const T& response, const Geometry& g) const {
+        FindMaxT n = *this;
         if (response > running) n.running = response;
         if (count < g.find_max_period()) {
             n.count = count + 1;
         } else {
             n.count = 1;
-            n.running = Word::most_negative(running.width());   // overrides the update
+            n.running = T::most_negative(running.width());   // overrides the update
             n.max = running;
         }
         return n;
     }
 };
+using FindMax = FindMaxT<Word>;
 
 }  // namespace hc

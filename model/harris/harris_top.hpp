@@ -1,26 +1,25 @@
 // harris_top.hpp: cycle-accurate model of rtl/harris_top.vhd.
 //
 // One call of write() is one clock edge with write = '1': every register takes the value
-// the RTL computes from the values before the edge. Stages are evaluated from the last to
-// the first so that each reads its predecessor's pre-edge value. Cycles with write = '0'
-// and bus reads change nothing, so they have no call. Every register is exposed.
-// The datapath registers are held as LeanWord<int64_t>: the same numeric_std semantics as
-// Word (property-tested against it in tests/model/spec_model_test.cpp) without Word's
-// run-time checks, which Formats::validate() already guarantees; observe() returns Words.
+// the RTL computes from the values before the edge. Cycles with write = '0' and bus reads
+// change nothing, so they have no call. Every register is exposed through observe().
+//
+// HarrisTop is the model's one public type. The model itself is HarrisTopT
+// (harris/harris_top_t.hpp), written process by process after harris_top.vhd and templated
+// on where its formats come from: HarrisTop picks, at construction, an instance compiled
+// for its Formats (the thesis formats and every configuration in configs/, where each width
+// is a constant) or else the instance that reads the widths at run time. Both compute the
+// same registers (tests/model/harris_top_specialisation_test.cpp).
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <vector>
 
-#include "harris/control_shift_register.hpp"
-#include "harris/corner_shift_register.hpp"
 #include "harris/find_max.hpp"
 #include "harris/harris_pkg.hpp"
-#include "harris/harris_response.hpp"
-#include "harris/input_converter_mux.hpp"
-#include "harris/load_control.hpp"
 #include "harris/observation.hpp"
 #include "harris/types.hpp"
-#include "fixed/lean_word.hpp"
 
 namespace hc {
 
@@ -29,9 +28,6 @@ namespace hc {
 struct WindowTag {
     long write = -1;
     int quadrant = -1;
-    /// The window equals the quadrant's previous processed window shifted one column left,
-    /// so every stage may reuse that window's results for all but its newest column.
-    bool slid = false;
     bool valid() const { return write > 0; }
 };
 
@@ -40,71 +36,67 @@ struct StageTags {
     WindowTag window, sobel, m, block, terms, response, delay, thresholded;
 };
 
+/// The interface every instance of the cycle model implements (see HarrisTop).
+class CycleModel {
+public:
+    virtual ~CycleModel() = default;
+    virtual void reset() = 0;
+    virtual void write(std::uint32_t data) = 0;
+    virtual bool load() const = 0;
+    virtual bool ready() const = 0;
+    virtual std::uint8_t t() const = 0;
+    virtual Word thr() const = 0;
+    virtual bool cornerbit() const = 0;
+    virtual std::uint32_t corner() const = 0;
+    virtual Observation observe() const = 0;
+    virtual long writes() const = 0;
+    virtual FindMax find_max() const = 0;
+    virtual const StageTags& tags() const = 0;
+};
+
+/// How HarrisTop chooses its instance.
+enum class Specialisation {
+    compiled_if_any,   ///< the instance compiled for the formats, if there is one
+    run_time,          ///< always the instance that reads the widths at run time
+};
+
 class HarrisTop {
 public:
-    HarrisTop(const Geometry& g, const Formats& f);
+    HarrisTop(const Geometry& g, const Formats& f, Specialisation s = Specialisation::compiled_if_any);
 
     /// Asynchronous reset (rst = '0'): the registers the RTL resets take their reset values;
     /// the others keep theirs.
-    void reset();
+    void reset() { m_->reset(); }
     /// One bus write of a data word (4 pixels, byte q = quadrant q).
-    void write(std::uint32_t data);
+    void write(std::uint32_t data) { m_->write(data); }
 
-    bool load() const { return lc_.load; }
-    bool ready() const { return mux_.ready(lc_.load); }
-    std::uint8_t t() const { return ctrl_.t; }
-    Word thr() const;
-    bool cornerbit() const;
+    bool load() const { return m_->load(); }
+    bool ready() const { return m_->ready(); }
+    std::uint8_t t() const { return m_->t(); }
+    Word thr() const { return m_->thr(); }
+    bool cornerbit() const { return m_->cornerbit(); }
     /// The 32-bit value the host reads (bits 3..0 = quadrants 0..3).
-    std::uint32_t corner() const { return csr_.out(); }
-    Observation observe() const;
+    std::uint32_t corner() const { return m_->corner(); }
+    Observation observe() const { return m_->observe(); }
 
     const Geometry& geometry() const { return g_; }
     const Formats& formats() const { return f_; }
-    long writes() const { return writes_; }
-    const FindMax& find_max() const { return fm_; }
-    const StageTags& tags() const { return tags_; }
+    long writes() const { return m_->writes(); }
+    FindMax find_max() const { return m_->find_max(); }
+    const StageTags& tags() const { return m_->tags(); }
+    /// True when this model runs an instance compiled for its formats.
+    bool compiled() const { return compiled_; }
 
 private:
-    using Reg = Lean64;
-    template <int N>
-    using RegMatrix = std::array<std::array<Reg, N>, N>;
-
     Geometry g_;
     Formats f_;
-    long writes_ = 0;
-    LoadControl lc_;
-    InputConverterMux mux_;
-    ControlShiftRegister ctrl_;
-    RegMatrix<5> sx_, sy_, ma_, mb_, mc_;
-    RegMatrix<3> bfa_, bfb_, bfc_;
-    std::array<std::array<ResponseTermsT<Reg>, 3>, 3> terms_{};
-    bool terms_defined_ = false;   // step-1 registers have no reset: 'U' until the first t(2)
-    RegMatrix<3> hr_;
-    FindMax fm_;
-    Reg thr_reg_;   // threshold_value(fm_.max) as a register word: recomputed when max changes
-    RegMatrix<3> r0_delay_, tr_;
-    CornerShiftRegister csr_;
-    StageTags tags_;
-
-    // Per quadrant, the last window each stage processed and its results. A quadrant's
-    // window advances one column every 7 writes; when a stage's input is the previous one
-    // shifted left by a column, only the newest output column is computed (the others are
-    // the previous results moved left). Exact: each output column depends only on its
-    // input columns. Registers above stay the single source of the observed values.
-    struct QuadrantCache {
-        bool valid = false;
-        Window7 window{};
-        RegMatrix<5> sx, sy, ma, mb, mc;
-        RegMatrix<3> bfa, bfb, bfc, hr;
-        std::array<std::array<ResponseTermsT<Reg>, 3>, 3> terms{};
-    };
-    std::array<QuadrantCache, 4> qc_{};
-    /// First output column to compute for a stage whose input carries `tag`: 0 (all), or
-    /// the last column when the input slid and the cache holds the previous results.
-    int first_column(const WindowTag& tag, int n) const;
-    /// Recomputes thr_reg_ from fm_.max (after a reset and when find-max publishes a new max).
-    void update_thr();
+    bool compiled_ = false;
+    std::unique_ptr<CycleModel> m_;
 };
+
+/// True when an instance of the cycle model is compiled for these formats.
+bool has_compiled_instance(const Formats& f);
+/// The formats with a compiled instance: the thesis formats, then configs/*.json in order.
+std::vector<Formats> compiled_formats();
 
 }  // namespace hc

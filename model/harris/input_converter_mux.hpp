@@ -28,17 +28,22 @@ struct InputConverterMux {
 
     bool ready(bool load) const { return i > 1 && i <= 5 && !load; }
 
-    InputConverterMux next(std::uint32_t data) const {
-        InputConverterMux n = *this;
+    /// One write: every register of `n` takes its value after the clock edge (n != this).
+    void next_into(std::uint32_t data, InputConverterMux& n) const {
         n.a = i <= 4 ? win[i - 1] : Window7{};
         n.a_defined = true;
         n.i = i < 7 ? i + 1 : 1;
         n.i_dly = {i, i_dly[0], i_dly[1]};
         n.data_dly = {data, data_dly[0], data_dly[1]};
+        n.win = win;
         input_converter_shift(n.win[0], i, static_cast<Pixel>(data & 0xFFU));
         for (int q = 1; q < 4; ++q)
             input_converter_shift(n.win[q], i_dly[q - 1],
                                   static_cast<Pixel>((data_dly[q - 1] >> (8 * q)) & 0xFFU));
+    }
+    InputConverterMux next(std::uint32_t data) const {
+        InputConverterMux n;
+        next_into(data, n);
         return n;
     }
 };
