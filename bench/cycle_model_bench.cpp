@@ -4,8 +4,8 @@
 // Frame: a generated 1241x376 'blocks' frame (the KITTI size), two chained frames.
 #include <benchmark/benchmark.h>
 
-#include "driver/host_driver.hpp"
-#include "harris/harris_top.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/harris/harris_top.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // hc_bridge.cpp: the extern "C" entry points of hc_bridge.h over one cosim::Session.
 // Every entry point catches every exception: none may unwind into GHDL's runtime.
-#include "hc_bridge.h"
+#include "cosim/hc_bridge.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -9,7 +9,7 @@
 #include <sstream>
 #include <vector>
 
-#include "session.hpp"
+#include "cosim/session.hpp"
 
 namespace {
 std::unique_ptr<hc::cosim::Session> g_session;

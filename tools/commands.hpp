@@ -1,13 +1,11 @@
 // commands.hpp: the subcommands of harris-cosim. Each lives in its own cmd_*.cpp and adds
-// itself to the app; its callback throws CLI::RuntimeError(status) to exit non-zero and
-// hc::tools::InputError for bad input (printed, status 2).
+// itself to the app with add_X_command; its callback parses nothing itself beyond its flags,
+// calls a library through its typed API and prints. A failure is an exception of the kind
+// util/errors.hpp lists (MismatchError, InputError, SimulatorError, TranslationFault,
+// InternalError); main (harris_cosim.cpp) maps each kind to its exit status.
 #pragma once
 
 #include <CLI/CLI.hpp>
-
-#include <string>
-
-#include "harris/harris_pkg.hpp"
 
 namespace hc::tools {
 
@@ -18,10 +16,5 @@ void add_mutate_command(CLI::App& app);     // mutation campaign (cmd_mutate.cpp
 void add_verilate_command(CLI::App& app);   // Verilator full-frame verification (cmd_verilate.cpp)
 void add_eval_command(CLI::App& app);       // precision/recall against OpenCV (cmd_eval.cpp)
 void add_sweep_command(CLI::App& app);      // bit-width exploration (cmd_sweep.cpp)
-
-/// The formats of `--config FILE.json` (the thesis's when `path` is empty), validated.
-/// Throws InputError naming the file when it cannot be read or holds bad formats.
-/// Defined in cmd_rtl.cpp; rtl, model and verilate share it.
-Formats load_config_formats(const std::string& path);
 
 }  // namespace hc::tools

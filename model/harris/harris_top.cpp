@@ -1,13 +1,13 @@
-#include "harris/harris_top.hpp"
+#include "model/harris/harris_top.hpp"
 
 #include <stdexcept>
 
-#include "harris/block_filter.hpp"
-#include "harris/local_maximum.hpp"
-#include "harris/m_products.hpp"
-#include "harris/sobel_x.hpp"
-#include "harris/sobel_y.hpp"
-#include "harris/threshold.hpp"
+#include "model/harris/block_filter.hpp"
+#include "model/harris/local_maximum.hpp"
+#include "model/harris/m_products.hpp"
+#include "model/harris/sobel_x.hpp"
+#include "model/harris/sobel_y.hpp"
+#include "model/harris/threshold.hpp"
 
 namespace hc {
 

@@ -11,16 +11,16 @@
 
 #include <cstdint>
 
-#include "harris/control_shift_register.hpp"
-#include "harris/corner_shift_register.hpp"
-#include "harris/find_max.hpp"
-#include "harris/harris_pkg.hpp"
-#include "harris/harris_response.hpp"
-#include "harris/input_converter_mux.hpp"
-#include "harris/load_control.hpp"
-#include "harris/observation.hpp"
-#include "harris/types.hpp"
-#include "fixed/lean_word.hpp"
+#include "model/harris/control_shift_register.hpp"
+#include "model/harris/corner_shift_register.hpp"
+#include "model/harris/find_max.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/harris_response.hpp"
+#include "model/harris/input_converter_mux.hpp"
+#include "model/harris/load_control.hpp"
+#include "model/harris/observation.hpp"
+#include "model/harris/types.hpp"
+#include "model/fixed/lean_word.hpp"
 
 namespace hc {
 
