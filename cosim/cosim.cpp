@@ -29,7 +29,7 @@ std::vector<fs::path> rtl_sources(const fs::path& dir) {
 
 namespace {
 
-const fs::path kTestbench = fs::path(HC_SOURCE_DIR) / "cosim" / "harris_top_tb.vhd";
+const fs::path kTestbench = fs::path(HC_SIM_DIR) / "harris_top_tb.vhd";   // made from harris_top_tb.vhd.in
 
 /// Copies `from` to `to` through a temporary beside it (to stays whole or absent).
 void move_into_place(const fs::path& from, const fs::path& to) {
@@ -47,8 +47,8 @@ void check_fresh(const fs::path& sim, const std::string& backend) {
                              "' is not built: run `cmake --build " HC_BUILD_DIR "`");
     const auto built = fs::last_write_time(sim);
     std::vector<fs::path> inputs = rtl_sources();
-    inputs.push_back(kTestbench);
-    inputs.push_back(fs::path(HC_SOURCE_DIR) / "cosim" / "hc_bridge_pkg.vhd.in");
+    for (const char* f : {"harris_top_tb.vhd.in", "hc_bridge_pkg.vhd.in", "hc_bridge.h"})
+        inputs.push_back(fs::path(HC_SOURCE_DIR) / "cosim" / f);
     for (const auto& p : inputs)
         if (fs::exists(p) && fs::last_write_time(p) > built)
             throw SimulatorError("the GHDL " + backend + " simulator is older than " + p.string() +

@@ -35,7 +35,7 @@ void must(int rc, const std::string& what, const fs::path& log) {
 
 // GHDL library with the design (variants substituted) and the replay testbench analysed.
 fs::path ghdl_library(const std::vector<fs::path>& sources, const fs::path& cache_dir, std::ostream& log) {
-    const fs::path tb = fs::path(HCVL_SRC_DIR) / "ghdl_replay_tb.vhd";
+    const fs::path tb = HCVL_REPLAY_TB;   // made by CMake from ghdl_replay_tb.vhd.in
     std::uint64_t h = util::fnv1a(HCVL_TOOL_VERSIONS);
     for (const auto& p : sources) h = util::fnv1a(p.filename().string() + util::read_file(p), h);
     h = util::fnv1a(util::read_file(tb), h);

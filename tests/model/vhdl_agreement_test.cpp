@@ -43,6 +43,13 @@ std::string defaults_drift(const std::string& pkg) {
         else if (it->second.first != f.vhdl_type)
             out += std::string("DEF_") + f.generic + " is " + it->second.first + ", the table says " + f.vhdl_type + "; ";
     }
+    // the testbenches take their generic lists from the DEF_* constants in file order
+    // (cmake/vhdl_generics.cmake): that order must be generics()'s
+    std::vector<std::string> order, want;
+    for (auto it = std::sregex_iterator(pkg.begin(), pkg.end(), def); it != std::sregex_iterator(); ++it)
+        order.push_back((*it)[1]);
+    for (const auto& [name, value] : generics(g, Formats{})) want.push_back(name);
+    if (order != want && out.empty()) out += "DEF_* constants are not in the order of generics(); ";
     for (const auto& [name, v] : vhdl) {
         bool known = name == "IMG_WIDTH" || name == "IMG_HEIGHT";
         for (const auto& f : format_fields()) known |= name == f.generic;
