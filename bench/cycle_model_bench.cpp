@@ -9,8 +9,8 @@
 //                               resp_w 38, bf_sum_w 22), compiled instance
 #include <benchmark/benchmark.h>
 
-#include "driver/host_driver.hpp"
-#include "harris/harris_top.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/harris/harris_top.hpp"
 
 namespace {
 

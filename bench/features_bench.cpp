@@ -22,7 +22,7 @@
 #include <string>
 
 #include "features/features.hpp"
-#include "stereo_sample.hpp"
+#include "tests/features/stereo_sample.hpp"
 
 namespace {
 

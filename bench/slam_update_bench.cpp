@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "slam.hpp"
+#include "slam/slam.hpp"
 
 using namespace hc::slam;
 

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "frames.hpp"
-#include "spec/opencv_reference.hpp"
-#include "spec/spec_model.hpp"
+#include "frames/frames.hpp"
+#include "model/spec/opencv_reference.hpp"
+#include "model/spec/spec_model.hpp"
 
 namespace {
 
@@ -19,10 +19,10 @@ hc::Image g_frame;
 std::string g_frame_name;
 
 void load_frame() {
-    if (auto d = hc::tools::data_dir(""); d) {
+    if (auto d = hc::frames::data_dir(""); d) {
         const auto p = *d / "kitti/sequences/01/image_0/000000.png";
         if (std::filesystem::exists(p)) {
-            g_frame = hc::tools::load_image(p);
+            g_frame = hc::frames::load_image(p);
             g_frame_name = p.string();
             return;
         }

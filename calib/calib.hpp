@@ -16,6 +16,7 @@
 // baseline is -P2(0,3) / P2(0,0); Q maps (x, y, x_l - x_r, 1) to homogeneous 3D.
 #pragma once
 
+#include "util/errors.hpp"
 #include <opencv2/core.hpp>
 
 #include <filesystem>
@@ -29,8 +30,8 @@ namespace hc::calib {
 /// Thrown for bad input (missing or unreadable files, malformed calibration files, a board
 /// specification that is not WxH, too few views with a board). what() names the input; the
 /// command line prints it and exits with status 2.
-struct InputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct InputError : hc::InputError {
+    using hc::InputError::InputError;
 };
 
 /// A chessboard: its inner corners per row and per column, and the side of one square in the

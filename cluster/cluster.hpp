@@ -24,6 +24,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "util/errors.hpp"
+
 namespace hc::cluster {
 
 namespace fs = std::filesystem;
@@ -31,12 +33,12 @@ using nlohmann::json;
 
 /// Bad input to a run (a missing or foreign manifest, a corrupt result, an unknown job
 /// kind): the command line reports it with status 2.
-struct ClusterInputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct ClusterInputError : hc::InputError {
+    using hc::InputError::InputError;
 };
 /// A shard or the scheduler failed (after the retries): status 3.
-struct ClusterRunError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct ClusterRunError : hc::SimulatorError {
+    using hc::SimulatorError::SimulatorError;
 };
 
 /// What a run computes: a job kind, parameters every shard shares, one entry per shard.

@@ -1,4 +1,4 @@
-#include "compare.hpp"
+#include "cosim/compare.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "harris/observation.hpp"
+#include "model/harris/observation.hpp"
 
 namespace hc::cosim {
 

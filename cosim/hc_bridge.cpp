@@ -1,15 +1,14 @@
 // hc_bridge.cpp: the extern "C" entry points of hc_bridge.h over one cosim::Session.
 // Every entry point catches every exception: none may unwind into GHDL's runtime.
-#include "hc_bridge.h"
+#include "cosim/hc_bridge.h"
 
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <vector>
 
-#include "session.hpp"
+#include "cosim/session.hpp"
+#include "util/util.hpp"
 
 namespace {
 std::unique_ptr<hc::cosim::Session> g_session;
@@ -35,11 +34,8 @@ extern "C" int32_t hc_open(int32_t obs_w) {
     try {
         const char* path = std::getenv("HC_COSIM_CONFIG");
         if (!path || !*path) throw std::runtime_error("HC_COSIM_CONFIG is not set (run through 'harris-cosim rtl')");
-        std::ifstream f(path);
-        if (!f) throw std::runtime_error(std::string("cannot read run configuration '") + path + "'");
-        std::stringstream ss;
-        ss << f.rdbuf();
-        auto s = std::make_unique<hc::cosim::Session>(hc::cosim::run_config_from_json(ss.str()));
+        const std::string text = hc::util::read_file(path, std::string("run configuration '") + path + "'");
+        auto s = std::make_unique<hc::cosim::Session>(hc::cosim::run_config_from_json(text));
         s->check_design(obs_w, g_generics);
         g_session = std::move(s);
         return 0;

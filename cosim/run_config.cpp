@@ -1,4 +1,7 @@
-#include "run_config.hpp"
+#include "cosim/run_config.hpp"
+
+#include "model/harris/formats_json.hpp"
+#include "util/errors.hpp"
 
 #include <cstring>
 #include <fstream>
@@ -9,54 +12,9 @@ namespace hc::cosim {
 
 using nlohmann::json;
 
-namespace {
-json formats_json(const Formats& f) {
-    return {{"sobel_w", f.sobel_w},   {"m_prod_w", f.m_prod_w},     {"m_drop", f.m_drop},
-            {"bf_sum_w", f.bf_sum_w}, {"bf_drop", f.bf_drop},       {"resp_w", f.resp_w},
-            {"ktr_w", f.ktr_w},       {"k_shift1", f.k_shift1},     {"k_shift2", f.k_shift2},
-            {"thr_shift1", f.thr_shift1}, {"thr_shift2", f.thr_shift2}};
-}
-
-Formats formats_of(const json& j) {
-    if (!j.is_object()) throw std::invalid_argument("formats must be a JSON object");
-    Formats f;
-    const std::pair<const char*, int*> keys[] = {
-        {"sobel_w", &f.sobel_w},   {"m_prod_w", &f.m_prod_w},     {"m_drop", &f.m_drop},
-        {"bf_sum_w", &f.bf_sum_w}, {"bf_drop", &f.bf_drop},       {"resp_w", &f.resp_w},
-        {"ktr_w", &f.ktr_w},       {"k_shift1", &f.k_shift1},     {"k_shift2", &f.k_shift2},
-        {"thr_shift1", &f.thr_shift1}, {"thr_shift2", &f.thr_shift2}};
-    for (auto it = j.begin(); it != j.end(); ++it) {
-        bool known = false;
-        for (auto [name, field] : keys)
-            if (it.key() == name) {
-                if (!it.value().is_number_integer())
-                    throw std::invalid_argument(std::string("formats: '") + name + "' must be an integer");
-                *field = it.value().get<int>();
-                known = true;
-            }
-        if (!known && it.key() != "name")
-            throw std::invalid_argument("formats: unknown key '" + it.key() + "'");
-    }
-    f.validate();
-    return f;
-}
-}  // namespace
-
-std::string formats_to_json(const Formats& f) { return formats_json(f).dump(2); }
-
-Formats formats_from_json(const std::string& text) {
-    json j;
-    try {
-        j = json::parse(text);
-    } catch (const json::exception& e) {
-        throw std::invalid_argument(std::string("formats: not JSON: ") + e.what());
-    }
-    return formats_of(j);
-}
-
 std::string to_json(const RunConfig& c) {
     json j = {{"geometry", {{"width", c.geometry.width}, {"height", c.geometry.height}}},
-              {"formats", formats_json(c.formats)},
+              {"formats", fields_to_json(c.formats, format_fields())},
               {"frames_file", c.frames_file},
               {"frame_names", c.frame_names},
               {"backend", c.backend},
@@ -79,7 +37,7 @@ RunConfig run_config_from_json(const std::string& text) {
         RunConfig c;
         c.geometry.width = j.at("geometry").at("width").get<int>();
         c.geometry.height = j.at("geometry").at("height").get<int>();
-        c.formats = formats_of(j.at("formats"));
+        c.formats = formats_from_json(j.at("formats"), "run configuration formats");
         c.frames_file = j.at("frames_file").get<std::string>();
         c.frame_names = j.at("frame_names").get<std::vector<std::string>>();
         c.backend = j.at("backend").get<std::string>();
@@ -96,7 +54,95 @@ RunConfig run_config_from_json(const std::string& text) {
         c.geometry.validate();
         return c;
     } catch (const json::exception& e) {
-        throw std::invalid_argument(std::string("run configuration: ") + e.what());
+        throw InternalError(std::string("run configuration: ") + e.what());
+    } catch (const InputError& e) {
+        throw InternalError(std::string("run configuration: ") + e.what());
+    }
+}
+
+std::string to_json(const Summary& s) {
+    json stages = json::object();
+    for (const auto& st : s.stages)
+        stages[st.stage] = {{"elements_compared_per_cycle", st.elements_compared_per_cycle},
+                            {"mismatching_cycles", st.mismatching_cycles},
+                            {"mismatching_elements", st.mismatching_elements},
+                            {"first_mismatching_stage_cycles", st.first_mismatching_stage_cycles}};
+    json frames = json::array();
+    for (size_t k = 0; k < s.frame_names.size(); ++k)
+        frames.push_back({{"index", k}, {"name", s.frame_names[k]},
+                          {"corners_read", k < s.corners_per_frame.size() ? s.corners_per_frame[k] : 0}});
+    json j = {{"backend", s.backend},
+              {"geometry", {{"width", s.geometry.width}, {"height", s.geometry.height}}},
+              {"formats", fields_to_json(s.formats, format_fields())},
+              {"frames", frames},
+              {"complete", s.complete},
+              {"writes", s.writes},
+              {"writes_in_stream", s.writes_in_stream},
+              {"idle_cycles", s.idle_cycles},
+              {"cycles", s.cycles},
+              {"reads", s.reads},
+              {"read_mismatches", s.read_mismatches},
+              {"corners", s.corners},
+              {"compare", s.compare_all ? "all" : "reads"},
+              {"signals_compared_per_cycle", s.signals_compared_per_cycle},
+              {"bits_compared_per_cycle", s.bits_compared_per_cycle},
+              {"stages", stages},
+              {"mismatches", {{"cycles", s.mismatching_cycles},
+                              {"elements", s.mismatching_elements},
+                              {"metavalue_elements", s.metavalue_elements}}},
+              {"wall_seconds", s.wall_seconds},
+              {"cycles_per_second", s.cycles_per_second},
+              {"status", s.mismatching_cycles > 0 ? "mismatch" : "pass"}};
+    if (s.first_mismatch)
+        j["first_mismatch"] = {{"write", s.first_mismatch->write}, {"stage", s.first_mismatch->stage},
+                               {"signal", s.first_mismatch->signal}, {"report", s.first_mismatch->report},
+                               {"vcd", s.first_mismatch->vcd}};
+    return j.dump(2) + "\n";
+}
+
+Summary summary_from_json(const std::string& text) {
+    try {
+        const json j = json::parse(text);
+        Summary s;
+        s.backend = j.at("backend").get<std::string>();
+        s.geometry.width = j.at("geometry").at("width").get<int>();
+        s.geometry.height = j.at("geometry").at("height").get<int>();
+        s.formats = formats_from_json(j.at("formats"), "summary formats");
+        for (const auto& f : j.at("frames")) {
+            s.frame_names.push_back(f.at("name").get<std::string>());
+            s.corners_per_frame.push_back(f.at("corners_read").get<long>());
+        }
+        s.complete = j.at("complete").get<bool>();
+        s.writes = j.at("writes").get<long>();
+        s.writes_in_stream = j.at("writes_in_stream").get<long>();
+        s.idle_cycles = j.at("idle_cycles").get<long>();
+        s.cycles = j.at("cycles").get<long>();
+        s.reads = j.at("reads").get<long>();
+        s.read_mismatches = j.at("read_mismatches").get<long>();
+        s.corners = j.at("corners").get<long>();
+        s.compare_all = j.at("compare").get<std::string>() == "all";
+        s.signals_compared_per_cycle = j.at("signals_compared_per_cycle").get<long>();
+        s.bits_compared_per_cycle = j.at("bits_compared_per_cycle").get<long>();
+        for (const auto& [name, v] : j.at("stages").items())
+            s.stages.push_back({name, v.at("elements_compared_per_cycle").get<long>(),
+                                v.at("mismatching_cycles").get<long>(), v.at("mismatching_elements").get<long>(),
+                                v.at("first_mismatching_stage_cycles").get<long>()});
+        s.mismatching_cycles = j.at("mismatches").at("cycles").get<long>();
+        s.mismatching_elements = j.at("mismatches").at("elements").get<long>();
+        s.metavalue_elements = j.at("mismatches").at("metavalue_elements").get<long>();
+        s.wall_seconds = j.at("wall_seconds").get<double>();
+        s.cycles_per_second = j.at("cycles_per_second").get<double>();
+        if (j.contains("first_mismatch")) {
+            const json& f = j.at("first_mismatch");
+            s.first_mismatch = FirstMismatch{f.at("write").get<long>(), f.at("stage").get<std::string>(),
+                                             f.at("signal").get<std::string>(), f.at("report").get<std::string>(),
+                                             f.at("vcd").get<std::string>()};
+        }
+        return s;
+    } catch (const json::exception& e) {
+        throw InternalError(std::string("co-simulation summary: ") + e.what());
+    } catch (const InputError& e) {
+        throw InternalError(std::string("co-simulation summary: ") + e.what());
     }
 }
 

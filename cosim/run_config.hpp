@@ -1,13 +1,16 @@
-// run_config.hpp: what one co-simulation run does, as the CLI hands it to the simulator
-// process (a JSON file named by $HC_COSIM_CONFIG), and the binary frame file it streams.
+// run_config.hpp: the files that cross the process boundary between harris-cosim and the
+// GHDL simulator: what one run does (RunConfig, a JSON file named by $HC_COSIM_CONFIG), the
+// binary frame file it streams, and what the run found (Summary, the JSON file the bridge
+// writes at the end). Each file has one schema, written and read by the code here.
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "harris/harris_pkg.hpp"
-#include "image/image.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/image/image.hpp"
 
 namespace hc::cosim {
 
@@ -30,12 +33,46 @@ struct RunConfig {
 };
 
 std::string to_json(const RunConfig& c);
-RunConfig run_config_from_json(const std::string& text);   ///< throws std::invalid_argument
+RunConfig run_config_from_json(const std::string& text);   ///< throws InternalError
 
-/// Formats from a JSON object {"sobel_w": 11, ...}; missing keys keep the thesis values,
-/// unknown keys are an error.
-Formats formats_from_json(const std::string& text);
-std::string formats_to_json(const Formats& f);
+/// Mismatch counts of one pipeline stage (stage_order() of model/harris/observation.hpp).
+struct StageCount {
+    std::string stage;
+    long elements_compared_per_cycle = 0;
+    long mismatching_cycles = 0;
+    long mismatching_elements = 0;
+    long first_mismatching_stage_cycles = 0;   ///< cycles on which it was the earliest stage
+};
+
+/// The first mismatching cycle of a run.
+struct FirstMismatch {
+    long write = 0;
+    std::string stage;    ///< earliest mismatching stage
+    std::string signal;   ///< its first mismatching element, e.g. "mbm(2,3)"
+    std::string report;   ///< the one-screen report
+    std::string vcd;      ///< VCD of the cycles around it (as configured)
+};
+
+/// What one co-simulation run found.
+struct Summary {
+    std::string backend;
+    Geometry geometry;
+    Formats formats;
+    std::vector<std::string> frame_names;
+    std::vector<long> corners_per_frame;
+    bool complete = false;           ///< the whole stream (or max_writes) was simulated
+    long writes = 0, writes_in_stream = 0, idle_cycles = 0, cycles = 0, reads = 0, read_mismatches = 0,
+         corners = 0;
+    bool compare_all = true;
+    long signals_compared_per_cycle = 0, bits_compared_per_cycle = 0;
+    std::vector<StageCount> stages;
+    long mismatching_cycles = 0, mismatching_elements = 0, metavalue_elements = 0;
+    double wall_seconds = 0, cycles_per_second = 0;
+    std::optional<FirstMismatch> first_mismatch;
+    bool pass() const { return mismatching_cycles == 0 && read_mismatches == 0; }
+};
+std::string to_json(const Summary& s);
+Summary summary_from_json(const std::string& text);   ///< throws InternalError
 
 /// Frame file: "HCFRAMES" magic, then int32 count, width, height, then the pixels.
 void write_frames(const std::filesystem::path& p, const std::vector<Image>& frames);

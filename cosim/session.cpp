@@ -1,14 +1,11 @@
-#include "session.hpp"
+#include "cosim/session.hpp"
 
 #include <algorithm>
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
 namespace hc::cosim {
-
-using nlohmann::json;
 
 Session::Session(RunConfig cfg) : cfg_(std::move(cfg)), cmp_(cfg_.formats) {
     frames_ = read_frames(cfg_.frames_file);
@@ -134,7 +131,7 @@ bool Session::observe(const std::uint8_t* codes) {
         if (first_report_.empty()) {
             first_stage_ = stage_order()[first_stage];
             first_write_ = model_->writes();
-            first_report_ = describe(scratch_, model_->writes());
+            first_report_ = describe(scratch_, model_->writes(), first_signal_);
             std::fprintf(stderr, "%s", first_report_.c_str());
             vcd_cycles_.assign(history_.begin(), history_.end());
             history_.clear();
@@ -149,7 +146,7 @@ bool Session::observe(const std::uint8_t* codes) {
     return stop_;
 }
 
-std::string Session::describe(const std::vector<Mismatch>& ms, long write) const {
+std::string Session::describe(const std::vector<Mismatch>& ms, long write, std::string& signal) const {
     // pick the first mismatch of the earliest stage
     const Mismatch* first = &ms.front();
     for (const auto& m : ms)
@@ -176,7 +173,8 @@ std::string Session::describe(const std::vector<Mismatch>& ms, long write) const
         o << "  bus cycle  : frame " << wp->frame << (wp->tail ? " (preload of the next frame)" : "")
           << ", window row i=" << wp->i << ", column j=" << wp->j << ", k=" << wp->k << "\n";
     o << "  stage      : " << f.stage << " (first mismatching stage on this write)\n";
-    o << "  signal     : " << cmp_.element_name(first->field, first->i, first->j) << "  [" << f.width << "-bit "
+    signal = cmp_.element_name(first->field, first->i, first->j);
+    o << "  signal     : " << signal << "  [" << f.width << "-bit "
       << (f.is_signed ? "signed" : "unsigned") << "]\n";
     if (tag && tag->valid()) {
         const WritePos* tp = nullptr;
@@ -237,52 +235,41 @@ int Session::close() {
         std::rename((cfg_.reads_file + ".part").c_str(), cfg_.reads_file.c_str());
     }
     const bool complete = !stop_ && (cfg_.max_writes == 0 || model_->writes() >= std::min(cfg_.max_writes, driver_->total_writes()));
-    json stages = json::object();
+    Summary sm;
+    sm.backend = cfg_.backend;
+    sm.geometry = cfg_.geometry;
+    sm.formats = cfg_.formats;
+    for (size_t k = 0; k < frames_.size(); ++k) {
+        sm.frame_names.push_back(k < cfg_.frame_names.size() ? cfg_.frame_names[k] : "");
+        sm.corners_per_frame.push_back(corners_per_frame_[k]);
+        sm.corners += corners_per_frame_[k];
+    }
+    sm.complete = complete;
+    sm.writes = model_->writes();
+    sm.writes_in_stream = driver_->total_writes();
+    sm.idle_cycles = idles_;
+    sm.cycles = cycles_;
+    sm.reads = reads_;
+    sm.read_mismatches = read_mismatches_;
+    sm.compare_all = cfg_.compare_all;
+    sm.signals_compared_per_cycle = cfg_.compare_all ? cmp_.elements() : 1;
+    sm.bits_compared_per_cycle = cfg_.compare_all ? cmp_.width() : 32;
     std::map<std::string, long> per_stage_elements;
     for (const auto& f : cmp_.layout()) per_stage_elements[f.stage] += f.elements();
-    for (const auto& st : stage_order()) {
-        stages[st] = {{"elements_compared_per_cycle", per_stage_elements[st]},
-                      {"mismatching_cycles", stage_cycles_[st]},
-                      {"mismatching_elements", stage_elements_[st]},
-                      {"first_mismatching_stage_cycles", first_stage_cycles_[st]}};
-    }
-    json frames = json::array();
-    for (size_t k = 0; k < frames_.size(); ++k)
-        frames.push_back({{"index", k},
-                          {"name", k < cfg_.frame_names.size() ? cfg_.frame_names[k] : ""},
-                          {"corners_read", corners_per_frame_[k]}});
-    long corners = 0;
-    for (long c : corners_per_frame_) corners += c;
-    json j = {{"backend", cfg_.backend},
-              {"geometry", {{"width", cfg_.geometry.width}, {"height", cfg_.geometry.height}}},
-              {"formats", json::parse(formats_to_json(cfg_.formats))},
-              {"frames", frames},
-              {"complete", complete},
-              {"writes", model_->writes()},
-              {"writes_in_stream", driver_->total_writes()},
-              {"idle_cycles", idles_},
-              {"cycles", cycles_},
-              {"reads", reads_},
-              {"read_mismatches", read_mismatches_},
-              {"corners", corners},
-              {"compare", cfg_.compare_all ? "all" : "reads"},
-              {"signals_compared_per_cycle", cfg_.compare_all ? cmp_.elements() : 1},
-              {"bits_compared_per_cycle", cfg_.compare_all ? cmp_.width() : 32},
-              {"stages", stages},
-              {"mismatches", {{"cycles", mismatching_cycles_},
-                              {"elements", mismatched_elements_},
-                              {"metavalue_elements", metavalue_elements_}}},
-              {"wall_seconds", secs},
-              {"cycles_per_second", secs > 0 ? static_cast<double>(cycles_) / secs : 0.0}};
+    for (const auto& st : stage_order())
+        sm.stages.push_back({st, per_stage_elements[st], stage_cycles_[st], stage_elements_[st], first_stage_cycles_[st]});
+    sm.mismatching_cycles = mismatching_cycles_;
+    sm.mismatching_elements = mismatched_elements_;
+    sm.metavalue_elements = metavalue_elements_;
+    sm.wall_seconds = secs;
+    sm.cycles_per_second = secs > 0 ? static_cast<double>(cycles_) / secs : 0.0;
     if (!first_report_.empty())
-        j["first_mismatch"] = {{"write", first_write_}, {"stage", first_stage_}, {"report", first_report_},
-                               {"vcd", cfg_.vcd_file}};
+        sm.first_mismatch = FirstMismatch{first_write_, first_stage_, first_signal_, first_report_, cfg_.vcd_file};
     const int status = mismatching_cycles_ > 0 ? 1 : 0;
-    j["status"] = status == 0 ? "pass" : "mismatch";
     if (!cfg_.summary_file.empty()) {
         const std::string tmp = cfg_.summary_file + ".part";
         std::ofstream o(tmp);
-        o << j.dump(2) << "\n";
+        o << to_json(sm);
         o.close();
         if (!o) throw std::runtime_error("cannot write summary '" + cfg_.summary_file + "'");
         std::rename(tmp.c_str(), cfg_.summary_file.c_str());

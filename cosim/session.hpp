@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "compare.hpp"
-#include "driver/host_driver.hpp"
-#include "harris/harris_top.hpp"
-#include "run_config.hpp"
-#include "vcd_writer.hpp"
+#include "cosim/compare.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/harris/harris_top.hpp"
+#include "cosim/run_config.hpp"
+#include "cosim/vcd_writer.hpp"
 
 namespace hc::cosim {
 
@@ -45,7 +45,7 @@ public:
     const std::string& first_report() const { return first_report_; }
 
 private:
-    std::string describe(const std::vector<Mismatch>& ms, long write) const;
+    std::string describe(const std::vector<Mismatch>& ms, long write, std::string& signal) const;
     void progress(bool final);
     void record_read(const std::uint8_t* codes);
 
@@ -76,6 +76,7 @@ private:
     std::map<std::string, long> first_stage_cycles_;    // cycles where it was the first stage
     std::string first_report_;
     std::string first_stage_;
+    std::string first_signal_;
     long first_write_ = 0;
     std::ofstream reads_out_;
     std::chrono::steady_clock::time_point start_, last_progress_;

@@ -1,4 +1,4 @@
-#include "vcd_writer.hpp"
+#include "cosim/vcd_writer.hpp"
 
 #include <fstream>
 #include <stdexcept>

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "compare.hpp"
+#include "cosim/compare.hpp"
 
 namespace hc::cosim {
 

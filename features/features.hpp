@@ -15,6 +15,7 @@
 // and descriptor counts that disagree) throws hc::features::InputError.
 #pragma once
 
+#include "util/errors.hpp"
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
@@ -28,8 +29,8 @@ namespace hc::features {
 /// matrices, a descriptor type that cannot be compared with the requested norm, keypoint
 /// and descriptor counts that disagree. The message names the input. A command maps it to
 /// exit status 2.
-struct InputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct InputError : hc::InputError {
+    using hc::InputError::InputError;
 };
 
 // ---- Grid descriptor (thesis 5.3.2, appendix E) -----------------------------------------

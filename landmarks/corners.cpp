@@ -10,13 +10,13 @@
 
 #include <opencv2/features2d.hpp>
 
-#include "driver/host_driver.hpp"
-#include "harris/harris_top.hpp"
-#include "gate.hpp"
-#include "landmarks.hpp"
-#include "netlist.hpp"
-#include "spec/opencv_reference.hpp"
-#include "spec/spec_model.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/harris/harris_top.hpp"
+#include "cosim/verilator/gate.hpp"
+#include "landmarks/landmarks.hpp"
+#include "cosim/verilator/netlist.hpp"
+#include "model/spec/opencv_reference.hpp"
+#include "model/spec/spec_model.hpp"
 
 namespace hc::landmarks {
 

@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-#include "landmarks.hpp"
+#include "landmarks/landmarks.hpp"
 
 namespace hc::landmarks {
 

@@ -24,6 +24,7 @@
 // throws landmarks::InputError naming the input; the CLI maps it to exit status 2.
 #pragma once
 
+#include "util/errors.hpp"
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -35,13 +36,13 @@
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
-#include "harris/harris_pkg.hpp"
+#include "model/harris/harris_pkg.hpp"
 
 namespace hc::landmarks {
 
 /// Bad user input (files, sizes, parameter ranges, impossible combinations).
-struct InputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct InputError : hc::InputError {
+    using hc::InputError::InputError;
 };
 
 // ---- corner sources -------------------------------------------------------------------

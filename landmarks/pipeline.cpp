@@ -11,7 +11,7 @@
 #include <tbb/task_arena.h>
 
 #include "features/features.hpp"
-#include "landmarks.hpp"
+#include "landmarks/landmarks.hpp"
 
 namespace hc::landmarks {
 

@@ -9,7 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "landmarks.hpp"
+#include "landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
 

@@ -1,8 +1,9 @@
 -- block_filter: 3x3 box sum of one M coefficient, registered.
 --
 -- Purpose: the nine inputs are resized to BF_SUM_W bits (sign-extended) and added, then
--- BF_DROP least significant bits are dropped: 20 -> 16 bits, floor(sum / 16). OpenCV
--- averages (/9); the hardware divides by 16, a constant scale the threshold absorbs
+-- BF_DROP least significant bits are dropped: floor(sum / 2^BF_DROP) (thesis: 20 -> 16 bits,
+-- floor(sum / 16)). OpenCV averages (/9); the hardware divides by 2^BF_DROP, a constant
+-- scale the threshold absorbs
 -- (thesis 5.2.6, D.k).
 library ieee;
 use ieee.std_logic_1164.all;

@@ -2,9 +2,10 @@
 --
 -- Purpose: every bit width, dropped-bit count and constant shift of the design is declared
 -- here once, with the values of Schulz (2015) as defaults (thesis appendix A and D.b). The
--- entities take them as generics whose defaults are these constants; the C++ model mirrors
--- them in model/harris/harris_pkg.hpp (struct Formats). Change a width here and in that
--- struct's defaults, nowhere else.
+-- entities take them as generics whose defaults are these constants. The C++ side owns the
+-- list of fields: the table of formats in model/harris/harris_pkg.hpp (names, generics,
+-- defaults); tests/model/vhdl_agreement_test.cpp fails when a DEF_* constant here differs
+-- from it, and the testbenches' generic lists are generated from the DEF_* constants here.
 library ieee;
 use ieee.std_logic_1164.all;
 use ieee.numeric_std.all;
@@ -19,19 +20,19 @@ package harris_pkg is
 
   -- Sobel x/y output: signed, range +-1020 needs 11 bits (appendix A).
   constant DEF_SOBEL_W  : positive := 11;
-  -- M products: ix*ix, ix*iy, iy*iy resized to 21 bits, then the 5 LSBs dropped (/32).
+  -- M products: ix*ix, ix*iy, iy*iy resized to M_PROD_W bits, then M_DROP LSBs dropped.
   constant DEF_M_PROD_W : positive := 21;
   constant DEF_M_DROP   : natural  := 5;
-  -- Block filter: nine M values summed in 20 bits, then the 4 LSBs dropped (/16, not /9).
+  -- Block filter: nine M values summed in BF_SUM_W bits, then BF_DROP LSBs dropped (not /9).
   constant DEF_BF_SUM_W : positive := 20;
   constant DEF_BF_DROP  : natural  := 4;
-  -- Harris response r = a*c - b*b - k*(a+c)^2 in 32 bits; the k-term is held in 30 bits.
+  -- Harris response r = a*c - b*b - k*(a+c)^2 in RESP_W bits; the k-term in KTR_W bits.
   constant DEF_RESP_W   : positive := 32;
   constant DEF_KTR_W    : positive := 30;
-  -- k = 2^-5 + 2^-7 = 0.0390625 (OpenCV's 0.04): two shifted copies of (a+c)^2 added.
+  -- k = 2^-K_SHIFT1 + 2^-K_SHIFT2 (thesis 0.0390625, OpenCV's 0.04): two shifted (a+c)^2 added.
   constant DEF_K_SHIFT1 : natural  := 5;
   constant DEF_K_SHIFT2 : natural  := 7;
-  -- Threshold = max * (2^-7 + 2^-9) = 0.009765625 * max (OpenCV's 0.01).
+  -- Threshold = max * (2^-THR_SHIFT1 + 2^-THR_SHIFT2) (thesis 0.009765625 * max, OpenCV's 0.01).
   constant DEF_THR_SHIFT1 : natural := 7;
   constant DEF_THR_SHIFT2 : natural := 9;
 

@@ -2,7 +2,7 @@
 --
 -- Purpose: step 1 (en0 = t(2)) registers the products a*c, b*b (2*BF_W bits each) and the
 -- k-term; step 2 (en1 = t(3)) registers r = ac - bb - ktr2 in RESP_W bits, wrapping.
--- k = 2^-K_SHIFT1 + 2^-K_SHIFT2 = 1/32 + 1/128 = 0.0390625: (a+c)^2 is cut to its bits
+-- k = 2^-K_SHIFT1 + 2^-K_SHIFT2 (thesis: 1/32 + 1/128 = 0.0390625): (a+c)^2 is cut to its bits
 -- above K_SHIFT1 and above K_SHIFT2 (floor of each quotient), each resized to KTR_W bits,
 -- and the two are added in KTR_W bits (thesis 5.2.7, D.l).
 -- Kept from the thesis: the step-1 registers have no reset ('U' until the first t(2)).

@@ -3,7 +3,8 @@
 -- Purpose: a = ix*ix, b = ix*iy, c = iy*iy (Harris & Stephens 1988). Each full product
 -- (2*SOBEL_W bits) is resized with numeric_std semantics to M_PROD_W bits (sign kept, high
 -- bits dropped; exact for |ix|,|iy| <= 1020 since 1020^2 < 2^20), then its M_DROP least
--- significant bits are dropped: 21 -> 16 bits, floor(x / 32) (thesis 5.2.5, D.j).
+-- significant bits are dropped: floor(x / 2^M_DROP) in M_PROD_W - M_DROP bits (thesis:
+-- 21 -> 16 bits, floor(x / 32); 5.2.5, D.j).
 library ieee;
 use ieee.std_logic_1164.all;
 use ieee.numeric_std.all;

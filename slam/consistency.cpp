@@ -7,7 +7,7 @@
 
 #include <Eigen/Cholesky>
 
-#include "slam.hpp"
+#include "slam/slam.hpp"
 
 namespace hc::slam {
 

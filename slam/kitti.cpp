@@ -9,7 +9,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "slam.hpp"
+#include "slam/slam.hpp"
 
 namespace hc::slam {
 

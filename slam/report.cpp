@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "slam.hpp"
+#include "slam/slam.hpp"
 
 namespace fs = std::filesystem;
 

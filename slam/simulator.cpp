@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "slam.hpp"
+#include "slam/slam.hpp"
 
 namespace hc::slam {
 

@@ -16,6 +16,7 @@
 //   hc::slam::InputError, which the command line maps to exit status 2.
 #pragma once
 
+#include "util/errors.hpp"
 #include <Eigen/Core>
 #include <Eigen/Dense>
 
@@ -31,8 +32,8 @@
 namespace hc::slam {
 
 /// Bad user input (configuration values, files); the CLI prints what() and exits with 2.
-struct InputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
+struct InputError : hc::InputError {
+    using hc::InputError::InputError;
 };
 
 using Pose = Eigen::Vector3d;   ///< (x, y, θ)

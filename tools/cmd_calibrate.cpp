@@ -11,8 +11,10 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calib/calib.hpp"
-#include "commands.hpp"
-#include "frames.hpp"
+#include "tools/commands.hpp"
+#include "frames/frames.hpp"
+#include "model/harris/formats_json.hpp"
+#include "util/util.hpp"
 
 namespace fs = std::filesystem;
 
@@ -49,14 +51,14 @@ void run_calibrate(const CalibrateOptions& o) {
 
         const fs::path out(o.out);
         fs::create_directories(out);
-        write_file_atomic(out / "calib.txt", calib::to_kitti_calib(c));
-        write_file_atomic(out / "calib.yml", calib::to_opencv_storage(c, false));
-        write_file_atomic(out / "calib.json", calib::to_opencv_storage(c, true));
+        util::write_file_atomic(out / "calib.txt", calib::to_kitti_calib(c));
+        util::write_file_atomic(out / "calib.yml", calib::to_opencv_storage(c, false));
+        util::write_file_atomic(out / "calib.json", calib::to_opencv_storage(c, true));
         std::string csv = "pair,left_rms_px,right_rms_px\n";
         for (size_t i = 0; i < c.per_view_errors.size(); ++i)
             csv += fmt::format("\"{}\",{:.6f},{:.6f}\n", c.view_names[i], c.per_view_errors[i][0],
                                c.per_view_errors[i][1]);
-        write_file_atomic(out / "views.csv", csv);
+        util::write_file_atomic(out / "views.csv", csv);
         // The picture shows the view with the largest reprojection error, where a bad
         // calibration would show first.
         size_t worst = 0;
@@ -70,8 +72,8 @@ void run_calibrate(const CalibrateOptions& o) {
                      calib::rectified_pair_figure(c, cv::imread(wv.left_file.string(), cv::IMREAD_GRAYSCALE),
                                                   cv::imread(wv.right_file.string(), cv::IMREAD_GRAYSCALE), wv),
                      png);
-        write_file_atomic(out / "rectified.png", std::string(png.begin(), png.end()));
-        write_file_atomic(out / "report.md", calib::report_markdown(c, d, board, check, "rectified.png", wv.name));
+        util::write_file_atomic(out / "rectified.png", std::string(png.begin(), png.end()));
+        util::write_file_atomic(out / "report.md", calib::report_markdown(c, d, board, check, "rectified.png", wv.name));
         std::printf("%zu pairs used, %zu skipped; RMS %.4f px; left fx %.3f fy %.3f cx %.3f cy %.3f; "
                     "baseline %.6g; rectified mean |y_l - y_r| %.4f px\n",
                     d.views.size(), d.skipped.size(), c.rms, c.K1.at<double>(0, 0), c.K1.at<double>(1, 1),

@@ -10,8 +10,10 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "frames.hpp"
+#include "tools/commands.hpp"
+#include "frames/frames.hpp"
+#include "model/harris/formats_json.hpp"
+#include "util/util.hpp"
 #include "landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
@@ -57,7 +59,7 @@ std::string safe(const std::string& s) {
 }
 
 landmarks::Dataset load_dataset(const LandmarksOptions& o) {
-    const auto data = data_dir(o.data);
+    const auto data = frames::data_dir(o.data);
     if (o.dataset == "middlebury") {
         fs::path root = o.middlebury;
         if (root.empty()) {
@@ -101,7 +103,7 @@ void run_landmarks(const LandmarksOptions& o) {
         for (auto det : co.detectors)
             for (auto d : co.descriptors) landmarks::check_combination(d, det, co.match.norm);
         if (o.sigma <= 0) throw InputError("--sigma must be positive");
-        co.corners.formats = load_config_formats(o.config);
+        co.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
         co.corners.progress = true;
         co.progress = [](const std::string& line) { std::fprintf(stderr, "landmarks: %s\n", line.c_str()); };
 

@@ -9,10 +9,12 @@
 #include <optional>
 #include <sstream>
 
-#include "commands.hpp"
-#include "frames.hpp"
+#include "tools/commands.hpp"
+#include "frames/frames.hpp"
+#include "model/harris/formats_json.hpp"
+#include "util/util.hpp"
 #include "landmarks/landmarks.hpp"
-#include "slam.hpp"
+#include "slam/slam.hpp"
 
 namespace hc::tools {
 
@@ -92,7 +94,7 @@ std::vector<slam::StereoFrame> stereo_landmark_frames(const SlamOptions& o, cons
         throw InputError("--descriptor " + o.descriptor_name +
                          " is not binary: the association's descriptor check compares Hamming distances "
                          "(use a binary descriptor or --no-descriptor)");
-    po.corners.formats = load_config_formats(o.config);
+    po.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
     po.corners.progress = true;
     const auto ds = landmarks::kitti_dataset(kitti, o.sequence, 0, static_cast<int>(poses.size()));
     if (ds.pairs.size() < 2) throw InputError("KITTI sequence " + o.sequence + " has fewer than 2 stereo pairs");
@@ -118,7 +120,7 @@ std::vector<slam::StereoFrame> stereo_landmark_frames(const SlamOptions& o, cons
 void run_sequence(const SlamOptions& o) {
     std::filesystem::path kitti = o.kitti;
     if (kitti.empty()) {
-        const auto d = data_dir(o.data);
+        const auto d = frames::data_dir(o.data);
         if (!d) throw InputError("no data directory: give --kitti or --data, or set HARRIS_COSIM_DATA");
         kitti = *d / "kitti";
     }

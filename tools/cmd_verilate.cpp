@@ -1,24 +1,20 @@
 // cmd_verilate.cpp: `harris-cosim verilate`, full-frame RTL verification on Verilator.
 //
-// Purpose: streams frames through the GHDL-synthesised, verilated netlist of harris_top and
-// the cycle model in lock step (hc::vl::run_lockstep), after the three-way gate
-// (hc::vl::run_gate: GHDL / Verilator / model on small frames) has shown that the
-// netlist translation can be trusted for this design and these formats. Flags and JSON
-// summary follow `harris-cosim rtl` where they apply. Exit status: 0 all agree,
-// 1 mismatch against the model, 2 bad input, 3 internal error, 4 translation fault.
+// Purpose: flags and printing around vl::run_verilate (cosim/verilator/verilate.hpp): the
+// three-way gate (GHDL / Verilator / model on small frames), then the frames streamed
+// through the GHDL-synthesised, verilated netlist and the cycle model in lock step. Flags
+// and JSON summary follow `harris-cosim rtl` where they apply. Exit status: 0 all agree,
+// 1 mismatch against the model (or an RTL fault in the gate), 2 bad input, 3 a tool
+// failed, 4 translation fault, 5 internal fault.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <optional>
 
-#include "commands.hpp"
-#include "frame_source.hpp"
-#include "frames.hpp"
-#include "gate.hpp"
-#include "lockstep.hpp"
-#include "netlist.hpp"
-#include "run_config.hpp"
+#include "cosim/verilator/verilate.hpp"
+#include "model/harris/formats_json.hpp"
+#include "tools/commands.hpp"
+#include "tools/frame_source.hpp"
 
 namespace hc::tools {
 
@@ -28,15 +24,12 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 struct VerilateArgs {
-    FrameSourceOptions src;   ///< the frame-source flags shared with `rtl` and `model`
-    std::string config;       ///< JSON formats (as `rtl --config`)
+    frames::FrameSource src;   ///< the frame-source flags shared with `rtl` and `model`
+    std::string config;        ///< JSON formats (as `rtl --config`)
     bool keep_going = false, obs = false, no_gate = false, gate_only = false, build_only = false;
     std::string json_path, reads_path, cache;
     std::vector<std::string> variants;
 };
-
-constexpr int kStatusMismatch = 1;
-constexpr int kStatusTranslationFault = 4;
 
 json mismatch_json(const vl::Mismatch& m) {
     return {{"kind", m.kind},         {"write", m.write},     {"frame", m.frame},   {"x", m.x},
@@ -44,125 +37,103 @@ json mismatch_json(const vl::Mismatch& m) {
             {"expected", m.expected}, {"actual", m.actual}};
 }
 
-int run_verilate(const VerilateArgs& a) {
+void run_verilate(const VerilateArgs& a) {
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<fs::path> variants;
-    for (const auto& v : a.variants) {
-        if (!fs::is_regular_file(v)) throw InputError("--variant '" + v + "' does not exist");
-        variants.push_back(fs::absolute(v));
+    vl::VerilateRun run;
+    run.formats = a.config.empty() ? Formats{} : formats_from_file(a.config);
+    for (const auto& v : a.variants) run.variants.push_back(v);
+    run.cache = a.cache;
+    run.gate = !a.no_gate;
+    run.gate_only = a.gate_only;
+    run.build_only = a.build_only;
+    run.observe = a.obs;
+    run.keep_going = a.keep_going;
+    std::vector<std::string> read_rows;
+    run.read_rows = a.reads_path.empty() ? nullptr : &read_rows;
+    if (!a.gate_only) {
+        frames::LoadedFrames lf = frames::load_frames(a.src);
+        run.frames = std::move(lf.frames);
+        run.frame_names = std::move(lf.names);
     }
-    std::string why;
-    if (!vl::toolchain_available(&why)) throw InputError("the Verilator flow needs GHDL and Verilator: " + why);
-    const fs::path cache = a.cache.empty() ? vl::default_cache_dir() : fs::path(a.cache);
-    const Formats f = load_config_formats(a.config);
-    json out = {{"command", "verilate"}, {"simulator", "verilator"},
-                {"formats", json::parse(cosim::formats_to_json(f))}};
+    const int nframes = static_cast<int>(run.frames.size());
+    run.on_frame = [&](const vl::FrameStats& s) {
+        std::fprintf(stderr, "verilate: frame %d/%d %s: %ld writes, %ld reads, %ld corners, %ld mismatches, %.2f s\n",
+                     s.index + 1, nframes, s.source.c_str(), s.writes, s.reads, s.corners, s.mismatches, s.seconds);
+    };
+    if (a.no_gate) std::fprintf(stderr, "verilate: gate skipped (--no-gate): results are not trusted\n");
 
-    // 1. the gate: GHDL, Verilator and model on the small-frame regression set
-    vl::GateResult gate;
-    bool gate_cached = false;
-    if (!a.no_gate) {
-        gate = vl::run_gate_cached(f, variants, cache, std::cerr, &gate_cached);
+    const vl::VerilateResult res = vl::run_verilate(run, std::cerr);
+
+    json out = {{"command", "verilate"}, {"simulator", "verilator"},
+                {"formats", fields_to_json(run.formats, format_fields())}};
+    if (res.gate) {
+        const vl::GateResult& gate = *res.gate;
         out["gate"] = {{"verdict", vl::verdict_name(gate.verdict)},
-                       {"cached", gate_cached},
+                       {"cached", res.gate_cached},
                        {"writes", gate.writes},
                        {"reads", gate.reads},
                        {"cases", gate.per_case}};
         if (!gate.first.empty()) out["gate"]["first"] = gate.first;
         std::fprintf(stderr, "verilate: gate %s%s\n", vl::verdict_name(gate.verdict),
-                     gate_cached ? " (recorded earlier for these sources)" : "");
-        if (gate.verdict != vl::GateVerdict::pass) {
-            std::fprintf(stderr, "verilate: %s\n", gate.first.c_str());
-            out["status"] = gate.verdict == vl::GateVerdict::translation_fault ? "translation_fault" : "rtl_fault";
-            if (!a.json_path.empty()) write_file_atomic(a.json_path, out.dump(2) + "\n");
-            throw CLI::RuntimeError(gate.verdict == vl::GateVerdict::translation_fault ? kStatusTranslationFault
-                                                                                       : kStatusMismatch);
-        }
+                     res.gate_cached ? " (recorded earlier for these sources)" : "");
+        if (gate.verdict != vl::GateVerdict::pass) std::fprintf(stderr, "verilate: %s\n", gate.first.c_str());
     } else {
         out["gate"] = {{"verdict", "skipped"}};
-        std::fprintf(stderr, "verilate: gate skipped (--no-gate): results are not trusted\n");
     }
-    if (a.gate_only) {
-        out["status"] = "pass";
-        if (!a.json_path.empty()) write_file_atomic(a.json_path, out.dump(2) + "\n");
-        return 0;
+    if (!res.netlist_key.empty())
+        out["netlist"] = {{"key", res.netlist_key}, {"library", res.netlist.string()}, {"observe", a.obs}};
+    if (res.run) {
+        const vl::RunResult& r = *res.run;
+        const Geometry g{run.frames[0].width, run.frames[0].height};
+        if (!r.reported.empty()) std::fprintf(stderr, "verilate: first %s\n", r.reported.front().describe().c_str());
+        // the summary mirrors `harris-cosim rtl --json` (cosim/run_config.hpp Summary) where fields apply
+        json jf = json::array();
+        for (const auto& s : r.frames)
+            jf.push_back({{"index", s.index}, {"name", s.source}, {"writes", s.writes}, {"reads", s.reads},
+                          {"corners_read", s.corners}, {"mismatches", s.mismatches}, {"wall_seconds", s.seconds}});
+        json jm = json::array();
+        for (const auto& m : r.reported) jm.push_back(mismatch_json(m));
+        out["geometry"] = {{"width", g.width}, {"height", g.height}};
+        out["frames"] = jf;
+        out["complete"] = !r.stopped_early;
+        out["writes"] = r.writes;
+        out["writes_in_stream"] = res.writes_in_stream;
+        out["reads"] = r.reads;
+        out["read_mismatches"] = r.read_mismatches;
+        out["corners"] = r.corners;
+        out["obs_compared"] = a.obs;
+        out["mismatches"] = {{"writes", r.mismatches}, {"reported", jm}};
+        out["wall_seconds"] = r.seconds;
+        out["writes_per_second"] = r.seconds > 0 ? r.writes / r.seconds : 0.0;
+        out["verilator_seconds"] = r.verilator_seconds;
+        out["verilator_writes_per_second"] = r.verilator_seconds > 0 ? r.writes / r.verilator_seconds : 0.0;
+        out["verilator_seconds_per_frame"] = r.verilator_seconds / nframes;
+        out["model_seconds"] = r.model_seconds;
+        if (!r.reported.empty()) {
+            json fm = mismatch_json(r.reported.front());
+            fm["report"] = r.reported.front().describe();
+            out["first_mismatch"] = fm;
+        }
+        std::fprintf(stderr,
+                     "verilate: %d frames, %ld writes, %ld reads, %ld corners, %ld mismatches; Verilator %.3f s "
+                     "(%.0f writes/s), model %.3f s, total %.3f s\n",
+                     nframes, r.writes, r.reads, r.corners, r.mismatches, r.verilator_seconds,
+                     r.verilator_seconds > 0 ? r.writes / r.verilator_seconds : 0.0, r.model_seconds, r.seconds);
+        if (!a.reads_path.empty()) {
+            std::string csv = "write,frame,x,y,value\n";   // as `rtl --reads`
+            for (const auto& row : read_rows) csv += row + "\n";
+            util::write_file_atomic(a.reads_path, csv);
+        }
     }
-
-    // 2. the frames and the netlist for their size
-    LoadedFrames lf = load_frames(a.src);
-    const std::vector<Image>& frames = lf.frames;
-    const std::vector<std::string>& names = lf.names;
-    const Geometry g{frames[0].width, frames[0].height};   // validated by load_frames
-    const vl::NetlistConfig nc{g, f, a.obs, variants};
-    const fs::path so = vl::build_netlist(nc, cache, std::cerr);
-    out["netlist"] = {{"key", vl::config_key(nc)}, {"library", so.string()}, {"observe", a.obs}};
-    if (a.build_only) {
-        out["status"] = "built";
-        if (!a.json_path.empty()) write_file_atomic(a.json_path, out.dump(2) + "\n");
-        return 0;
-    }
-    vl::VerilatedDesign dut(so, vl::config_key(nc));
-
-    // 3. lock step against the model
-    std::vector<const Image*> ptrs;
-    for (const auto& im : frames) ptrs.push_back(&im);
-    std::vector<std::string> read_rows;
-    vl::RunOptions opt;
-    opt.compare_obs = a.obs;
-    opt.keep_going = a.keep_going;
-    opt.read_rows = a.reads_path.empty() ? nullptr : &read_rows;
-    const int nframes = static_cast<int>(frames.size());
-    opt.on_frame = [&](const vl::FrameStats& s) {
-        std::fprintf(stderr, "verilate: frame %d/%d %s: %ld writes, %ld reads, %ld corners, %ld mismatches, %.2f s\n",
-                     s.index + 1, nframes, s.source.c_str(), s.writes, s.reads, s.corners, s.mismatches, s.seconds);
-    };
-    const vl::RunResult r = vl::run_lockstep(g, f, dut, ptrs, names, opt);
-    if (!r.reported.empty()) std::fprintf(stderr, "verilate: first %s\n", r.reported.front().describe().c_str());
-
-    // the summary mirrors `harris-cosim rtl --json` (cosim/session.cpp) where fields apply
-    json jf = json::array();
-    for (const auto& s : r.frames)
-        jf.push_back({{"index", s.index}, {"name", s.source}, {"writes", s.writes}, {"reads", s.reads},
-                      {"corners_read", s.corners}, {"mismatches", s.mismatches}, {"wall_seconds", s.seconds}});
-    json jm = json::array();
-    for (const auto& m : r.reported) jm.push_back(mismatch_json(m));
-    out["geometry"] = {{"width", g.width}, {"height", g.height}};
-    out["frames"] = jf;
-    out["complete"] = !r.stopped_early;
-    out["writes"] = r.writes;
-    out["writes_in_stream"] = HostDriver(g, ptrs).total_writes();
-    out["reads"] = r.reads;
-    out["read_mismatches"] = r.read_mismatches;
-    out["corners"] = r.corners;
-    out["obs_compared"] = a.obs;
-    out["mismatches"] = {{"writes", r.mismatches}, {"reported", jm}};
-    out["wall_seconds"] = r.seconds;
-    out["writes_per_second"] = r.seconds > 0 ? r.writes / r.seconds : 0.0;
-    out["verilator_seconds"] = r.verilator_seconds;
-    out["verilator_writes_per_second"] = r.verilator_seconds > 0 ? r.writes / r.verilator_seconds : 0.0;
-    out["verilator_seconds_per_frame"] = r.verilator_seconds / nframes;
-    out["model_seconds"] = r.model_seconds;
-    out["wall_seconds_including_build"] =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!r.reported.empty()) {
-        json fm = mismatch_json(r.reported.front());
-        fm["report"] = r.reported.front().describe();
-        out["first_mismatch"] = fm;
-    }
-    out["status"] = r.mismatches == 0 ? "pass" : "mismatch";
-    std::fprintf(stderr,
-                 "verilate: %d frames, %ld writes, %ld reads, %ld corners, %ld mismatches; Verilator %.3f s "
-                 "(%.0f writes/s), model %.3f s, total %.3f s\n",
-                 nframes, r.writes, r.reads, r.corners, r.mismatches, r.verilator_seconds,
-                 r.verilator_seconds > 0 ? r.writes / r.verilator_seconds : 0.0, r.model_seconds, r.seconds);
-    if (!a.reads_path.empty()) {
-        std::string csv = "write,frame,x,y,value\n";   // as `rtl --reads`
-        for (const auto& row : read_rows) csv += row + "\n";
-        write_file_atomic(a.reads_path, csv);
-    }
-    if (!a.json_path.empty()) write_file_atomic(a.json_path, out.dump(2) + "\n");
-    if (r.mismatches != 0) throw CLI::RuntimeError(kStatusMismatch);
-    return 0;
+    out["wall_seconds_including_build"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::string status = res.status();
+    out["status"] = status;
+    if (!a.json_path.empty()) util::write_file_atomic(a.json_path, out.dump(2) + "\n");
+    if (status == "translation_fault")
+        throw TranslationFault("GHDL's netlist and GHDL's simulation of the VHDL disagree: " + res.gate->first);
+    if (status == "rtl_fault") throw MismatchError("the RTL differs from the model in the gate: " + res.gate->first);
+    if (status == "mismatch")
+        throw MismatchError(std::to_string(res.run->mismatches) + " mismatch(es) between the netlist and the model");
 }
 
 }  // namespace
@@ -172,7 +143,8 @@ void add_verilate_command(CLI::App& app) {
     CLI::App* c = app.add_subcommand(
         "verilate",
         "Full-frame RTL verification on Verilator: the GHDL-synthesised netlist against the cycle model,\n"
-        "after a three-way gate (GHDL / Verilator / model on small frames) has passed.");
+        "after a three-way gate (GHDL / Verilator / model on small frames) has passed.\n"
+        "Exit status: 0 all agree, 1 mismatch, 2 bad input, 3 a tool failed, 4 translation fault.");
     add_frame_source_options(c, a->src);
     c->add_option("--config", a->config, "JSON file of bit widths and shifts (default: the thesis's)");
     c->add_flag("--keep-going", a->keep_going, "Count all mismatches instead of stopping at the first");
@@ -186,10 +158,7 @@ void add_verilate_command(CLI::App& app) {
     c->add_flag("--no-gate", a->no_gate, "Skip the three-way gate (results are then marked untrusted)");
     c->add_flag("--gate-only", a->gate_only, "Run the gate only");
     c->add_flag("--build-only", a->build_only, "Build (or find) the netlist for the frames' size and stop");
-    c->callback([a] {
-        const int rc = run_verilate(*a);
-        if (rc != 0) throw CLI::RuntimeError(rc);
-    });
+    c->callback([a] { run_verilate(*a); });
 }
 
 }  // namespace hc::tools

@@ -1,13 +1,11 @@
 // commands.hpp: the subcommands of harris-cosim. Each lives in its own cmd_*.cpp and adds
-// itself to the app; its callback throws CLI::RuntimeError(status) to exit non-zero and
-// hc::tools::InputError for bad input (printed, status 2).
+// itself to the app with add_X_command; its callback parses nothing itself beyond its flags,
+// calls a library through its typed API and prints. A failure is an exception of the kind
+// util/errors.hpp lists (MismatchError, InputError, SimulatorError, TranslationFault,
+// InternalError); main (harris_cosim.cpp) maps each kind to its exit status.
 #pragma once
 
 #include <CLI/CLI.hpp>
-
-#include <string>
-
-#include "harris/harris_pkg.hpp"
 
 namespace hc::tools {
 
@@ -21,10 +19,5 @@ void add_sweep_command(CLI::App& app);      // bit-width exploration (cmd_sweep.
 void add_calibrate_command(CLI::App& app);  // stereo calibration of a rig (cmd_calibrate.cpp)
 void add_slam_command(CLI::App& app);       // 2-D EKF-SLAM (cmd_slam.cpp)
 void add_landmarks_command(CLI::App& app);  // descriptors, stereo matches, landmarks (cmd_landmarks.cpp)
-
-/// The formats of `--config FILE.json` (the thesis's when `path` is empty), validated.
-/// Throws InputError naming the file when it cannot be read or holds bad formats.
-/// Defined in cmd_rtl.cpp; rtl, model and verilate share it.
-Formats load_config_formats(const std::string& path);
 
 }  // namespace hc::tools

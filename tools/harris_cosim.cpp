@@ -1,14 +1,27 @@
 // harris-cosim: co-simulation, evaluation and exploration of the Harris co-processor.
+//
+// The one place where failures become exit statuses (util/errors.hpp):
+//   0 pass, 1 mismatch, 2 bad input (including every flag error CLI11 reports),
+//   3 simulator failure, 4 translation fault, 5 internal fault.
 #include <cstdio>
 #include <exception>
 
-#include "commands.hpp"
-#include "frames.hpp"
+#include "tools/commands.hpp"
+#include "util/errors.hpp"
+
+namespace {
+int report(const char* kind, const std::exception& e, int status) {
+    std::fprintf(stderr, "harris-cosim: %s: %s\n", kind, e.what());
+    return status;
+}
+}  // namespace
 
 int main(int argc, char** argv) {
+    namespace st = hc::exit_status;
     CLI::App app{
         "harris-cosim: proves the VHDL Harris co-processor computes, write by write and bit by bit,\n"
-        "what its fixed-point model says, and measures it against OpenCV's Harris."};
+        "what its fixed-point model says, and measures it against OpenCV's Harris.\n"
+        "Exit status: 0 pass, 1 mismatch, 2 bad input, 3 simulator failure, 4 translation fault, 5 internal fault."};
     app.require_subcommand(1);
     app.set_version_flag("--version", "harris-cosim 0.1.0");
     hc::tools::add_rtl_command(app);
@@ -23,17 +36,23 @@ int main(int argc, char** argv) {
     hc::tools::add_landmarks_command(app);
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::Success& e) {   // --help, --version
         return app.exit(e);
-    } catch (const hc::tools::InputError& e) {
-        std::fprintf(stderr, "harris-cosim: error: %s\n", e.what());
-        return 2;
-    } catch (const std::invalid_argument& e) {
-        std::fprintf(stderr, "harris-cosim: error: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "harris-cosim: internal error: %s\n", e.what());
-        return 3;
+    } catch (const CLI::RuntimeError& e) {   // a command's own status, as CLI11 carries it
+        return e.get_exit_code();
+    } catch (const CLI::ParseError& e) {   // a flag CLI11 rejects is bad input
+        app.exit(e);
+        return st::bad_input;
+    } catch (const hc::MismatchError& e) {
+        return report("mismatch", e, st::mismatch);
+    } catch (const hc::InputError& e) {
+        return report("error", e, st::bad_input);
+    } catch (const hc::SimulatorError& e) {
+        return report("simulator failure", e, st::simulator_failure);
+    } catch (const hc::TranslationFault& e) {
+        return report("translation fault", e, st::translation_fault);
+    } catch (const std::exception& e) {   // InternalError and anything unforeseen
+        return report("internal fault", e, st::internal_fault);
     }
-    return 0;
+    return st::pass;
 }

@@ -1,23 +1,22 @@
 #!/usr/bin/env bash
 # rtl-coverage.sh: statement and branch coverage of rtl/ by the co-simulation regression.
-#   rtl-coverage.sh SOURCE_DIR BUILD_DIR OUT_DIR HARRIS_COSIM
+#   rtl-coverage.sh SOURCE_DIR BUILD_DIR OUT_DIR HARRIS_COSIM RTL_FILES
+# RTL_FILES: the design's VHDL files in analysis order, separated by ';' (CMake's list).
 # Builds the co-simulation testbench with GHDL's gcc back end instrumented for gcov
 # (-fprofile-arcs -ftest-coverage), runs every stream of golden/regression-set.txt through
 # it against the cycle model (`harris-cosim rtl --sim-dir`), and has gcovr turn the counts
 # into OUT_DIR/index.html (per file, line by line), OUT_DIR/summary.txt and
 # OUT_DIR/summary.json. Exits non-zero if a stream mismatches or a tool fails.
 set -euo pipefail
-[ $# -eq 4 ] || { echo "usage: $0 SOURCE_DIR BUILD_DIR OUT_DIR HARRIS_COSIM" >&2; exit 2; }
+[ $# -eq 5 ] || { echo "usage: $0 SOURCE_DIR BUILD_DIR OUT_DIR HARRIS_COSIM RTL_FILES" >&2; exit 2; }
 src=$(cd "$1" && pwd); build=$(cd "$2" && pwd); out=$3; cli=$4
 command -v ghdl-gcc >/dev/null || { echo "rtl-coverage: ghdl-gcc is not installed"; exit 77; }
 command -v gcovr >/dev/null || { echo "rtl-coverage: gcovr is not installed (Debian: gcovr)"; exit 77; }
 sim=$build/coverage-sim
 rm -rf "$sim"; mkdir -p "$sim/work" "$out"
-order=$(sed -n 's/.*HC_RTL_ORDER_CSV "\([^"]*\)".*/\1/p' "$src/tools/CMakeLists.txt" | tr , ' ')
-[ -n "$order" ] || { echo "rtl-coverage: cannot read the RTL file order from tools/CMakeLists.txt"; exit 2; }
-files=()
-for stem in $order; do files+=("$src/rtl/$stem.vhd"); done
-files+=("$build/cosim/hc_bridge_pkg.vhd" "$src/cosim/harris_top_tb.vhd")
+IFS=';' read -r -a files <<< "$5"
+[ ${#files[@]} -gt 0 ] || { echo "rtl-coverage: no RTL files given"; exit 2; }
+files+=("$build/cosim/hc_bridge_pkg.vhd" "$build/cosim/harris_top_tb.vhd")
 echo "[coverage] analysing ${#files[@]} files with coverage instrumentation"
 (cd "$sim/work" && ghdl-gcc -a --std=08 -g -Wc,-fprofile-arcs -Wc,-ftest-coverage --workdir=. "${files[@]}")
 (cd "$build/cosim" && ghdl-gcc -e --std=08 --workdir="$sim/work" -Wl,-lgcov \

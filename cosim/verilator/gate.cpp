@@ -1,7 +1,6 @@
 // gate.cpp: see gate.hpp.
-#include "gate.hpp"
+#include "cosim/verilator/gate.hpp"
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <fstream>
@@ -10,10 +9,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "driver/host_driver.hpp"
-#include "harris/harris_top.hpp"
-#include "harris/observation.hpp"
-#include "lockstep.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/harris/harris_top.hpp"
+#include "model/harris/observation.hpp"
+#include "cosim/verilator/lockstep.hpp"
+#include "util/util.hpp"
 
 namespace hc::vl {
 
@@ -27,53 +27,18 @@ std::string hex(std::uint64_t v) {
     return s.str();
 }
 
-std::uint64_t fnv1a(const std::string& s, std::uint64_t h = 1469598103934665603ULL) {
-    for (unsigned char ch : s) {
-        h ^= ch;
-        h *= 1099511628211ULL;
-    }
-    return h;
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-// Runs a shell-free command in cwd with both streams to `log`; returns the exit status.
-int run(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log) {
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("fork failed");
-    if (pid == 0) {
-        if (chdir(cwd.c_str()) != 0) _exit(126);
-        if (!freopen(log.c_str(), "a", stdout) || !freopen(log.c_str(), "a", stderr)) _exit(126);
-        std::vector<char*> args;
-        for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-        args.push_back(nullptr);
-        execvp(args[0], args.data());
-        _exit(127);
-    }
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0)
-        if (errno != EINTR) throw std::runtime_error("waitpid failed");
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
 void must(int rc, const std::string& what, const fs::path& log) {
     if (rc == 0) return;
-    std::string t = slurp(log);
-    if (t.size() > 2000) t = "..." + t.substr(t.size() - 2000);
-    throw std::runtime_error(what + " failed (exit " + std::to_string(rc) + "); log " + log.string() + ":\n" + t);
+    throw SimulatorError(what + " failed (exit " + std::to_string(rc) + "); log " + log.string() + ":\n" +
+                         util::log_tail(log));
 }
 
 // GHDL library with the design (variants substituted) and the replay testbench analysed.
 fs::path ghdl_library(const std::vector<fs::path>& sources, const fs::path& cache_dir, std::ostream& log) {
-    const fs::path tb = fs::path(HCVL_SRC_DIR) / "ghdl_replay_tb.vhd";
-    std::uint64_t h = fnv1a(HCVL_TOOL_VERSIONS);
-    for (const auto& p : sources) h = fnv1a(p.filename().string() + slurp(p), h);
-    h = fnv1a(slurp(tb), h);
+    const fs::path tb = HCVL_REPLAY_TB;   // made by CMake from ghdl_replay_tb.vhd.in
+    std::uint64_t h = util::fnv1a(HCVL_TOOL_VERSIONS);
+    for (const auto& p : sources) h = util::fnv1a(p.filename().string() + util::read_file(p), h);
+    h = util::fnv1a(util::read_file(tb), h);
     char key[32];
     std::snprintf(key, sizeof key, "ghdl_%012llx", static_cast<unsigned long long>(h & 0xffffffffffffULL));
     const fs::path dir = cache_dir / key;
@@ -85,7 +50,7 @@ fs::path ghdl_library(const std::vector<fs::path>& sources, const fs::path& cach
     std::vector<std::string> a = {HCVL_GHDL, "-a", "--std=08", "--workdir=."};
     for (const auto& p : sources) a.push_back(p.string());
     a.push_back(tb.string());
-    must(run(a, tmp, tmp / "analysis.log"), "GHDL analysis", tmp / "analysis.log");
+    must(util::run_process(a, {.cwd = tmp, .log = tmp / "analysis.log"}), "GHDL analysis", tmp / "analysis.log");
     std::ofstream(tmp / "done") << "ok\n";
     std::error_code ec;
     fs::rename(tmp, dir, ec);
@@ -177,7 +142,7 @@ GateResult run_gate(const Formats& f, const std::vector<fs::path>& variants, con
         cmd.insert(cmd.end(), {"-gOBSERVE=true", "-gSTIM=stim.txt", "-gRESULT=result.txt",
                                "--ieee-asserts=disable-at-0"});
         fs::remove(run_dir / "ghdl.log");
-        must(run(cmd, run_dir, run_dir / "ghdl.log"), "GHDL simulation of " + gc.name, run_dir / "ghdl.log");
+        must(util::run_process(cmd, {.cwd = run_dir, .log = run_dir / "ghdl.log"}), "GHDL simulation of " + gc.name, run_dir / "ghdl.log");
         std::vector<Sample> ghdl;
         {
             std::ifstream in(run_dir / "result.txt");
@@ -269,9 +234,7 @@ GateResult run_gate_cached(const Formats& f, const std::vector<fs::path>& varian
     // key: every netlist key of the regression set (sources, formats, harness, tools)
     std::string keys;
     for (const GateCase& gc : gate_cases()) keys += config_key(NetlistConfig{gc.g, f, true, variants}) + "\n";
-    char name[40];
-    std::snprintf(name, sizeof name, "gate_pass_%016llx", static_cast<unsigned long long>(fnv1a(keys)));
-    const fs::path marker = cache_dir / name;
+    const fs::path marker = cache_dir / ("gate_pass_" + util::hex64(util::fnv1a(keys)));
     if (from_cache) *from_cache = false;
     if (fs::exists(marker)) {
         if (from_cache) *from_cache = true;

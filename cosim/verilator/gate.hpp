@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "harris/harris_pkg.hpp"
-#include "image/image.hpp"
-#include "netlist.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/image/image.hpp"
+#include "cosim/verilator/netlist.hpp"
 
 namespace hc::vl {
 

@@ -1,11 +1,11 @@
 // lockstep.cpp: see lockstep.hpp.
-#include "lockstep.hpp"
+#include "cosim/verilator/lockstep.hpp"
 
 #include <chrono>
 #include <sstream>
 #include <stdexcept>
 
-#include "harris/harris_top.hpp"
+#include "model/harris/harris_top.hpp"
 
 namespace hc::vl {
 

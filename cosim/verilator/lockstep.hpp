@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "driver/host_driver.hpp"
-#include "harris/harris_pkg.hpp"
-#include "harris/observation.hpp"
-#include "netlist.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/observation.hpp"
+#include "cosim/verilator/netlist.hpp"
 
 namespace hc::vl {
 

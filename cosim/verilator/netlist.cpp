@@ -1,9 +1,8 @@
 // netlist.cpp: GHDL synthesis -> Verilator -> shared object, cached by configuration.
-#include "netlist.hpp"
+#include "cosim/verilator/netlist.hpp"
 
 #include <dlfcn.h>
 #include <fcntl.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -14,86 +13,29 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "hcvl_abi.h"
+#include "cosim/cosim.hpp"
+#include "cosim/verilator/hcvl_abi.h"
+#include "util/util.hpp"
 
 // Tool paths and directories come from cosim/verilator/CMakeLists.txt (find_program).
 #ifndef HCVL_GHDL
-#error "HCVL_GHDL, HCVL_VERILATOR, HCVL_MAKE, HCVL_CXX, HCVL_RTL_DIR, HCVL_SRC_DIR, HCVL_CACHE_DIR"
+#error "HCVL_GHDL, HCVL_VERILATOR, HCVL_MAKE, HCVL_CXX, HCVL_SRC_DIR, HCVL_CACHE_DIR"
 #endif
 
 namespace hc::vl {
 
 namespace {
 
-// Analysis order of rtl/ (a package, then each entity after those it instantiates).
-constexpr std::array<const char*, 15> kRtlOrder = {
-    "harris_pkg",         "load_control",   "input_converter",   "input_converter_mux",
-    "control_shift_register", "sobel_x",    "sobel_y",           "m_products",
-    "block_filter",       "harris_response", "find_max",         "threshold",
-    "local_maximum",      "corner_shift_register", "harris_top"};
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot read '" + p.string() + "'");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
 // The entity a VHDL file declares (the first `entity NAME is`), lower case.
 std::string declared_entity(const fs::path& p) {
     static const std::regex re(R"(^\s*entity\s+(\w+)\s+is)", std::regex::icase | std::regex::multiline);
-    const std::string text = slurp(p);
+    const std::string text = util::read_file(p);
     std::smatch m;
     if (!std::regex_search(text, m, re))
-        throw std::invalid_argument("variant '" + p.string() + "' declares no entity");
+        throw InputError("variant '" + p.string() + "' declares no entity");
     std::string e = m[1];
     for (char& ch : e) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     return e;
-}
-
-// FNV-1a 64: a content hash for the cache key (not a security boundary).
-std::uint64_t fnv1a(const std::string& s, std::uint64_t h = 1469598103934665603ULL) {
-    for (unsigned char ch : s) {
-        h ^= ch;
-        h *= 1099511628211ULL;
-    }
-    return h;
-}
-
-// Runs argv with cwd, stdout to `out` (or the log), stderr to the log. Returns exit status.
-int run(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log,
-        const fs::path& out = {}) {
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("fork failed");
-    if (pid == 0) {
-        if (chdir(cwd.c_str()) != 0) _exit(126);
-        const int lfd = open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-        const int ofd = out.empty() ? lfd : open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (lfd < 0 || ofd < 0) _exit(126);
-        dup2(ofd, 1);
-        dup2(lfd, 2);
-        std::vector<char*> args;
-        for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-        args.push_back(nullptr);
-        execvp(args[0], args.data());
-        _exit(127);
-    }
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0) {
-        if (errno != EINTR) throw std::runtime_error("waitpid failed");
-    }
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-std::string tail(const fs::path& p, std::size_t n = 2000) {
-    std::string s;
-    try {
-        s = slurp(p);
-    } catch (...) {
-        return "(no log)";
-    }
-    return s.size() > n ? "..." + s.substr(s.size() - n) : s;
 }
 
 void step(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log,
@@ -104,15 +46,15 @@ void step(const std::vector<std::string>& argv, const fs::path& cwd, const fs::p
         for (const auto& a : argv) l << ' ' << a;
         l << '\n';
     }
-    const int rc = run(argv, cwd, log, out);
+    const int rc = util::run_process(argv, {.cwd = cwd, .log = log, .stdout_file = out});
     if (rc != 0)
-        throw std::runtime_error(what + " failed (exit " + std::to_string(rc) + "); log " + log.string() +
-                                 ":\n" + tail(log));
+        throw SimulatorError(what + " failed (exit " + std::to_string(rc) + "); log " + log.string() + ":\n" +
+                             util::log_tail(log));
 }
 
 // Width of the obs port as GHDL wrote it: "output [N:0] obs" (or "output obs": 1 bit).
 int obs_bits_of(const fs::path& verilog) {
-    const std::string v = slurp(verilog);
+    const std::string v = util::read_file(verilog);
     static const std::regex wide(R"(output\s+\[(\d+):0\]\s+obs\s*\))");
     static const std::regex one(R"(output\s+obs\s*\))");
     std::smatch m;
@@ -124,36 +66,31 @@ int obs_bits_of(const fs::path& verilog) {
 }  // namespace
 
 std::vector<fs::path> vhdl_sources(const NetlistConfig& c) {
-    std::vector<fs::path> files;
-    for (const char* e : kRtlOrder) files.push_back(fs::path(HCVL_RTL_DIR) / (std::string(e) + ".vhd"));
+    std::vector<fs::path> files = cosim::rtl_sources();
     for (const auto& v : c.variants) {
-        if (!fs::is_regular_file(v)) throw std::invalid_argument("variant '" + v.string() + "' does not exist");
+        if (!fs::is_regular_file(v)) throw InputError("variant '" + v.string() + "' does not exist");
         const std::string e = declared_entity(v);
         bool found = false;
-        for (std::size_t k = 0; k < kRtlOrder.size(); ++k)
-            if (e == kRtlOrder[k]) {
+        for (std::size_t k = 0; k < files.size(); ++k)
+            if (e == files[k].stem().string()) {
                 files[k] = fs::absolute(v);
                 found = true;
             }
         if (!found)
-            throw std::invalid_argument("variant '" + v.string() + "' declares entity '" + e +
+            throw InputError("variant '" + v.string() + "' declares entity '" + e +
                                         "', which is not an entity of harris_top");
     }
     return files;
 }
 
 std::string config_key(const NetlistConfig& c) {
-    const Formats& f = c.f;
     std::ostringstream k;
-    k << c.g.width << 'x' << c.g.height << "_s" << f.sobel_w << "m" << f.m_prod_w << '-' << f.m_drop << "b"
-      << f.bf_sum_w << '-' << f.bf_drop << "r" << f.resp_w << "k" << f.ktr_w << '-' << f.k_shift1 << '-'
-      << f.k_shift2 << "t" << f.thr_shift1 << '-' << f.thr_shift2 << (c.observe ? "_obs" : "_noobs");
-    std::uint64_t h = fnv1a(HCVL_TOOL_VERSIONS);
-    for (const auto& p : vhdl_sources(c)) h = fnv1a(p.filename().string() + slurp(p), h);
-    for (const char* p : {"hcvl_design.cpp", "hcvl_abi.h"}) h = fnv1a(slurp(fs::path(HCVL_SRC_DIR) / p), h);
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-    k << '_' << std::string(hex, 10);
+    k << c.g.width << 'x' << c.g.height << "_f" << util::hex64(formats_hash(c.f)).substr(0, 10)
+      << (c.observe ? "_obs" : "_noobs");
+    std::uint64_t h = util::fnv1a(HCVL_TOOL_VERSIONS);
+    for (const auto& p : vhdl_sources(c)) h = util::fnv1a(p.filename().string() + util::read_file(p), h);
+    for (const char* p : {"hcvl_design.cpp", "hcvl_abi.h"}) h = util::fnv1a(util::read_file(fs::path(HCVL_SRC_DIR) / p), h);
+    k << '_' << util::hex64(h).substr(0, 10);
     return k.str();
 }
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "harris/harris_pkg.hpp"
+#include "model/harris/harris_pkg.hpp"
 
 namespace hc::vl {
 
@@ -33,10 +33,11 @@ struct NetlistConfig {
 };
 
 /// The VHDL files of the design in analysis order, with variants substituted. Throws
-/// std::invalid_argument when a variant's entity is not one of the design's.
+/// InputError when a variant does not exist or its entity is not one of the design's.
 std::vector<fs::path> vhdl_sources(const NetlistConfig& c);
 
-/// Cache key: "<W>x<H>_<formats>_<obs|noobs>_<hash>", hash over the sources' contents,
+/// Cache key: "<W>x<H>_f<formats_hash>_<obs|noobs>_<hash>": the formats hash covers every
+/// field of format_fields(); the last hash covers the sources' contents,
 /// the harness and the tool versions compiled in.
 std::string config_key(const NetlistConfig& c);
 

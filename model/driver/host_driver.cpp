@@ -1,4 +1,4 @@
-#include "driver/host_driver.hpp"
+#include "model/driver/host_driver.hpp"
 
 #include <stdexcept>
 #include <string>

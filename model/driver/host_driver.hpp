@@ -20,8 +20,8 @@
 #include <optional>
 #include <vector>
 
-#include "harris/harris_pkg.hpp"
-#include "image/image.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/image/image.hpp"
 
 namespace hc {
 

@@ -2,12 +2,13 @@
 //
 // The nine M coefficients, each resized (sign-extended) to bf_sum_w, summed in bf_sum_w
 // bits (by columns: block_column_sum, then block_filter_of_columns), then bits
-// bf_sum_w-1 .. bf_drop kept: 20 -> 16 bits, floor(sum / 16).
+// bf_sum_w-1 .. bf_drop kept: floor(sum / 2^bf_drop) in bf_sum_w - bf_drop bits
+// (thesis: 20 -> 16 bits, floor(sum / 16)).
 // Template over the number type T (Word or LeanWord).
 #pragma once
 
-#include "harris/harris_pkg.hpp"
-#include "harris/types.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/types.hpp"
 
 namespace hc {
 
@@ -26,7 +27,7 @@ inline T block_column_sum(const T& a0, const T& a1, const T& a2, const Formats& 
 template <class T>
 inline T block_filter_of_columns(const T& c0, const T& c1, const T& c2, const Formats& f) {
     const T sum = c0 + c1 + c2;   // same widths: the sum wraps to bf_sum_w bits
-    return slice(sum, f.bf_sum_w - 1, f.bf_drop);   // 20 -> 16 bits: drop 4 LSBs
+    return slice(sum, f.bf_sum_w - 1, f.bf_drop);   // drop bf_drop LSBs: bf_sum_w -> bf_w() bits
 }
 
 template <class T>

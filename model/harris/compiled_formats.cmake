@@ -47,7 +47,7 @@ function(hc_write_compiled_formats configs_dir out)
 
 #include <array>
 
-#include \"harris/harris_pkg.hpp\"
+#include \"model/harris/harris_pkg.hpp\"
 
 namespace hc {
 

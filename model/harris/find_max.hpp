@@ -8,8 +8,8 @@
 // format-specialised instances); FindMax is the Word instance.
 #pragma once
 
-#include "harris/harris_pkg.hpp"
-#include "harris/types.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/types.hpp"
 
 namespace hc {
 

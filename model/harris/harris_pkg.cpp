@@ -1,9 +1,10 @@
-#include "harris/harris_pkg.hpp"
+#include "model/harris/harris_pkg.hpp"
 
 #include <stdexcept>
 #include <string>
 
-#include "fixed/word.hpp"
+#include "model/fixed/word.hpp"
+#include "util/util.hpp"
 
 namespace hc {
 
@@ -38,12 +39,6 @@ void Geometry::validate() const {
                                     std::to_string(height) + " is larger than 32768 on a side");
 }
 
-std::vector<std::pair<std::string, long>> generics(const Geometry& g, const Formats& f) {
-    return {{"IMG_WIDTH", g.width},       {"IMG_HEIGHT", g.height},   {"SOBEL_W", f.sobel_w},
-            {"M_PROD_W", f.m_prod_w},     {"M_DROP", f.m_drop},       {"BF_SUM_W", f.bf_sum_w},
-            {"BF_DROP", f.bf_drop},       {"RESP_W", f.resp_w},       {"KTR_W", f.ktr_w},
-            {"K_SHIFT1", f.k_shift1},     {"K_SHIFT2", f.k_shift2},   {"THR_SHIFT1", f.thr_shift1},
-            {"THR_SHIFT2", f.thr_shift2}};
-}
+std::uint64_t formats_hash(const Formats& f) { return util::fnv1a(fields_text(f, format_fields())); }
 
 }  // namespace hc

@@ -8,8 +8,8 @@
 // Templates over the number type T (Word or LeanWord; T must hold 2*(bf_w+1) bits).
 #pragma once
 
-#include "harris/harris_pkg.hpp"
-#include "harris/types.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/types.hpp"
 
 namespace hc {
 
@@ -28,8 +28,8 @@ inline ResponseTermsT<T> harris_response_terms(const T& a, const T& b, const T& 
     ResponseTermsT<T> t;
     t.ac = a * c;   // 2*bf_w bits, exact
     t.bb = b * b;
-    t.ktr2 = resize(slice(tr2, top, f.k_shift1), f.ktr_w) +   // floor(tr2 / 32)
-             resize(slice(tr2, top, f.k_shift2), f.ktr_w);    // + floor(tr2 / 128)
+    t.ktr2 = resize(slice(tr2, top, f.k_shift1), f.ktr_w) +   // floor(tr2 / 2^k_shift1)
+             resize(slice(tr2, top, f.k_shift2), f.ktr_w);    // + floor(tr2 / 2^k_shift2)
     return t;
 }
 

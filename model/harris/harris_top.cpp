@@ -1,14 +1,14 @@
 // harris_top.cpp: HarrisTop chooses its instance of the cycle model (harris/harris_top_t.hpp):
 // the one compiled for its Formats when kCompiledFormats (generated from configs/*.json)
 // lists them, else the one that reads the widths at run time.
-#include "harris/harris_top.hpp"
+#include "model/harris/harris_top.hpp"
 
 #include <array>
 #include <cstddef>
 #include <utility>
 
 #include "harris/compiled_formats.hpp"
-#include "harris/harris_top_t.hpp"
+#include "model/harris/harris_top_t.hpp"
 
 namespace hc {
 

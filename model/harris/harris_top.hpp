@@ -16,10 +16,10 @@
 #include <memory>
 #include <vector>
 
-#include "harris/find_max.hpp"
-#include "harris/harris_pkg.hpp"
-#include "harris/observation.hpp"
-#include "harris/types.hpp"
+#include "model/harris/find_max.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/observation.hpp"
+#include "model/harris/types.hpp"
 
 namespace hc {
 

@@ -19,21 +19,21 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "fixed/lean_word.hpp"
-#include "harris/block_filter.hpp"
-#include "harris/control_shift_register.hpp"
-#include "harris/corner_shift_register.hpp"
-#include "harris/find_max.hpp"
-#include "harris/harris_pkg.hpp"
-#include "harris/harris_response.hpp"
-#include "harris/harris_top.hpp"
-#include "harris/input_converter_mux.hpp"
-#include "harris/load_control.hpp"
-#include "harris/local_maximum.hpp"
-#include "harris/m_products.hpp"
-#include "harris/sobel_x.hpp"
-#include "harris/sobel_y.hpp"
-#include "harris/threshold.hpp"
+#include "model/fixed/lean_word.hpp"
+#include "model/harris/block_filter.hpp"
+#include "model/harris/control_shift_register.hpp"
+#include "model/harris/corner_shift_register.hpp"
+#include "model/harris/find_max.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/harris_response.hpp"
+#include "model/harris/harris_top.hpp"
+#include "model/harris/input_converter_mux.hpp"
+#include "model/harris/load_control.hpp"
+#include "model/harris/local_maximum.hpp"
+#include "model/harris/m_products.hpp"
+#include "model/harris/sobel_x.hpp"
+#include "model/harris/sobel_y.hpp"
+#include "model/harris/threshold.hpp"
 
 namespace hc {
 

@@ -4,7 +4,7 @@
 // rightmost column; seven writes add one column.
 #pragma once
 
-#include "harris/types.hpp"
+#include "model/harris/types.hpp"
 
 namespace hc {
 

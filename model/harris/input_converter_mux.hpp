@@ -9,7 +9,7 @@
 #include <array>
 #include <cstdint>
 
-#include "harris/input_converter.hpp"
+#include "model/harris/input_converter.hpp"
 
 namespace hc {
 

@@ -6,7 +6,7 @@
 // stays 0, so the next frame's first columns enter the pipeline.
 #pragma once
 
-#include "harris/harris_pkg.hpp"
+#include "model/harris/harris_pkg.hpp"
 
 namespace hc {
 

@@ -4,7 +4,7 @@
 // Template over the 3x3 matrix type (Matrix3 of Word, or of LeanWord).
 #pragma once
 
-#include "harris/types.hpp"
+#include "model/harris/types.hpp"
 
 namespace hc {
 

@@ -5,8 +5,8 @@
 // Template over the number type T (Word or LeanWord).
 #pragma once
 
-#include "harris/harris_pkg.hpp"
-#include "harris/types.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/types.hpp"
 
 namespace hc {
 
@@ -18,8 +18,8 @@ using MProducts = MProductsT<Word>;
 
 template <class T>
 inline T m_product(const T& x, const T& y, const Formats& f) {
-    const T full = resize(x * y, f.m_prod_w);        // 22 -> 21 bits (+-1020^2 fits in 21)
-    return slice(full, f.m_prod_w - 1, f.m_drop);   // 21 -> 16 bits: drop 5 LSBs
+    const T full = resize(x * y, f.m_prod_w);        // 2*sobel_w -> m_prod_w bits (thesis 22 -> 21: +-1020^2 fits)
+    return slice(full, f.m_prod_w - 1, f.m_drop);   // drop m_drop LSBs: m_prod_w -> m_w() bits
 }
 
 template <class T>

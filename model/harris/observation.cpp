@@ -1,4 +1,4 @@
-#include "harris/observation.hpp"
+#include "model/harris/observation.hpp"
 
 namespace hc {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "harris/harris_pkg.hpp"
-#include "harris/types.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/types.hpp"
 
 namespace hc {
 

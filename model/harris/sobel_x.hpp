@@ -7,8 +7,8 @@
 // same numeric_std semantics); T defaults to Word.
 #pragma once
 
-#include "harris/harris_pkg.hpp"
-#include "harris/types.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/types.hpp"
 
 namespace hc {
 

@@ -5,7 +5,7 @@
 // Template over the number type T (Word by default), as sobel_x.
 #pragma once
 
-#include "harris/sobel_x.hpp"
+#include "model/harris/sobel_x.hpp"
 
 namespace hc {
 

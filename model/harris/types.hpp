@@ -4,7 +4,7 @@
 #include <array>
 #include <cstdint>
 
-#include "fixed/word.hpp"
+#include "model/fixed/word.hpp"
 
 namespace hc {
 

@@ -1,6 +1,8 @@
-#include "image/image.hpp"
+#include "model/image/image.hpp"
 
 #include <random>
+
+#include "util/errors.hpp"
 
 namespace hc {
 
@@ -10,7 +12,7 @@ Pattern parse_pattern(const std::string& name) {
     if (name == "random") return Pattern::random;
     if (name == "extremes") return Pattern::extremes;
     if (name == "blocks") return Pattern::blocks;
-    throw std::invalid_argument("unknown pattern '" + name +
+    throw InputError("unknown pattern '" + name +
                                 "' (flat, checkerboard, random, extremes, blocks)");
 }
 

@@ -26,7 +26,7 @@ struct Image {
 
 /// Synthetic test frames. `seed` makes random ones reproducible.
 enum class Pattern { flat, checkerboard, random, extremes, blocks };
-Pattern parse_pattern(const std::string& name);   ///< throws std::invalid_argument
+Pattern parse_pattern(const std::string& name);   ///< throws hc::InputError naming the pattern
 std::string pattern_name(Pattern p);
 /// Frame `index` of a synthetic sequence: patterns move by a few pixels per frame so that
 /// chained frames differ.

@@ -1,14 +1,15 @@
 // opencv_reference.cpp: see opencv_reference.hpp and docs/metrics.md.
-#include "spec/opencv_reference.hpp"
+#include "model/spec/opencv_reference.hpp"
 
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace hc::spec {
 
-double hw_to_opencv_response_scale() {
+double hw_to_opencv_response_scale(const Formats& f) {
     const double sobel_scale = 1.0 / ((1 << (3 - 1)) * 3 * 255.0);   // OpenCV: 1/3060
-    const double m_units = 32.0 * 16.0;                               // hw: floor(/32), floor(/16)
+    const double m_units = std::ldexp(1.0, f.m_drop + f.bf_drop);    // hw: floor(/2^m_drop), floor(/2^bf_drop)
     const double a_scale = m_units * sobel_scale * sobel_scale;       // A_cv per unit of A_hw
     return a_scale * a_scale;                                         // R is quadratic in A
 }

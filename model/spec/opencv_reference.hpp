@@ -11,7 +11,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "image/image.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/image/image.hpp"
 
 namespace cv { class Mat; }
 
@@ -25,12 +26,13 @@ struct ReferenceOptions {
     bool strict = false;   ///< strict NMS instead of R == dilate(R)
 };
 
-/// The scale from the hardware's integer response (thesis formats, k aside) to OpenCV's
-/// float response: OpenCV divides the Sobel output by 2^(ksize-1)*blockSize*255 = 3060
+/// The scale from the hardware's integer response (formats f, k aside) to OpenCV's float
+/// response: OpenCV divides the Sobel output by 2^(ksize-1)*blockSize*255 = 3060
 /// (cornerEigenValsVecs) and sums M unnormalised; the hardware keeps ix in units of the
-/// Sobel kernel and divides M by 32 and the block sum by 16, so
-///   A_cv = A_hw * 512 / 3060^2   and   R_cv = R_hw * (512 / 3060^2)^2 (up to the floors).
-double hw_to_opencv_response_scale();
+/// Sobel kernel and divides M by 2^m_drop and the block sum by 2^bf_drop, so with
+/// u = 2^(m_drop + bf_drop) (thesis: 512)
+///   A_cv = A_hw * u / 3060^2   and   R_cv = R_hw * (u / 3060^2)^2 (up to the floors).
+double hw_to_opencv_response_scale(const Formats& f = {});
 
 /// OpenCV's Harris response of an 8-bit image (CV_32F, same size).
 void opencv_response(const Image& img, const ReferenceOptions& o, cv::Mat& out);

@@ -12,7 +12,7 @@
 // Speed: the Formats of the thesis (and the untruncated ablation) are compile-time
 // constants here, so every width in the LeanWord operations folds and the inner loops
 // vectorise; other formats run the same code with runtime widths in 64-bit words.
-#include "spec/spec_model.hpp"
+#include "model/spec/spec_model.hpp"
 
 #include <algorithm>
 #include <array>
@@ -24,14 +24,14 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "harris/block_filter.hpp"
-#include "harris/harris_response.hpp"
-#include "harris/local_maximum.hpp"
-#include "harris/m_products.hpp"
-#include "harris/sobel_x.hpp"
-#include "harris/sobel_y.hpp"
-#include "harris/threshold.hpp"
-#include "fixed/lean_word.hpp"
+#include "model/harris/block_filter.hpp"
+#include "model/harris/harris_response.hpp"
+#include "model/harris/local_maximum.hpp"
+#include "model/harris/m_products.hpp"
+#include "model/harris/sobel_x.hpp"
+#include "model/harris/sobel_y.hpp"
+#include "model/harris/threshold.hpp"
+#include "model/fixed/lean_word.hpp"
 
 namespace hc::spec {
 

@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "harris/harris_pkg.hpp"
-#include "image/image.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/image/image.hpp"
 
 namespace hc::spec {
 

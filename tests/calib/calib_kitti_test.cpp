@@ -1,5 +1,5 @@
 // calib_kitti_test.cpp: the KITTI reader on the sequence 01 calib.txt of the data directory
-// (tools/frames.hpp data_dir). Exits 77 (CTest: skipped) with a message when it is absent.
+// (frames/frames.hpp data_dir). Exits 77 (CTest: skipped) with a message when it is absent.
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "calib/calib.hpp"
-#include "frames.hpp"
+#include "frames/frames.hpp"
 
 using namespace hc::calib;
 
@@ -32,8 +32,8 @@ TEST_CASE("KITTI 01's calib.txt gives fx 718.856 px and a 0.537 m baseline", "[c
 int main(int argc, char** argv) {
     std::optional<std::filesystem::path> d;
     try {
-        d = hc::tools::data_dir("");
-    } catch (const hc::tools::InputError& e) {
+        d = hc::frames::data_dir("");
+    } catch (const hc::InputError& e) {
         std::printf("SKIPPED: %s\n", e.what());
         return 77;
     }

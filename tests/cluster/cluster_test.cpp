@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "cluster/cluster.hpp"
-#include "squares_job.hpp"
+#include "tests/cluster/squares_job.hpp"
 
 extern char** environ;
 

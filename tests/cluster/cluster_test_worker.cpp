@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "cluster/cluster.hpp"
-#include "squares_job.hpp"
+#include "tests/cluster/squares_job.hpp"
 
 int main(int argc, char** argv) {
     if (argc != 3) {

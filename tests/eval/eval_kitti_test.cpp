@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "eval/eval.hpp"
-#include "frames.hpp"
+#include "frames/frames.hpp"
 
 using namespace hc;
 
@@ -15,14 +15,7 @@ namespace {
 std::filesystem::path g_kitti;
 
 eval::Stream load_pairs(int first, int last) {
-    const auto seq = tools::open_kitti(g_kitti, "01");
-    eval::Stream s;
-    for (const auto& p : tools::stereo_stream(seq, first, last)) {
-        s.frames.push_back(tools::load_image(p));
-        s.names.push_back(p.string());
-        s.pair_index.push_back(first + static_cast<int>(s.pair_index.size() / 2));
-    }
-    return s;
+    return frames::load_kitti_stream(g_kitti, "01", {first, last}, "pairs", 0);
 }
 }  // namespace
 
@@ -65,10 +58,10 @@ TEST_CASE("the cycle model equals the spec model at its own thresholds on a KITT
 }
 
 int main(int argc, char** argv) {
-    const auto d = tools::data_dir("");
+    const auto d = frames::data_dir("");
     if (!d || !std::filesystem::is_directory(*d / "kitti/sequences/01/image_0")) {
         std::printf("SKIPPED: no KITTI sequence 01 (set HARRIS_COSIM_DATA to a directory holding "
-                    "kitti/sequences/01; see /work/shared/data/README.md)\n");
+                    "kitti/sequences/01; see the data README.md (../shared/data beside the repository))\n");
         return 77;
     }
     g_kitti = *d / "kitti";

@@ -6,8 +6,8 @@
 #include <opencv2/core.hpp>
 
 #include "eval/eval.hpp"
-#include "spec/opencv_reference.hpp"
-#include "spec/spec_model.hpp"
+#include "model/spec/opencv_reference.hpp"
+#include "model/spec/spec_model.hpp"
 
 using namespace hc;
 
@@ -96,4 +96,44 @@ TEST_CASE("with every approximation ideal the spec model finds exactly OpenCV's 
 TEST_CASE("an unknown source is refused by name", "[eval]") {
     CHECK_THROWS_WITH(eval::parse_source("fpga"), Catch::Contains("fpga"));
     CHECK(eval::parse_source("rtl") == eval::Source::rtl);
+}
+
+TEST_CASE("the spec model and the cycle model agree on every pixel the hardware processes at the same thresholds",
+          "[model][spec]") {
+    // two stereo-like pairs of a textured pattern, small enough for the cycle model
+    for (Pattern p : {Pattern::blocks, Pattern::random}) {
+        eval::Stream s;
+        for (int k = 0; k < 4; ++k) {
+            s.frames.push_back(make_pattern(p, 61, 41, k, 7));
+            s.pair_index.push_back(k / 2);
+            s.names.push_back("f" + std::to_string(k));
+        }
+        const auto cyc = eval::run_cycle(s, Formats{}, false);
+        const spec::SpecModel m;
+        long compared = 0, corners = 0;
+        for (int k = 0; k < 4; ++k) {
+            spec::Response r;
+            m.response(s.frames[k], r);
+            const auto& tm = cyc.thr_map[k];
+            std::vector<std::uint8_t> mask;
+            m.corners(r, [&](int x, int y) { return tm[static_cast<size_t>(y) * 61 + x]; }, mask);
+            for (int y = 0; y < 41; ++y)
+                for (int x = 0; x < 61; ++x) {
+                    const size_t i = static_cast<size_t>(y) * 61 + x;
+                    const bool read = tm[i] != -1;   // thresholded window (hardware processed it)
+                    INFO("pattern " << pattern_name(p) << " frame " << k << " x=" << x << " y=" << y
+                                    << " thr=" << tm[i] << " response=" << r.at(y, x));
+                    if (!read) {
+                        REQUIRE(cyc.masks[k][i] == 0);
+                        continue;
+                    }
+                    // the last pair's last windows are never read: only compare read pixels
+                    ++compared;
+                    corners += cyc.masks[k][i];
+                    if (k < 3 || cyc.masks[k][i]) REQUIRE(int(mask[i]) == int(cyc.masks[k][i]));
+                }
+        }
+        CHECK(compared > 4 * 900);   // most of each frame's 55x35 centres
+        CHECK(corners > 0);
+    }
 }

@@ -8,7 +8,7 @@
 #include <set>
 
 #include "features/features.hpp"
-#include "stereo_sample.hpp"
+#include "tests/features/stereo_sample.hpp"
 
 using namespace hc::features;
 

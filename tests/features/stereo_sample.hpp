@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "frames.hpp"
+#include "frames/frames.hpp"
 
 namespace hc::features_test {
 
@@ -38,7 +38,7 @@ inline std::vector<cv::KeyPoint> strongest_harris(const cv::Mat& grey, int count
 inline std::optional<StereoSample> load_stereo_sample(int corners, int border = 0) {
     namespace fs = std::filesystem;
     StereoSample s;
-    const auto data = tools::data_dir("");
+    const auto data = frames::data_dir("");
     const fs::path kitti = data ? *data / "kitti/sequences/01" : fs::path();
     if (data && fs::exists(kitti / "image_0/000000.png") && fs::exists(kitti / "image_1/000000.png")) {
         s.name = "KITTI 01 pair 0";

@@ -7,8 +7,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "landmarks/landmarks.hpp"
-#include "spec/opencv_reference.hpp"
-#include "spec/spec_model.hpp"
+#include "model/spec/opencv_reference.hpp"
+#include "model/spec/spec_model.hpp"
 
 using namespace hc::landmarks;
 

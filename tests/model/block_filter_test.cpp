@@ -6,7 +6,7 @@
 // magnitude by b = -32,513 in all nine places; the largest positive M value is 32,512.
 #include <catch2/catch.hpp>
 
-#include "harris/block_filter.hpp"
+#include "model/harris/block_filter.hpp"
 
 using namespace hc;
 

@@ -2,7 +2,7 @@
 // (rtl/control_shift_register.vhd): t = the last six values of ready, t(0) the newest.
 #include <catch2/catch.hpp>
 
-#include "harris/control_shift_register.hpp"
+#include "model/harris/control_shift_register.hpp"
 
 using namespace hc;
 

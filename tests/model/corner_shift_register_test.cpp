@@ -3,7 +3,7 @@
 // host reads bits 5..2.
 #include <catch2/catch.hpp>
 
-#include "harris/corner_shift_register.hpp"
+#include "model/harris/corner_shift_register.hpp"
 
 using namespace hc;
 

@@ -5,7 +5,7 @@
 // ends a period is not counted. Only `max` is reset.
 #include <catch2/catch.hpp>
 
-#include "harris/find_max.hpp"
+#include "model/harris/find_max.hpp"
 
 using namespace hc;
 

@@ -6,7 +6,7 @@
 // (30 bits) and min -668,975,042 at {-18289, -18289, 18289} (31 bits).
 #include <catch2/catch.hpp>
 
-#include "harris/harris_response.hpp"
+#include "model/harris/harris_response.hpp"
 
 using namespace hc;
 

@@ -4,8 +4,8 @@
 
 #include <sstream>
 
-#include "driver/host_driver.hpp"
-#include "harris/harris_top.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/harris/harris_top.hpp"
 
 using namespace hc;
 

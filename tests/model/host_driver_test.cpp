@@ -2,7 +2,7 @@
 
 #include <map>
 
-#include "driver/host_driver.hpp"
+#include "model/driver/host_driver.hpp"
 
 using namespace hc;
 

@@ -6,7 +6,7 @@
 // ready = i in 2..5 and not load.
 #include <catch2/catch.hpp>
 
-#include "harris/input_converter_mux.hpp"
+#include "model/harris/input_converter_mux.hpp"
 
 using namespace hc;
 

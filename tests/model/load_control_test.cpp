@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "harris/load_control.hpp"
+#include "model/harris/load_control.hpp"
 
 using namespace hc;
 

@@ -3,7 +3,7 @@
 // A corner when the centre is strictly greater than all 8 neighbours: ties suppress.
 #include <catch2/catch.hpp>
 
-#include "harris/local_maximum.hpp"
+#include "model/harris/local_maximum.hpp"
 
 using namespace hc;
 

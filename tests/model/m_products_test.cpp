@@ -5,7 +5,7 @@
 // a's argmax {-1020, 0}, b's argmax {-1020, -1020} and argmin {-1020, 1020}.
 #include <catch2/catch.hpp>
 
-#include "harris/m_products.hpp"
+#include "model/harris/m_products.hpp"
 
 using namespace hc;
 

@@ -29,15 +29,15 @@
 #include <sstream>
 #include <string>
 
-#include "fixed/word.hpp"
-#include "harris/block_filter.hpp"
-#include "harris/harris_pkg.hpp"
-#include "harris/harris_response.hpp"
-#include "harris/local_maximum.hpp"
-#include "harris/m_products.hpp"
-#include "harris/sobel_x.hpp"
-#include "harris/sobel_y.hpp"
-#include "harris/threshold.hpp"
+#include "model/fixed/word.hpp"
+#include "model/harris/block_filter.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/harris/harris_response.hpp"
+#include "model/harris/local_maximum.hpp"
+#include "model/harris/m_products.hpp"
+#include "model/harris/sobel_x.hpp"
+#include "model/harris/sobel_y.hpp"
+#include "model/harris/threshold.hpp"
 
 using hc::Formats;
 using hc::Word;

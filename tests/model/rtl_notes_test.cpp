@@ -1,4 +1,4 @@
-// rtl_notes_test.cpp: one test per hypothesis of /work/shared/docs/rtl-notes.md, decided by
+// rtl_notes_test.cpp: one test per hypothesis of ../shared/docs/rtl-notes.md (beside the repository), decided by
 // the cycle-accurate model (HarrisTop) driven by the appendix-C host driver (HostDriver).
 //
 // Purpose: rtl-notes.md reads the thesis's VHDL and host code; each note is a hypothesis.
@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "driver/host_driver.hpp"
-#include "harris/harris_top.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/harris/harris_top.hpp"
 
 using namespace hc;
 

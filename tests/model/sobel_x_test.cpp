@@ -5,7 +5,7 @@
 // pixels): +1020 at {0,0,255; 0,0,255; 0,0,255} and -1020 at its mirror, hence 11 bits.
 #include <catch2/catch.hpp>
 
-#include "harris/sobel_x.hpp"
+#include "model/harris/sobel_x.hpp"
 
 using namespace hc;
 

@@ -4,8 +4,8 @@
 // Appendix A: +1020 at {255,255,255; 0,0,0; 0,0,0}, -1020 at the bottom-row twin.
 #include <catch2/catch.hpp>
 
-#include "harris/sobel_x.hpp"
-#include "harris/sobel_y.hpp"
+#include "model/harris/sobel_x.hpp"
+#include "model/harris/sobel_y.hpp"
 
 using namespace hc;
 

@@ -5,7 +5,7 @@
 // to thr is kept.
 #include <catch2/catch.hpp>
 
-#include "harris/threshold.hpp"
+#include "model/harris/threshold.hpp"
 
 using namespace hc;
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "fixed/word.hpp"
+#include "model/fixed/word.hpp"
 
 using hc::Word;
 

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "fixed/word.hpp"
-#include "harris/harris_pkg.hpp"
+#include "model/fixed/word.hpp"
+#include "model/harris/harris_pkg.hpp"
 
 namespace hc::stage {
 

@@ -16,7 +16,7 @@
 //   local_maximum    : r11 .. r33                                                (row-major)
 // Outputs are packed in port order, most significant bit first: ix | iy | a & b & c | sum
 // | r | r1 | corner.
-#include "stage_bench.hpp"
+#include "tests/rtl/stage_bench.hpp"
 
 #include <algorithm>
 #include <array>
@@ -24,14 +24,14 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "harris/block_filter.hpp"
-#include "harris/harris_response.hpp"
-#include "harris/local_maximum.hpp"
-#include "harris/m_products.hpp"
-#include "harris/sobel_x.hpp"
-#include "harris/sobel_y.hpp"
-#include "harris/threshold.hpp"
-#include "stage_bridge.h"
+#include "model/harris/block_filter.hpp"
+#include "model/harris/harris_response.hpp"
+#include "model/harris/local_maximum.hpp"
+#include "model/harris/m_products.hpp"
+#include "model/harris/sobel_x.hpp"
+#include "model/harris/sobel_y.hpp"
+#include "model/harris/threshold.hpp"
+#include "tests/rtl/stage_bridge.h"
 
 namespace hc::stage {
 

@@ -8,7 +8,7 @@
 // mismatches. The first kMaxReports failures are printed in full (entity, cycle from 0 after
 // reset, cycle kind, vector index, inputs, expected, actual); the summary line gives the
 // totals and the measured vectors per second.
-#include "stage_bridge.h"
+#include "tests/rtl/stage_bridge.h"
 
 #include <chrono>
 #include <cstdio>
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "stage_bench.hpp"
+#include "tests/rtl/stage_bench.hpp"
 
 namespace {
 

@@ -18,7 +18,7 @@
  * C++ side derives the formats from them and refuses to run when the testbench's output
  * width disagrees with the one the model produces.
  *
- * The numbers below are repeated in stage_bridge_pkg.vhd.in: change both together.
+ * The numbers below are owned here: CMake fills them into stage_bridge_pkg.vhd.in.
  */
 #ifndef STAGE_BRIDGE_H
 #define STAGE_BRIDGE_H

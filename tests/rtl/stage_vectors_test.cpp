@@ -9,8 +9,8 @@
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
-#include "stage_bench.hpp"
-#include "stage_bridge.h"
+#include "tests/rtl/stage_bench.hpp"
+#include "tests/rtl/stage_bridge.h"
 
 using hc::Formats;
 using hc::Word;

@@ -6,7 +6,7 @@
 
 #include <initializer_list>
 
-#include "slam.hpp"
+#include "slam/slam.hpp"
 
 namespace hc::slam::test {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "slam.hpp"
+#include "slam/slam.hpp"
 
 using namespace hc::slam;
 

@@ -9,8 +9,8 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "numeric_jacobian.hpp"
-#include "slam.hpp"
+#include "tests/slam/numeric_jacobian.hpp"
+#include "slam/slam.hpp"
 
 using namespace hc::slam;
 using hc::slam::test::numeric_jacobian;

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "frames.hpp"
-#include "slam.hpp"
+#include "frames/frames.hpp"
+#include "slam/slam.hpp"
 
 using namespace hc::slam;
 
@@ -63,7 +63,7 @@ TEST_CASE("on KITTI 01's trajectory with synthetic landmarks EKF-SLAM beats dead
 }
 
 int main(int argc, char** argv) {
-    const auto d = hc::tools::data_dir("");
+    const auto d = hc::frames::data_dir("");
     if (!d || !std::filesystem::exists(*d / "kitti/poses/01.txt")) {
         std::printf("SKIPPED: no kitti/poses/01.txt in the data directory (set HARRIS_COSIM_DATA)\n");
         return 77;

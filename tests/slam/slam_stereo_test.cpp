@@ -10,8 +10,8 @@
 
 #include <unistd.h>
 
-#include "numeric_jacobian.hpp"
-#include "slam.hpp"
+#include "tests/slam/numeric_jacobian.hpp"
+#include "slam/slam.hpp"
 
 using namespace hc::slam;
 using hc::slam::test::numeric_jacobian;

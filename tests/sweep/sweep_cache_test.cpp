@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "cosim/cosim.hpp"
 #include "sweep/cost.hpp"
 
 namespace fs = std::filesystem;
@@ -17,10 +18,7 @@ TEST_CASE("a second synthesis of the same configuration is a cache hit with the 
     const fs::path cache = fs::temp_directory_path() / ("hc-sweep-cache-test-" + std::to_string(::getpid()));
     fs::remove_all(cache);
     CostOptions o;
-    o.rtl_dir = fs::path(HC_SOURCE_DIR) / "rtl";
-    o.rtl_order = {"harris_pkg", "load_control", "input_converter", "input_converter_mux", "control_shift_register",
-                   "sobel_x", "sobel_y", "m_products", "block_filter", "harris_response", "find_max", "threshold",
-                   "local_maximum", "corner_shift_register", "harris_top"};
+    o.rtl_sources = cosim::rtl_sources();
     o.cache_dir = cache;
     o.geometry = {16, 12};   // counters only; the datapath is the full design
     const CostContext ctx(o);

@@ -89,7 +89,7 @@ TEST_CASE("bad sweep specs are rejected with the input and the entry named", "[m
     auto error_of = [](const std::string& text) {
         try {
             parse_sweep_spec(text, "spec.json");
-        } catch (const std::invalid_argument& e) {
+        } catch (const InputError& e) {
             return std::string(e.what());
         }
         return std::string("no error");

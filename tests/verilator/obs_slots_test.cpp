@@ -6,8 +6,8 @@
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
-#include "harris/observation.hpp"
-#include "lockstep.hpp"
+#include "model/harris/observation.hpp"
+#include "cosim/verilator/lockstep.hpp"
 
 using namespace hc;
 using namespace hc::vl;

@@ -1,0 +1,72 @@
+// eval.hpp: the thesis's quality evaluation (Schulz 2015, section 6.3.2) of a corner
+// source against the OpenCV reference (docs/metrics.md).
+//
+// Protocol: frames are streamed L0 R0 L1 R1 ...; the first stereo pair only seeds the
+// threshold and is not scored; for the cycle source the last pair is incomplete (its last
+// windows come back only while the next pair is written) and is not scored either. Every
+// pixel of every scored image is a TP, TN, FP or FN of the source against the reference,
+// summed over the sequence.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "frames/frames.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/image/image.hpp"
+#include "model/spec/opencv_reference.hpp"
+#include "model/spec/spec_model.hpp"
+
+namespace hc::eval {
+
+struct Confusion {
+    std::uint64_t tp = 0, tn = 0, fp = 0, fn = 0;
+    void add(const Confusion& o) { tp += o.tp; tn += o.tn; fp += o.fp; fn += o.fn; }
+    std::uint64_t total() const { return tp + tn + fp + fn; }
+    double recall() const { return tp + fn ? double(tp) / double(tp + fn) : 0.0; }
+    double specificity() const { return tn + fp ? double(tn) / double(tn + fp) : 0.0; }
+    double precision() const { return tp + fp ? double(tp) / double(tp + fp) : 0.0; }
+    double f1() const {
+        const double p = precision(), r = recall();
+        return p + r > 0 ? 2 * p * r / (p + r) : 0.0;
+    }
+};
+
+/// Per-pixel classification of `test` against `ref` (both row-major masks, same size).
+Confusion classify(const std::vector<std::uint8_t>& test, const std::vector<std::uint8_t>& ref);
+
+enum class Source { spec, cycle, rtl };
+Source parse_source(const std::string& s);   ///< throws InputError naming the source
+std::string source_name(Source s);
+
+/// The frames of one evaluation: a stream of stereo pairs (2 frames each).
+using Stream = frames::Stream;
+
+/// Corner masks of a source for every frame of a stream (empty mask: frame not produced).
+struct SourceRun {
+    std::vector<std::vector<std::uint8_t>> masks;
+    std::vector<std::int64_t> thr;     ///< threshold in effect at the frame's first window
+    std::vector<std::int64_t> max;     ///< the frame's own response maximum (spec) or the
+                                       ///< maximum published while it streamed (cycle)
+    double seconds = 0;
+};
+
+/// The cycle model through the host driver, with everything the deviation catalog needs.
+struct CycleRun : SourceRun {
+    /// the threshold each read window was thresholded with (per frame, row-major; -1 = none)
+    std::vector<std::vector<std::int64_t>> thr_map;
+    long writes = 0, reads = 0;
+    long mixed_windows = 0;            ///< windows entering find-max that mix two frames
+    long max_publications = 0;         ///< times find-max published a maximum
+    std::vector<long> publications_in_frame;   ///< publications while each frame streamed
+};
+
+SourceRun run_spec(const Stream& s, const spec::Options& o, int threads);
+CycleRun run_cycle(const Stream& s, const Formats& f, bool progress);
+
+/// The reference masks of all frames (in parallel).
+std::vector<std::vector<std::uint8_t>> run_reference(const Stream& s, const spec::ReferenceOptions& o,
+                                                     int threads, std::vector<double>* max = nullptr);
+
+}  // namespace hc::eval

@@ -1,0 +1,82 @@
+// frames.hpp: the frames a run streams through the design: image files, a KITTI-layout
+// sequence or a synthetic pattern, loaded with errors that name the input.
+//
+// Errors: hc::InputError (util/errors.hpp) naming the file, directory or value.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/image/image.hpp"
+#include "util/util.hpp"
+
+namespace hc::frames {
+
+/// Reads an 8-bit image (grey, or colour converted to grey). Throws InputError naming the
+/// file when it is missing, unreadable or not 8-bit.
+Image load_image(const std::filesystem::path& p);
+
+/// A centred crop of `width` x `height` (0 = keep). Throws InputError if larger than img.
+Image crop(const Image& img, int width, int height, const std::string& what);
+
+/// The data directory: `flag_value` (--data), else $HARRIS_COSIM_DATA, else ../shared/data
+/// next to the source tree (HC_DEFAULT_DATA_DIR at build time). Empty if none exists.
+std::optional<std::filesystem::path> data_dir(const std::string& flag_value);
+
+/// A KITTI odometry sequence: sequences/NN/image_0 (left) and image_1 (right).
+struct KittiSequence {
+    std::filesystem::path root;   ///< .../sequences/NN
+    std::vector<std::filesystem::path> left, right;   ///< sorted; right may be shorter
+    int pairs() const { return static_cast<int>(std::min(left.size(), right.size())); }
+};
+/// Throws InputError when the directory is not a KITTI sequence.
+KittiSequence open_kitti(const std::filesystem::path& kitti_dir, const std::string& sequence);
+
+/// The thesis's evaluation stream L0 R0 L1 R1 ... for stereo pairs [r.first, r.last).
+/// Throws InputError naming `what` (e.g. "--pairs 50:60") and the last pair when the range
+/// reaches past the sequence's stereo pairs; an open end (util::parse_range's) is clipped.
+std::vector<std::filesystem::path> stereo_stream(const KittiSequence& s, util::Range r, const std::string& what,
+                                                 int open_end = 1 << 30);
+
+/// The frames of one evaluation: a stream of stereo pairs (2 frames each).
+struct Stream {
+    std::vector<Image> frames;         ///< L R L R ...
+    std::vector<std::string> names;    ///< e.g. "01/L000003"
+    std::vector<int> pair_index;       ///< stereo pair number of each frame
+    std::string description;
+};
+/// Loads the stereo pairs `r` of a KITTI sequence (images in parallel on `threads`, 0: all
+/// cores). Throws InputError when fewer than `min_pairs` pairs result or frames differ in size.
+Stream load_kitti_stream(const std::filesystem::path& kitti_dir, const std::string& sequence, util::Range r,
+                         const std::string& what, int threads, int min_pairs = 1);
+
+/// Which frames a command streams (the command line's frame-source flags).
+struct FrameSource {
+    std::vector<std::string> images;   ///< image files, streamed in order
+    std::string pattern;               ///< synthetic pattern name
+    std::string size;                  ///< WxH: pattern size, or centred crop of images
+    int frames = 0;                    ///< number of frames (patterns; first N images or pairs)
+    std::string kitti;                 ///< KITTI odometry root (holding sequences/)
+    std::string sequence = "01";
+    std::string pairs;                 ///< a:b stereo pairs of the KITTI sequence
+    std::string data;                  ///< data directory (else $HARRIS_COSIM_DATA, ../shared/data)
+    std::uint32_t seed = 1;
+};
+
+struct LoadedFrames {
+    std::vector<Image> frames;
+    std::vector<std::string> names;
+    std::string description;
+};
+
+/// Loads the frames; throws InputError naming the bad input (including a stream the design
+/// cannot be built for). With nothing chosen, three 64x36 frames of the `blocks` pattern.
+LoadedFrames load_frames(const FrameSource& o);
+
+/// Pointers to the frames, in order (what HostDriver takes).
+std::vector<const Image*> pointers(const std::vector<Image>& frames);
+
+}  // namespace hc::frames

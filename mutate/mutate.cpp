@@ -1,0 +1,179 @@
+// mutate.cpp: see mutate.hpp.
+#include "mutate/mutate.hpp"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cosim/cosim.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace hc::mutate {
+
+namespace {
+
+std::string str(const json& m, const char* key, const std::string& where) {
+    if (!m.contains(key) || !m[key].is_string()) throw InputError(where + ": '" + key + "' must be a string");
+    return m[key].get<std::string>();
+}
+
+std::string md_code(std::string s) {
+    for (auto& c : s)
+        if (c == '|') c = '/';
+    return "`" + s + "`";
+}
+
+/// Applies the mutation (or none), analyses and co-simulates.
+Outcome run_one(const Mutant* m, const frames::LoadedFrames& lf, const fs::path& work) {
+    Outcome out;
+    const auto t0 = std::chrono::steady_clock::now();
+    fs::remove_all(work);
+    fs::create_directories(work / "rtl");
+    for (const auto& e : fs::directory_iterator(cosim::rtl_dir())) fs::copy_file(e.path(), work / "rtl" / e.path().filename());
+    if (m) {
+        const fs::path f = work / "rtl" / m->file;
+        std::string text = util::read_file(f, "rtl/" + m->file + " (mutation " + m->id + ")");
+        const size_t at = text.find(m->find);
+        if (at == std::string::npos || text.find(m->find, at + 1) != std::string::npos)
+            throw InputError("mutation " + m->id + " does not match exactly once in " + m->file);
+        text.replace(at, m->find.size(), m->replace);
+        util::write_file_atomic(f, text);
+    }
+    const fs::path log = work / "log.txt";
+    if (!cosim::analyse_mcode(work / "rtl", work, log)) {
+        out.status = "does not analyse";
+        return out;
+    }
+    cosim::GhdlRun run;
+    run.frames = lf.frames;
+    run.frame_names = lf.names;
+    run.backend = "mcode";
+    run.sim_dir = work;
+    run.progress = false;
+    run.log = log;
+    run.summary_json = work / "summary.json";
+    run.vcd = work / "mismatch.vcd";
+    try {
+        const cosim::GhdlResult r = cosim::run_ghdl(run);
+        out.status = r.summary.mismatching_cycles > 0 ? "mismatch" : "pass";
+        if (r.summary.first_mismatch) {
+            out.stage = r.summary.first_mismatch->stage;
+            out.signal = r.summary.first_mismatch->signal;
+            out.write = r.summary.first_mismatch->write;
+        }
+    } catch (const SimulatorError& e) {
+        out.status = std::string("simulator failed: ") + e.what();
+    }
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+}
+
+}  // namespace
+
+Campaign load_campaign(const fs::path& p) {
+    const std::string what = "mutation list '" + p.string() + "'";
+    json j;
+    try {
+        j = json::parse(util::read_file(p, what));
+    } catch (const json::exception& e) {
+        throw InputError(what + ": not valid JSON: " + e.what());
+    }
+    Campaign c;
+    if (!j.contains("stream") || !j["stream"].is_object()) throw InputError(what + ": 'stream' must be an object");
+    const json& s = j["stream"];
+    c.stream.pattern = s.value("pattern", "");
+    c.stream.size = s.value("size", "");
+    c.stream.frames = s.value("frames", 0);
+    c.stream.seed = s.value("seed", 1u);
+    if (!j.contains("mutants") || !j["mutants"].is_array()) throw InputError(what + ": 'mutants' must be a list");
+    for (size_t i = 0; i < j["mutants"].size(); ++i) {
+        const json& m = j["mutants"][i];
+        const std::string where = what + ": mutants[" + std::to_string(i) + "]";
+        c.mutants.push_back({str(m, "id", where), str(m, "kind", where), str(m, "file", where), str(m, "stage", where),
+                             str(m, "find", where), str(m, "replace", where), m.value("equivalent", false)});
+    }
+    return c;
+}
+
+std::string stream_flags(const frames::FrameSource& s) {
+    std::string f;
+    auto add = [&](const std::string& flag, const std::string& v) { f += (f.empty() ? "" : " ") + flag + " " + v; };
+    if (!s.pattern.empty()) add("--pattern", s.pattern);
+    if (!s.size.empty()) add("--size", s.size);
+    if (s.frames > 0) add("--frames", std::to_string(s.frames));
+    if (s.seed != 1) add("--seed", std::to_string(s.seed));
+    return f;
+}
+
+CampaignResult run_campaign(const Campaign& c, const std::string& only,
+                            const std::function<void(const std::string&)>& progress) {
+    const frames::LoadedFrames lf = frames::load_frames(c.stream);
+    util::ScratchDir scratch("harris-mutate");
+    CampaignResult r;
+    progress("baseline (no mutation) ...");
+    r.baseline = run_one(nullptr, lf, scratch.path() / "baseline");
+    if (r.baseline.status != "pass") ++r.problems;
+    for (const auto& m : c.mutants) {
+        if (!only.empty() && m.id != only) continue;
+        progress(m.id + " " + m.file + ": " + m.kind + " ...");
+        Verdict v{m, run_one(&m, lf, scratch.path() / m.id)};
+        v.caught = v.outcome.status == "mismatch";
+        if (m.equivalent) {
+            v.ok = v.outcome.status == "pass";
+        } else {
+            ++r.total;
+            r.caught += v.caught;
+            v.ok = v.caught && v.outcome.stage == m.stage;
+        }
+        if (!v.ok) ++r.problems;
+        progress(m.id + ": " + v.outcome.status + (v.outcome.stage.empty() ? "" : ", first stage " + v.outcome.stage));
+        r.verdicts.push_back(std::move(v));
+    }
+    return r;
+}
+
+std::string markdown(const Campaign& c, const CampaignResult& r, const std::string& list) {
+    std::ostringstream md;
+    md << "# Mutation campaign\n\n"
+       << "Made by `harris-cosim mutate --report docs/mutation-campaign.md` (mutations: `" << list << "`).\n"
+       << "Each mutant is one edit of a scratch copy of `rtl/`, co-simulated with GHDL (mcode) against the\n"
+       << "unmutated cycle model on the stream `" << stream_flags(c.stream)
+       << "`. *Caught* means the run failed; *localised* means the first mismatching stage\n"
+       << "it names is the mutated one.\n\n";
+    md << "Baseline, unmutated RTL: **" << r.baseline.status << "** (" << std::fixed;
+    md.precision(1);
+    md << r.baseline.seconds << " s).\n\n";
+    md << "| id | kind | file | change | expected stage | result | first stage | signal | write | localised |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|\n";
+    std::ostringstream eq;
+    for (const auto& v : r.verdicts) {
+        const Mutant& m = v.mutant;
+        std::string result;
+        if (m.equivalent) {
+            result = v.ok ? "not caught (equivalent, as expected)" : "CAUGHT: the mutant is not equivalent";
+            eq << "- **" << m.id << "** " << md_code(m.find) << " → " << md_code(m.replace) << ": "
+               << (v.ok ? "passes the co-simulation, as it must" : "FAILS the co-simulation") << ".\n";
+        } else {
+            result = v.caught ? "caught" : "NOT CAUGHT (" + v.outcome.status + ")";
+        }
+        md << "| " << m.id << " | " << m.kind << " | `" << m.file << "` | " << md_code(m.find) << " → "
+           << md_code(m.replace) << " | " << m.stage << " | " << result << " | "
+           << (v.outcome.stage.empty() ? "-" : v.outcome.stage) << " | "
+           << (v.outcome.signal.empty() ? "-" : md_code(v.outcome.signal)) << " | "
+           << (v.outcome.write ? std::to_string(v.outcome.write) : "-") << " | "
+           << (m.equivalent ? (v.ok ? "n/a" : "**no**") : (v.ok ? "yes" : "**no**")) << " |\n";
+    }
+    md << "\n**" << r.caught << " of " << r.total << " non-equivalent mutants caught**; "
+       << (r.problems == 0 ? "every one localised to its stage." : std::to_string(r.problems) + " problem(s).") << "\n";
+    if (!eq.str().empty())
+        md << "\n## Equivalent mutants\n\nThese edits cannot change any register value, so no test can catch "
+              "them; the campaign checks that they pass.\n\n"
+           << eq.str()
+           << "\nM21: `running` only changes when the new response is larger; with `>=` an equal response "
+              "replaces `running` by the same value, so every register keeps the same bits.\n";
+    return md.str();
+}
+
+}  // namespace hc::mutate

@@ -1,0 +1,65 @@
+// mutate.hpp: the mutation campaign. Each single-point mutation of a list (mutate/
+// mutations.json) is applied to a scratch copy of rtl/, analysed with GHDL's mcode back end
+// and co-simulated (cosim::run_ghdl) against the unmutated cycle model. A mutant passes the
+// campaign when the co-simulation fails and names the mutated stage as the first mismatching
+// one; a mutant marked equivalent passes when the co-simulation finds nothing.
+//
+// List file (JSON): {"stream": {"pattern": "blocks", "size": "40x30", "frames": 2},
+//   "mutants": [{"id", "kind", "file", "stage", "find", "replace", "equivalent"?}, ...]}
+// where `find` must occur exactly once in rtl/<file>.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "frames/frames.hpp"
+
+namespace hc::mutate {
+
+struct Mutant {
+    std::string id, kind, file, stage, find, replace;
+    bool equivalent = false;
+};
+
+struct Campaign {
+    frames::FrameSource stream;     ///< what every run streams
+    std::vector<Mutant> mutants;
+};
+/// Reads a list file; throws InputError naming the file and the bad entry.
+Campaign load_campaign(const std::filesystem::path& p);
+/// The stream as the equivalent `harris-cosim rtl` flags ("--pattern blocks --size 40x30 --frames 2").
+std::string stream_flags(const frames::FrameSource& s);
+
+/// What one co-simulation of a (mutated) RTL found.
+struct Outcome {
+    std::string status;             ///< "pass", "mismatch", "does not analyse", "simulator failed: ..."
+    std::string stage, signal;      ///< first mismatching stage and element
+    long write = 0;
+    double seconds = 0;
+};
+/// The judgement of one mutant.
+struct Verdict {
+    Mutant mutant;
+    Outcome outcome;
+    bool caught = false;            ///< the co-simulation failed
+    bool ok = false;                ///< caught and localised (or, equivalent, not caught)
+};
+
+struct CampaignResult {
+    Outcome baseline;               ///< the unmutated RTL (must pass)
+    std::vector<Verdict> verdicts;
+    int caught = 0, total = 0;      ///< over the non-equivalent mutants run
+    int problems = 0;               ///< verdicts not ok, plus a failing baseline
+};
+
+/// Runs the baseline and the mutants (only the one with id `only` when not empty), each in
+/// its own directory under a scratch directory. `progress` gets a line per step.
+CampaignResult run_campaign(const Campaign& c, const std::string& only,
+                            const std::function<void(const std::string&)>& progress);
+
+/// The Markdown report (docs/mutation-campaign.md); `list` names the list file in it.
+std::string markdown(const Campaign& c, const CampaignResult& r, const std::string& list);
+
+}  // namespace hc::mutate

@@ -1,0 +1,243 @@
+// sweep_report.cpp: see sweep_report.hpp.
+#include "sweep/sweep_report.hpp"
+
+#include <algorithm>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "model/harris/formats_json.hpp"
+#include "util/util.hpp"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace hc::sweep {
+
+namespace {
+
+std::string trust_cell(const TrustResult& t) {
+    if (!t.ran) return "-";
+    if (t.failed == 0) return fmt::format("{} mism. ({} run{}{})", t.mismatches, t.runs, t.runs == 1 ? "" : "s", t.cached ? ", cached" : "");
+    return fmt::format("**{} FAILED**, {} mism.", t.failed, t.mismatches);
+}
+
+double pct(double a, double b) { return b ? 100.0 * (a - b) / b : 0.0; }
+
+}  // namespace
+
+Findings findings(const SweepResult& r) {
+    Findings f;
+    const auto& P = r.points;
+    for (size_t i = 0; i < P.size(); ++i)
+        if (P[i].config.formats == Formats{}) f.thesis = static_cast<int>(i);
+    if (f.thesis < 0) return f;
+    const PointResult& T = P[f.thesis];
+    for (size_t i = 0; i < P.size(); ++i) {
+        const PointResult& p = P[i];
+        if (p.wraps || static_cast<int>(i) == f.thesis) continue;
+        if (p.accuracy.recall() >= T.accuracy.recall() && p.accuracy.precision() >= T.accuracy.precision() &&
+            (p.cost.luts < T.cost.luts || p.cost.dsps < T.cost.dsps) && p.cost.dsps <= T.cost.dsps) {
+            if (f.cheapest_as_good < 0 ||
+                std::pair(p.cost.luts, p.cost.dsps) < std::pair(P[f.cheapest_as_good].cost.luts, P[f.cheapest_as_good].cost.dsps))
+                f.cheapest_as_good = static_cast<int>(i);
+        }
+        if (p.cost.luts <= T.cost.luts && p.cost.dsps <= T.cost.dsps && p.accuracy.f1() > T.accuracy.f1()) {
+            if (f.best_at_thesis_cost < 0 || p.accuracy.f1() > P[f.best_at_thesis_cost].accuracy.f1())
+                f.best_at_thesis_cost = static_cast<int>(i);
+        }
+    }
+    return f;
+}
+
+std::string to_csv(const SweepResult& r) {
+    std::string s =
+        "name,sobel_w,m_prod_w,m_drop,bf_sum_w,bf_drop,resp_w,ktr_w,k_shift1,k_shift2,thr_shift1,thr_shift2,"
+        "recall,precision,f1,tp,fp,fn,luts,inv,ffs,dsps,carry4,muxf,srl,register_bits,wraps,"
+        "wrap_sobel,wrap_m_resize,wrap_block_sum,wrap_k_term,wrap_response,pareto,"
+        "rtl_runs,rtl_failed,rtl_mismatches,verilator_runs,verilator_failed,verilator_mismatches,synth_seconds\n";
+    for (const auto& p : r.points) {
+        const Formats& f = p.config.formats;
+        s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},", p.config.name, f.sobel_w, f.m_prod_w, f.m_drop, f.bf_sum_w,
+                         f.bf_drop, f.resp_w, f.ktr_w, f.k_shift1, f.k_shift2, f.thr_shift1, f.thr_shift2);
+        s += fmt::format("{:.6f},{:.6f},{:.6f},{},{},{},", p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(),
+                         p.accuracy.tp, p.accuracy.fp, p.accuracy.fn);
+        s += fmt::format("{},{},{},{},{},{},{},{},{},", p.cost.luts, p.cost.inv, p.cost.ffs, p.cost.dsps, p.cost.carry4,
+                         p.cost.muxf, p.cost.srl, p.register_bits, p.wraps ? 1 : 0);
+        for (int k = 0; k < stage_count; ++k) s += fmt::format("{},", p.overflow.wrapped[k]);
+        s += fmt::format("{},", p.pareto ? 1 : 0);
+        auto tr = [](const TrustResult& t) { return t.ran ? fmt::format("{},{},{},", t.runs, t.failed, t.mismatches) : std::string(",,,"); };
+        s += tr(p.rtl) + tr(p.verilator);
+        s += fmt::format("{:.1f}\n", p.cost.seconds);
+    }
+    return s;
+}
+
+std::string to_markdown(const SweepResult& r) {
+    std::string s = fmt::format("# Bit-width sweep \"{}\"\n\n", r.spec.name);
+    s += fmt::format("Command: `{}`\n\n", r.command);
+    s += fmt::format("Accuracy: spec model against OpenCV's cornerHarris (docs/metrics.md) on {}; {} frames scored "
+                     "(the first stereo pair only seeds the threshold).\n\n", r.stream, r.scored_frames);
+    s += fmt::format("Cost: yosys `synth_xilinx` of harris_top (OBSERVE=false, IMG {}x{}), GHDL's Verilog with signed "
+                     "multiplies restored (docs/bit-widths.md); LUT = LUT1..LUT6, INV cells not included.\n\n",
+                     r.spec.cost_geometry.width, r.spec.cost_geometry.height);
+    s += "Pareto front: minimum LUTs and DSPs, maximum F1, among configurations that do not wrap (marked **P**). "
+         "RTL checks (the Pareto points, the thesis and the findings below): GHDL co-simulation of "
+         "golden/regression-set.txt (mismatching cycles, every inter-stage register compared after every cycle) and ";
+    s += r.spec.trust.verilator_pairs.empty()
+             ? std::string("no Verilator run.\n\n")
+             : fmt::format("Verilator on KITTI {} pairs {} (mismatching writes; reads compared; {}).\n\n", r.spec.sequence,
+                           r.spec.trust.verilator_pairs,
+                           r.spec.trust.verilator_gate ? "after verilate's three-way gate"
+                                                       : "without verilate's three-way gate: the netlist is checked against the model, not against GHDL");
+    s += "| configuration | recall | precision | F1 | LUT | FF | DSP | CARRY4 | reg. bits | wraps | P | GHDL | Verilator |\n";
+    s += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|:-:|---|---|\n";
+    for (const auto& p : r.points) {
+        s += fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", p.config.name,
+                         p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(), p.cost.luts, p.cost.ffs, p.cost.dsps,
+                         p.cost.carry4, p.register_bits, p.wraps ? "**" + p.overflow.summary() + "**" : std::string("none"),
+                         p.pareto ? "**P**" : "", trust_cell(p.rtl), trust_cell(p.verilator));
+    }
+    const Findings f = findings(r);
+    if (f.thesis >= 0) {
+        const auto& T = r.points[f.thesis];
+        s += fmt::format("\nThesis configuration: recall {:.4f}, precision {:.4f}, F1 {:.4f}; {} LUT, {} FF, {} DSP",
+                         T.accuracy.recall(), T.accuracy.precision(), T.accuracy.f1(), T.cost.luts, T.cost.ffs, T.cost.dsps);
+        if (T.has_cost_ghdl)
+            s += fmt::format(" (GHDL's Verilog as emitted: {} LUT, {} FF, {} DSP)", T.cost_ghdl.luts, T.cost_ghdl.ffs, T.cost_ghdl.dsps);
+        s += ".\n\n";
+        if (f.cheapest_as_good >= 0) {
+            const auto& C = r.points[f.cheapest_as_good];
+            s += fmt::format("Cheapest configuration with recall and precision >= the thesis's: **{}** ({:.4f} / {:.4f}); "
+                             "{} LUT ({:+.1f} %), {} FF ({:+.1f} %), {} DSP ({:+d}), {} register bits ({:+d}).\n\n",
+                             C.config.name, C.accuracy.recall(), C.accuracy.precision(), C.cost.luts, pct(C.cost.luts, T.cost.luts),
+                             C.cost.ffs, pct(C.cost.ffs, T.cost.ffs), C.cost.dsps, static_cast<int>(C.cost.dsps - T.cost.dsps),
+                             C.register_bits, static_cast<int>(C.register_bits - T.register_bits));
+        } else {
+            s += "No configuration is cheaper than the thesis's with recall and precision at least as high.\n\n";
+        }
+        if (f.best_at_thesis_cost >= 0) {
+            const auto& B = r.points[f.best_at_thesis_cost];
+            s += fmt::format("Most accurate configuration at no more than the thesis's LUTs and DSPs: **{}**, F1 {:.4f} "
+                             "(recall {:.4f}, precision {:.4f}); {} LUT, {} DSP.\n\n",
+                             B.config.name, B.accuracy.f1(), B.accuracy.recall(), B.accuracy.precision(), B.cost.luts, B.cost.dsps);
+        } else {
+            s += "No configuration at or below the thesis's LUTs and DSPs has a higher F1.\n\n";
+        }
+    }
+    s += "Timing: ";
+    s += fmt::format("frames {:.1f} s, OpenCV reference {:.1f} s, cost {:.1f} s ({} synthesised, {} from the cache; "
+                     "{:.0f} s of synthesis wall time summed), accuracy + overflow audit {:.1f} s, RTL checks {:.1f} s; "
+                     "total {:.1f} s.\n",
+                     r.seconds_load, r.seconds_reference, r.seconds_cost, r.synthesised, r.synth_cached, r.synth_seconds_sum,
+                     r.seconds_accuracy, r.seconds_trust, r.seconds_total);
+    for (const auto& n : r.spec.notes) s += "\nNote: " + n + ".\n";
+    return s;
+}
+
+std::string to_json(const SweepResult& r) {
+    json pts = json::array();
+    for (const auto& p : r.points) {
+        json ovf = json::object();
+        for (int k = 0; k < stage_count; ++k)
+            ovf[kStageNames[k]] = {{"wrapped", p.overflow.wrapped[k]}, {"sign_lost", p.overflow.sign_lost[k]}, {"values", p.overflow.values[k]}};
+        auto cost = [](const Cost& c) {
+            return json{{"luts", c.luts}, {"inv", c.inv}, {"ffs", c.ffs}, {"dsps", c.dsps}, {"carry4", c.carry4},
+                        {"muxf", c.muxf}, {"srl", c.srl}, {"cells", c.cells}, {"synth_seconds", c.seconds},
+                        {"cached", c.cached}, {"key", c.key}};
+        };
+        auto trust = [](const TrustResult& t) {
+            return t.ran ? json{{"runs", t.runs}, {"failed", t.failed}, {"mismatches", t.mismatches}, {"reads", t.reads},
+                                {"seconds", t.seconds}, {"cached", t.cached}, {"detail", t.detail}}
+                         : json(nullptr);
+        };
+        json j = {{"name", p.config.name},
+                  {"formats", json::parse(formats_to_json(p.config.formats))},
+                  {"recall", p.accuracy.recall()}, {"precision", p.accuracy.precision()}, {"f1", p.accuracy.f1()},
+                  {"confusion", {{"tp", p.accuracy.tp}, {"tn", p.accuracy.tn}, {"fp", p.accuracy.fp}, {"fn", p.accuracy.fn}}},
+                  {"cost", cost(p.cost)}, {"register_bits", p.register_bits}, {"wraps", p.wraps}, {"overflow", ovf},
+                  {"pareto", p.pareto}, {"rtl", trust(p.rtl)}, {"verilator", trust(p.verilator)},
+                  {"eval_seconds", p.eval_seconds}, {"overflow_seconds", p.overflow_seconds}};
+        if (p.has_cost_ghdl) j["cost_ghdl_verilog"] = cost(p.cost_ghdl);
+        pts.push_back(j);
+    }
+    json j = {{"name", r.spec.name}, {"command", r.command}, {"stream", r.stream}, {"scored_frames", r.scored_frames},
+              {"cost_geometry", {{"width", r.spec.cost_geometry.width}, {"height", r.spec.cost_geometry.height}}},
+              {"points", pts}, {"notes", r.spec.notes},
+              {"seconds", {{"load", r.seconds_load}, {"reference", r.seconds_reference}, {"cost", r.seconds_cost},
+                           {"accuracy", r.seconds_accuracy}, {"trust", r.seconds_trust}, {"total", r.seconds_total}}},
+              {"synthesised", r.synthesised}, {"synth_cached", r.synth_cached}, {"synth_seconds_sum", r.synth_seconds_sum}};
+    return j.dump(2) + "\n";
+}
+
+std::string write_plot(const SweepResult& r, const fs::path& dir) {
+    // y ranges from the non-wrapping points only: a wrapping point's accuracy can be near 0
+    // and would squash the front into one line; such points are drawn clamped to the
+    // bottom of the axis (their true values are in the table)
+    double lo[3] = {1, 1, 1};
+    for (const auto& p : r.points)
+        if (!p.wraps) {
+            lo[0] = std::min(lo[0], p.accuracy.f1());
+            lo[1] = std::min(lo[1], p.accuracy.recall());
+            lo[2] = std::min(lo[2], p.accuracy.precision());
+        }
+    double ymin[3];
+    for (int k = 0; k < 3; ++k) ymin[k] = std::max(0.0, lo[k] - 0.01);
+    // data: one file per class (ok, Pareto, wrapping) so gnuplot styles them apart
+    std::string ok, par, wrap;
+    for (const auto& p : r.points) {
+        double v[3] = {p.accuracy.f1(), p.accuracy.recall(), p.accuracy.precision()};
+        if (p.wraps)
+            for (int k = 0; k < 3; ++k) v[k] = std::max(v[k], ymin[k] + 0.001);
+        const std::string line = fmt::format("{} {} {:.6f} {:.6f} {:.6f} \"{}\"\n", p.cost.luts, p.cost.dsps, v[0], v[1], v[2],
+                                             p.config.name);
+        (p.wraps ? wrap : p.pareto ? par : ok) += line;
+    }
+    const fs::path tmp = dir / ".plot";
+    fs::create_directories(tmp);
+    std::ofstream(tmp / "ok.dat") << (ok.empty() ? "NaN NaN NaN NaN NaN \"\"\n" : ok);
+    std::ofstream(tmp / "pareto.dat") << (par.empty() ? "NaN NaN NaN NaN NaN \"\"\n" : par);
+    std::ofstream(tmp / "wrap.dat") << (wrap.empty() ? "NaN NaN NaN NaN NaN \"\"\n" : wrap);
+    const fs::path png = tmp / "pareto.png";
+    std::string g = "set terminal pngcairo size 1600,1000 font 'sans,10'\n";
+    g += "set output '" + png.string() + "'\n";
+    g += "set multiplot layout 2,2 title 'Bit-width sweep " + r.spec.name + ": accuracy against OpenCV vs yosys synth\\_xilinx cost'\n";
+    g += "set grid\nset key outside bottom center horizontal\n";
+    const std::string d = tmp.string() + "/";
+    auto panel = [&](const std::string& xcol, const std::string& xlabel, const std::string& ycol, const std::string& ylabel, bool labels) {
+        const double y0 = ymin[ycol == "3" ? 0 : ycol == "4" ? 1 : 2];
+        std::string p = "set xlabel '" + xlabel + "'\nset ylabel '" + ylabel + "'\n";
+        p += fmt::format("set yrange [{:.4f}:*]\nset offsets 0, 0, 0.002, 0\n", y0);
+        p += "plot '" + d + "ok.dat' using " + xcol + ":" + ycol + " with points pt 6 ps 1.2 lc rgb '#777777' title 'dominated', \\\n";
+        p += "     '" + d + "pareto.dat' using " + xcol + ":" + ycol + " with points pt 7 ps 1.6 lc rgb '#d62728' title 'Pareto-optimal', \\\n";
+        p += "     '" + d + "wrap.dat' using " + xcol + ":" + ycol + " with points pt 2 ps 1.4 lc rgb '#1f77b4' title 'wraps (excluded; at the axis if below it)'";
+        if (labels) p += ", \\\n     '" + d + "pareto.dat' using " + xcol + ":" + ycol + ":6 with labels offset 0,1 font 'sans,7' notitle";
+        return p + "\n";
+    };
+    g += panel("1", "LUTs", "3", "F1", true);
+    g += panel("2", "DSP48E1", "3", "F1", false);
+    g += panel("1", "LUTs", "4", "recall", false);
+    g += panel("1", "LUTs", "5", "precision", false);
+    g += "unset multiplot\n";
+    std::ofstream(tmp / "plot.gp") << g;
+    int rc = 127;
+    try {
+        rc = util::run_process({"gnuplot", (tmp / "plot.gp").string()}, {.log = tmp / "gnuplot.log"});
+    } catch (const SimulatorError&) {   // not installed: rc stays 127
+    }
+    if (rc != 0 || !fs::exists(png)) return fmt::format("gnuplot failed (status {}), see {}", rc, (tmp / "gnuplot.log").string());
+    fs::rename(png, dir / "pareto.png");   // same directory tree: atomic
+    fs::remove_all(tmp);
+    return "";
+}
+
+void write_reports(const SweepResult& r, const fs::path& dir) {
+    fs::create_directories(dir);
+    util::write_file_atomic(dir / "sweep.csv", to_csv(r));
+    util::write_file_atomic(dir / "sweep.json", to_json(r));
+    util::write_file_atomic(dir / "sweep.md", to_markdown(r));
+    if (const std::string e = write_plot(r, dir); !e.empty()) std::fprintf(stderr, "sweep: warning: no plot: %s\n", e.c_str());
+}
+
+}  // namespace hc::sweep

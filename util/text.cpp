@@ -1,0 +1,88 @@
+// text.cpp: hashing and the little text formats (util.hpp).
+#include <cstdio>
+#include <sstream>
+
+#include "util/util.hpp"
+
+namespace hc::util {
+
+std::uint64_t fnv1a(std::string_view s, std::uint64_t h) {
+    for (unsigned char c : s) {
+        h ^= c;
+        h *= 1099511628211ULL;
+    }
+    return h;
+}
+
+std::string hex64(std::uint64_t h) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
+std::vector<std::string> split_csv(const std::string& s, char sep) {
+    std::vector<std::string> v;
+    std::stringstream ss(s);
+    for (std::string x; std::getline(ss, x, sep);)
+        if (!x.empty()) v.push_back(x);
+    return v;
+}
+
+namespace {
+/// A whole non-negative decimal integer, or throw.
+int whole(const std::string& s) {
+    std::size_t used = 0;
+    const int v = std::stoi(s, &used);
+    if (used != s.size()) throw std::invalid_argument(s);
+    return v;
+}
+}  // namespace
+
+Range parse_range(const std::string& s, const std::string& what, int open_end) {
+    const auto c = s.find(':');
+    try {
+        if (c == std::string::npos) throw std::invalid_argument("no colon");
+        Range r;
+        r.first = c == 0 ? 0 : whole(s.substr(0, c));
+        r.last = c + 1 == s.size() ? open_end : whole(s.substr(c + 1));
+        if (r.first < 0 || r.last <= r.first) throw std::invalid_argument("empty");
+        return r;
+    } catch (const std::exception&) {
+        throw InputError(what + " '" + s + "' is not FIRST:LAST with 0 <= FIRST < LAST (LAST excluded)");
+    }
+}
+
+std::pair<int, int> parse_size(const std::string& s, const std::string& what) {
+    const auto x = s.find('x');
+    try {
+        if (x == std::string::npos) throw std::invalid_argument("no x");
+        const int w = whole(s.substr(0, x)), h = whole(s.substr(x + 1));
+        if (w <= 0 || h <= 0) throw std::invalid_argument("not positive");
+        return {w, h};
+    } catch (const std::exception&) {
+        throw InputError(what + " '" + s + "' is not WIDTHxHEIGHT (e.g. 1241x376)");
+    }
+}
+
+std::string RegressionStream::stem() const { return pattern + "_" + size(); }
+std::string RegressionStream::size() const { return std::to_string(width) + "x" + std::to_string(height); }
+
+std::vector<RegressionStream> read_regression_set(const std::filesystem::path& p) {
+    std::istringstream f(read_file(p, "regression set '" + p.string() + "'"));
+    std::vector<RegressionStream> v;
+    std::string line;
+    for (int n = 1; std::getline(f, line); ++n) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream ss(line);
+        RegressionStream s;
+        std::string size;
+        if (!(ss >> s.pattern >> size >> s.frames >> s.idle_every) || s.frames <= 0 || s.idle_every < 0)
+            throw InputError(p.string() + ":" + std::to_string(n) + ": expected 'pattern WxH frames idle_every'");
+        std::tie(s.width, s.height) = parse_size(size, p.string() + ":" + std::to_string(n) + ": size");
+        v.push_back(s);
+    }
+    if (v.empty()) throw InputError("regression set '" + p.string() + "' has no stream");
+    return v;
+}
+
+}  // namespace hc::util
