@@ -1,6 +1,8 @@
 // cluster.cpp: manifests, shard results, the local and Slurm runners, the merge.
 #include "cluster/cluster.hpp"
 
+#include "util/util.hpp"
+
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -22,42 +24,16 @@ namespace hc::cluster {
 
 namespace {
 
-std::string fnv1a64_hex(const std::string& s) {
-    std::uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : s) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
-}
-
 std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) throw ClusterInputError("cannot read '" + p.string() + "'");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
+    try {
+        return util::read_file(p);
+    } catch (const hc::InputError&) {
+        throw ClusterInputError("cannot read '" + p.string() + "'");
+    }
 }
 
 // Temporary file beside the target, then rename: readers see the old file or the whole new one.
-void write_atomic(const fs::path& target, const std::string& bytes) {
-    fs::path tmp = target;
-    tmp += ".tmp." + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw ClusterRunError("cannot write '" + tmp.string() + "'");
-        out << bytes;
-        out.flush();
-        if (!out) {
-            out.close();
-            fs::remove(tmp);
-            throw ClusterRunError("cannot write '" + tmp.string() + "'");
-        }
-    }
-    fs::rename(tmp, target);
-}
+void write_atomic(const fs::path& target, const std::string& bytes) { util::write_file_atomic(target, bytes); }
 
 std::string index_name(std::size_t i) {
     char buf[32];
@@ -311,7 +287,7 @@ RunSummary run_slurm(const fs::path& dir, const Manifest& m, const std::vector<s
 
 }  // namespace
 
-std::string Manifest::hash() const { return fnv1a64_hex(to_json().dump()); }
+std::string Manifest::hash() const { return util::hex64(util::fnv1a(to_json().dump())); }
 
 json Manifest::to_json() const {
     return json{{"schema", "harris-cosim.manifest/1"}, {"job", job}, {"common", common}, {"shards", shards}};

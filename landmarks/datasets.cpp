@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "calib/calib.hpp"
 #include "landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
@@ -93,24 +94,12 @@ Dataset middlebury_dataset(const fs::path& root, bool need_truth) {
 // ---- KITTI ----------------------------------------------------------------------------
 
 StereoCalib load_kitti_calib(const fs::path& calib_txt) {
-    std::ifstream in(calib_txt);
-    if (!in) throw InputError("KITTI calibration '" + calib_txt.string() + "' cannot be read");
+    // The one reader of KITTI's calib.txt is hc::calib's; its rectified left and right
+    // projections are this rig's P0 and P1.
+    const calib::StereoCalib k = calib::read_kitti_calib(calib_txt);
     StereoCalib c;
-    bool got0 = false, got1 = false;
-    std::string line;
-    while (std::getline(in, line)) {
-        std::istringstream ls(line);
-        std::string key;
-        ls >> key;
-        if (key != "P0:" && key != "P1:") continue;
-        cv::Matx34d P;
-        for (int i = 0; i < 12; ++i)
-            if (!(ls >> P(i / 4, i % 4)))
-                throw InputError("KITTI calibration '" + calib_txt.string() + "': row " + key + " has fewer than 12 numbers");
-        (key == "P0:" ? c.P0 : c.P1) = P;
-        (key == "P0:" ? got0 : got1) = true;
-    }
-    if (!got0 || !got1) throw InputError("KITTI calibration '" + calib_txt.string() + "' lacks a P0: or P1: row");
+    c.P0 = cv::Matx34d(k.P1);
+    c.P1 = cv::Matx34d(k.P2);
     c.validate();
     return c;
 }

@@ -10,21 +10,13 @@
 #include <opencv2/imgproc.hpp>
 
 #include "landmarks/landmarks.hpp"
+#include "util/util.hpp"
 
 namespace fs = std::filesystem;
 
 namespace hc::landmarks {
 
-void write_atomic(const fs::path& target, const std::string& bytes) {
-    if (target.has_parent_path()) fs::create_directories(target.parent_path());
-    const fs::path tmp = target.string() + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary);
-        f << bytes;
-        if (!f.flush()) throw std::runtime_error("cannot write '" + tmp.string() + "'");
-    }
-    fs::rename(tmp, target);
-}
+void write_atomic(const fs::path& target, const std::string& bytes) { util::write_file_atomic(target, bytes); }
 
 void write_png(const fs::path& target, const cv::Mat& img) {
     std::vector<std::uint8_t> buf;
