@@ -19,5 +19,6 @@ void add_sweep_command(CLI::App& app);      // bit-width exploration (cmd_sweep.
 void add_calibrate_command(CLI::App& app);  // stereo calibration of a rig (cmd_calibrate.cpp)
 void add_slam_command(CLI::App& app);       // 2-D EKF-SLAM (cmd_slam.cpp)
 void add_landmarks_command(CLI::App& app);  // descriptors, stereo matches, landmarks (cmd_landmarks.cpp)
+void add_shard_command(CLI::App& app);      // worker and merge ends of sharded runs (cmd_shard.cpp)
 
 }  // namespace hc::tools

@@ -7,6 +7,7 @@
 #include <exception>
 
 #include "tools/commands.hpp"
+#include "tools/runner_flags.hpp"
 #include "util/errors.hpp"
 
 namespace {
@@ -34,6 +35,8 @@ int main(int argc, char** argv) {
     hc::tools::add_calibrate_command(app);
     hc::tools::add_slam_command(app);
     hc::tools::add_landmarks_command(app);
+    hc::tools::add_shard_command(app);
+    hc::tools::set_program_path(argc > 0 ? argv[0] : nullptr);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {   // --help, --version

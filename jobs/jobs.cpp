@@ -1,0 +1,41 @@
+// jobs.cpp: the registry of job kinds and the run-then-merge sequence every sharded command uses.
+#include "jobs/jobs.hpp"
+
+#include <string>
+
+#include "util/util.hpp"
+
+namespace hc::jobs {
+
+const cluster::JobRegistry& registry() {
+    static const cluster::JobRegistry reg = [] {
+        cluster::JobRegistry r;
+        return r;
+    }();
+    return reg;
+}
+
+fs::path merged_path(const fs::path& dir) { return dir / "merged.json"; }
+
+json merge_run(const fs::path& dir) {
+    json merged = cluster::merge(registry(), dir);
+    util::write_file_atomic(merged_path(dir), merged.dump(1) + "\n");
+    return merged;
+}
+
+json run_and_merge(const fs::path& dir, const cluster::Manifest& m, const cluster::RunOptions& o) {
+    registry().at(m.job);   // an unknown kind is bad input before anything is written
+    cluster::prepare_run(dir, m);
+    const cluster::RunSummary s = cluster::run(dir, o);
+    if (!s.failed.empty()) {
+        std::string which;
+        for (std::size_t i : s.failed) which += (which.empty() ? "" : ", ") + std::to_string(i);
+        throw cluster::ClusterRunError(std::to_string(s.failed.size()) + " of " + std::to_string(s.shards) +
+                                       " shard(s) of " + dir.string() + " have no result (" + which +
+                                       "; logs in " + (dir / "logs").string() +
+                                       "); the same command resumes and runs only those");
+    }
+    return merge_run(dir);
+}
+
+}  // namespace hc::jobs

@@ -1,0 +1,46 @@
+// cmd_shard.cpp: `harris-cosim shard`: the worker and merge ends of a sharded run (what the
+// local runner's processes and the Slurm array tasks execute), and a status view.
+#include <cstdio>
+
+#include "cluster/cluster.hpp"
+#include "jobs/jobs.hpp"
+#include "tools/commands.hpp"
+
+namespace hc::tools {
+
+void add_shard_command(CLI::App& app) {
+    struct Opts {
+        std::string dir;
+        std::size_t index = 0;
+    };
+    auto o = std::make_shared<Opts>();
+    CLI::App* cmd = app.add_subcommand(
+        "shard",
+        "The ends of a sharded run (see --runner on eval, verilate, sweep, mutate, landmarks, slam):\n"
+        "`run DIR INDEX` computes one shard, `merge DIR` folds all results into DIR/merged.json,\n"
+        "`status DIR` lists the shards still without a result.");
+    cmd->require_subcommand(1);
+    CLI::App* run = cmd->add_subcommand("run", "compute shard INDEX of the run in DIR and write its result file");
+    run->add_option("dir", o->dir, "run directory")->required();
+    run->add_option("index", o->index, "shard index")->required();
+    run->callback([o]() {
+        cluster::run_shard(jobs::registry(), o->dir, o->index, {{"harris-cosim", "0.1.0"}});
+    });
+    CLI::App* merge = cmd->add_subcommand("merge", "fold every shard result of DIR into DIR/merged.json");
+    merge->add_option("dir", o->dir, "run directory")->required();
+    merge->callback([o]() {
+        jobs::merge_run(o->dir);
+        std::printf("harris-cosim shard merge: wrote %s\n", jobs::merged_path(o->dir).c_str());
+    });
+    CLI::App* status = cmd->add_subcommand("status", "list the shards of DIR without a result");
+    status->add_option("dir", o->dir, "run directory")->required();
+    status->callback([o]() {
+        const cluster::Manifest m = cluster::read_manifest(o->dir);
+        const auto missing = cluster::missing_shards(o->dir, m);
+        std::printf("%s: job %s, %zu of %zu shards done\n", o->dir.c_str(), m.job.c_str(),
+                    m.shards.size() - missing.size(), m.shards.size());
+        for (std::size_t i : missing) std::printf("  missing %zu (log %s)\n", i, cluster::log_path(o->dir, i).c_str());
+    });
+}
+
+}  // namespace hc::tools

@@ -1,0 +1,83 @@
+// runner_flags.cpp: shared sharding flags, the worker's own path, progress lines.
+#include "tools/runner_flags.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include "util/errors.hpp"
+
+namespace hc::tools {
+
+namespace fs = std::filesystem;
+
+void add_runner_flags(CLI::App* cmd, RunnerFlags& f) {
+    const std::string g = "Sharding";
+    cmd->add_option("--runner", f.runner, "where shards run: local (a pool of processes) or slurm (a job array)")
+        ->check(CLI::IsMember({"local", "slurm"}))->capture_default_str()->group(g);
+    cmd->add_option("--jobs", f.jobs, "local runner: shards at once")->check(CLI::Range(1, 1024))->capture_default_str()->group(g);
+    cmd->add_option("--shards", f.shards, "number of shards (0: the command's default)")->check(CLI::Range(0, 100000))->group(g);
+    cmd->add_option("--retries", f.retries, "local runner: extra attempts of a failed shard")->check(CLI::Range(0, 100))->capture_default_str()->group(g);
+    cmd->add_option("--run-dir", f.run_dir, "directory of the run's manifest, shard results and logs (shared by all nodes for slurm)")->group(g);
+    cmd->add_flag("--resume", f.resume, "continue the run in --run-dir: run only the shards without a result")->group(g);
+    cmd->add_option("--partition", f.partition, "slurm: partition")->group(g);
+    cmd->add_option("--account", f.account, "slurm: account")->group(g);
+    cmd->add_option("--time", f.time, "slurm: time limit per shard (sbatch --time)")->group(g);
+    cmd->add_option("--mem", f.mem, "slurm: memory per shard (sbatch --mem)")->group(g);
+    cmd->add_flag("--no-wait", f.no_wait, "slurm: submit the array and the merge job and return")->group(g);
+}
+
+namespace {
+fs::path& program() {
+    static fs::path p;
+    return p;
+}
+}  // namespace
+
+void set_program_path(const char* argv0) {
+    fs::path p = argv0 ? argv0 : "";
+    if (p.has_parent_path()) {
+        std::error_code ec;
+        fs::path c = fs::canonical(p, ec);
+        program() = ec ? fs::absolute(p) : c;
+        return;
+    }
+    if (const char* path = std::getenv("PATH")) {
+        std::stringstream ss(path);
+        std::string d;
+        while (std::getline(ss, d, ':')) {
+            fs::path c = fs::path(d.empty() ? "." : d) / p;
+            if (fs::exists(c)) {
+                program() = fs::canonical(c);
+                return;
+            }
+        }
+    }
+    program() = p;
+}
+
+const fs::path& program_path() { return program(); }
+
+cluster::RunOptions run_options(const RunnerFlags& f, const fs::path& dir) {
+    if (!f.resume && fs::exists(dir / "shards") && !fs::is_empty(dir / "shards"))
+        throw InputError("run directory " + dir.string() +
+                         " already holds shard results: add --resume to continue that run, or choose another --run-dir");
+    cluster::RunOptions o;
+    o.runner = f.runner == "slurm" ? cluster::RunnerKind::slurm : cluster::RunnerKind::local;
+    o.jobs = f.jobs;
+    o.retries = f.retries;
+    o.worker = {program_path().string(), "shard", "run"};
+    o.merger = {program_path().string(), "shard", "merge"};
+    o.slurm.partition = f.partition;
+    o.slurm.account = f.account;
+    o.slurm.time = f.time;
+    o.slurm.mem = f.mem;
+    o.slurm.wait = !f.no_wait;
+    o.progress = [](const cluster::Progress& p) {
+        std::fprintf(stderr, "[shards] %zu/%zu done%s, %.0f s elapsed, ETA %.0f s\n", p.done, p.total,
+                     p.failed ? (", " + std::to_string(p.failed) + " failed").c_str() : "", p.elapsed_s, p.eta_s);
+    };
+    return o;
+}
+
+}  // namespace hc::tools

@@ -1,0 +1,39 @@
+// runner_flags.hpp: the flags every sharded command shares (--runner, --jobs, --shards,
+// --run-dir, --resume, Slurm pass-through) and their translation into cluster::RunOptions.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cluster/cluster.hpp"
+
+namespace hc::tools {
+
+struct RunnerFlags {
+    std::string runner = "local";   ///< local | slurm
+    int jobs = 1;                   ///< local: worker processes at once
+    int shards = 0;                 ///< 0: the command's default split
+    int retries = 1;                ///< local: extra attempts of a failed shard
+    std::string run_dir;            ///< where the manifest, shard results and logs live
+    bool resume = false;            ///< reuse an existing run directory of the same manifest
+    std::string partition, account, time, mem;
+    bool no_wait = false;           ///< slurm: submit and return
+};
+
+/// Adds the flags to `cmd` (in an option group "Sharding").
+void add_runner_flags(CLI::App* cmd, RunnerFlags& f);
+
+/// Sets the path of this executable (main's argv[0], resolved) for the workers it starts.
+void set_program_path(const char* argv0);
+/// The path set above.
+const std::filesystem::path& program_path();
+
+/// The runner options: workers are `harris-cosim shard run DIR INDEX`, the Slurm merge job
+/// `harris-cosim shard merge DIR`; progress (shards done/total, ETA) printed to stderr.
+/// A run directory that already holds results is refused unless --resume is given, so an
+/// earlier run's results are never silently reused (InputError naming the directory).
+cluster::RunOptions run_options(const RunnerFlags& f, const std::filesystem::path& dir);
+
+}  // namespace hc::tools
