@@ -1,7 +1,9 @@
 // eval.cpp: see eval.hpp.
 #include "eval/eval.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <deque>
 #include <cstdio>
 #include <stdexcept>
 
@@ -67,28 +69,88 @@ SourceRun run_spec(const Stream& s, const spec::Options& o, int threads) {
     return r;
 }
 
+namespace {
+
+/// How many of the last writes' positions a checkpoint keeps: more than any stage tag lags
+/// behind the write it is seen on (a run from a checkpoint throws if one ever does).
+constexpr std::size_t kRecentWrites = 256;
+
+/// The host driver over a span's frames: the stream's frames at their place in the whole
+/// stream, a blank frame for the others (never sent: the span starts and stops inside it).
+struct SpanDriver {
+    Image blank;
+    HostDriver drv;
+    SpanDriver(const Stream& s, int offset, int frames_total)
+        : blank(s.frames.at(0).width, s.frames.at(0).height),
+          drv(Geometry{blank.width, blank.height}, pointers(s, offset, frames_total, blank)) {}
+    static std::vector<const Image*> pointers(const Stream& s, int offset, int frames_total, const Image& blank) {
+        if (offset < 0 || offset + static_cast<int>(s.frames.size()) > frames_total)
+            throw InternalError("cycle span: frames [" + std::to_string(offset) + ", " +
+                                std::to_string(offset + s.frames.size()) + ") outside a stream of " +
+                                std::to_string(frames_total));
+        std::vector<const Image*> p(static_cast<std::size_t>(frames_total), &blank);
+        for (std::size_t k = 0; k < s.frames.size(); ++k) p[static_cast<std::size_t>(offset) + k] = &s.frames[k];
+        return p;
+    }
+};
+
+void start_at(const CycleCheckpoint* c, HarrisTop& top, HostDriver& drv) {
+    if (!c) return;
+    try {
+        top.restore_state(c->model);
+        drv.restore(c->driver);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(std::string("cycle model checkpoint does not fit this stream: ") + e.what());
+    }
+}
+
+}  // namespace
+
 CycleRun run_cycle(const Stream& s, const Formats& f, bool progress) {
+    const int n = static_cast<int>(s.frames.size());
+    return run_cycle(s, f, CycleSpan{0, 0, n, n, nullptr, 0}, progress);
+}
+
+CycleRun run_cycle(const Stream& s, const Formats& f, const CycleSpan& span, bool progress) {
     const auto t0 = std::chrono::steady_clock::now();
     const Geometry g{s.frames.at(0).width, s.frames.at(0).height};
-    std::vector<const Image*> ptrs;
-    for (const auto& fr : s.frames) ptrs.push_back(&fr);
-    HostDriver drv(g, ptrs);
+    SpanDriver sd(s, span.offset, span.frames_total);
+    HostDriver& drv = sd.drv;
     HarrisTop top(g, f);
+    start_at(span.start, top, drv);
     const size_t npix = static_cast<size_t>(g.width) * g.height;
-    const int n = static_cast<int>(s.frames.size());
+    const int n = span.last - span.first;   // frames reported
     CycleRun r;
     r.masks.assign(n, std::vector<std::uint8_t>(npix, 0));
     r.thr_map.assign(n, std::vector<std::int64_t>(npix, -1));
     r.thr.assign(n, 0);
     r.max.assign(n, 0);
     r.publications_in_frame.assign(n, 0);
-    std::vector<WritePos> pos;   // WritePos of every write, index = write number - 1
-    pos.reserve(static_cast<size_t>(drv.total_writes()));
+    // WritePos of every write from `base` on, index = write number - 1 - base
+    std::vector<WritePos> pos = span.start ? span.start->recent : std::vector<WritePos>{};
+    const long base = span.start ? span.start->writes - static_cast<long>(pos.size()) : 0;
+    const long begin = span.start ? span.start->writes : 0;
+    const auto pos_of = [&](long write) -> const WritePos& {
+        const long i = write - 1 - base;
+        if (i < 0 || i >= static_cast<long>(pos.size()))
+            throw InternalError("cycle span: a stage holds write " + std::to_string(write) +
+                                ", older than the checkpoint's recent writes");
+        return pos[static_cast<size_t>(i)];
+    };
+    const auto rel = [&](int frame, const char* what) {
+        const int k = frame - span.first;
+        if (k < 0 || k >= n)
+            throw InternalError(std::string("cycle span: ") + what + " of frame " + std::to_string(frame) +
+                                " outside the span's frames [" + std::to_string(span.first) + ", " +
+                                std::to_string(span.last) + ")");
+        return k;
+    };
+    pos.reserve(pos.size() + static_cast<size_t>(drv.total_writes() / std::max(1, span.frames_total) * (n + 1)));
     std::vector<bool> thr_seen(n, false);
     std::vector<Corner> corners;
     BusEvent ev;
     long last_report = 0;
-    while (drv.next(ev)) {
+    while ((span.end_write == 0 || top.writes() < span.end_write) && drv.next(ev)) {
         pos.push_back(ev.pos);
         const Word thr_before = top.thr();
         const long count_before = top.find_max().count;
@@ -98,7 +160,7 @@ CycleRun run_cycle(const Stream& s, const Formats& f, bool progress) {
         if (top.t() & (1U << 4)) {
             const WindowTag w = top.tags().response;
             if (w.valid()) {
-                const WritePos& p = pos[static_cast<size_t>(w.write - 1)];
+                const WritePos& p = pos_of(w.write);
                 if (p.frame > 0 && p.i == 3 && p.j < 6) ++r.mixed_windows;
             }
         }
@@ -107,18 +169,25 @@ CycleRun run_cycle(const Stream& s, const Formats& f, bool progress) {
         // a publication: the period counter wrapped to 1 on this write
         if (top.find_max().count == 1 && count_before != 1) {
             ++r.max_publications;
-            ++r.publications_in_frame[fr];
-            r.max[fr] = top.find_max().max.value();
+            if (fr == span.last) {   // the next frame's preloaded columns
+                ++r.next_publications;
+                r.next_max = top.find_max().max.value();
+            } else {
+                const int k = rel(fr, "a publication");
+                ++r.publications_in_frame[k];
+                r.max[k] = top.find_max().max.value();
+            }
         }
         // the window thresholded on this write: remember its threshold by image position
         const WindowTag th = top.tags().thresholded;
         if (th.valid()) {
-            const Corner c = drv.write_centre(pos[static_cast<size_t>(th.write - 1)], th.quadrant);
+            const Corner c = drv.write_centre(pos_of(th.write), th.quadrant);
             if (c.x >= 0 && c.y >= 0 && c.x < g.width && c.y < g.height) {
-                r.thr_map[c.frame][static_cast<size_t>(c.y) * g.width + c.x] = thr_before.value();
-                if (!thr_seen[c.frame]) {
-                    thr_seen[c.frame] = true;
-                    r.thr[c.frame] = thr_before.value();
+                const int k = rel(c.frame, "a thresholded window");
+                r.thr_map[k][static_cast<size_t>(c.y) * g.width + c.x] = thr_before.value();
+                if (!thr_seen[k]) {
+                    thr_seen[k] = true;
+                    r.thr[k] = thr_before.value();
                 }
             }
         }
@@ -126,18 +195,114 @@ CycleRun run_cycle(const Stream& s, const Formats& f, bool progress) {
             ++r.reads;
             corners.clear();
             drv.decode(*ev.read, top.corner(), corners);
-            for (const Corner& c : corners) r.masks[c.frame][static_cast<size_t>(c.y) * g.width + c.x] = 1;
+            for (const Corner& c : corners)
+                r.masks[rel(c.frame, "a corner")][static_cast<size_t>(c.y) * g.width + c.x] = 1;
         }
         if (progress && top.writes() - last_report >= 2'000'000) {
             last_report = top.writes();
-            std::fprintf(stderr, "\r  cycle model: frame %d/%d, %.0f%% of writes, %.0f s", fr + 1, n,
+            std::fprintf(stderr, "\r  cycle model: frame %d/%d, %.0f%% of writes, %.0f s", fr + 1, span.frames_total,
                          100.0 * top.writes() / drv.total_writes(), since(t0));
         }
     }
     if (progress) std::fprintf(stderr, "\n");
-    r.writes = top.writes();
+    if (span.end_write && top.writes() != span.end_write)
+        throw InternalError("cycle span: the stream ended after " + std::to_string(top.writes()) + " writes, before " +
+                            std::to_string(span.end_write));
+    r.writes = top.writes() - begin;
     r.seconds = since(t0);
     return r;
+}
+
+CycleCheckpoint cycle_checkpoint(const Stream& s, const Formats& f, int offset, int frames_total,
+                                 const CycleCheckpoint* from, int to) {
+    const Geometry g{s.frames.at(0).width, s.frames.at(0).height};
+    if (to <= (from ? from->frame : 0) || to >= frames_total || to >= offset + static_cast<int>(s.frames.size()))
+        throw InternalError("cycle checkpoint: frame " + std::to_string(to) + " is not after the start and in the stream");
+    SpanDriver sd(s, offset, frames_total);
+    HostDriver& drv = sd.drv;
+    HarrisTop top(g, f);
+    start_at(from, top, drv);
+    std::deque<WritePos> recent;
+    if (from) recent.assign(from->recent.begin(), from->recent.end());
+    BusEvent ev;
+    for (;;) {
+        const DriverState before = drv.state();
+        if (!drv.next(ev)) throw InternalError("cycle checkpoint: the stream ended before frame " + std::to_string(to));
+        if (ev.pos.frame == to && !ev.pos.tail) {
+            CycleCheckpoint c;
+            c.frame = to;
+            c.model = top.save_state();
+            c.driver = before;
+            c.writes = top.writes();
+            c.recent.assign(recent.begin(), recent.end());
+            return c;
+        }
+        top.write(ev.data);
+        recent.push_back(ev.pos);
+        if (recent.size() > kRecentWrites) recent.pop_front();
+    }
+}
+
+namespace {
+
+std::string hex_of(const std::string& bytes) {
+    static const char* d = "0123456789abcdef";
+    std::string h;
+    h.reserve(bytes.size() * 2);
+    for (unsigned char c : bytes) {
+        h += d[c >> 4];
+        h += d[c & 15];
+    }
+    return h;
+}
+
+std::string bytes_of(const std::string& hex) {
+    if (hex.size() % 2) throw InputError("cycle model checkpoint: odd number of hex digits");
+    const auto nib = [](char c) -> int {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        throw InputError(std::string("cycle model checkpoint: '") + c + "' is not a hex digit");
+    };
+    std::string b(hex.size() / 2, '\0');
+    for (std::size_t i = 0; i < b.size(); ++i) b[i] = static_cast<char>(nib(hex[2 * i]) << 4 | nib(hex[2 * i + 1]));
+    return b;
+}
+
+}  // namespace
+
+nlohmann::json to_json(const CycleCheckpoint& c) {
+    const DriverState& d = c.driver;
+    nlohmann::json recent = nlohmann::json::array();
+    for (const WritePos& p : c.recent) recent.push_back({p.frame, p.i, p.j, p.k, p.tail});
+    return {{"frame", c.frame},
+            {"writes", c.writes},
+            {"model", hex_of(c.model)},
+            {"driver", {d.frame, d.i, d.j, d.k, d.in_tail, d.tail_col, d.preload, d.done, d.px[0], d.px[1], d.px[2],
+                        d.py[0], d.py[1], d.py[2], d.column_open}},
+            {"recent", recent}};
+}
+
+CycleCheckpoint checkpoint_from_json(const nlohmann::json& j) {
+    try {
+        CycleCheckpoint c;
+        c.frame = j.at("frame").get<int>();
+        c.writes = j.at("writes").get<long>();
+        c.model = bytes_of(j.at("model").get<std::string>());
+        const auto& d = j.at("driver");
+        if (d.size() != 15) throw InputError("cycle model checkpoint: the driver state has " + std::to_string(d.size()) + " fields, not 15");
+        DriverState& s = c.driver;
+        s.frame = d[0]; s.i = d[1]; s.j = d[2]; s.k = d[3]; s.in_tail = d[4]; s.tail_col = d[5];
+        s.preload = d[6]; s.done = d[7];
+        for (int n = 0; n < 3; ++n) {
+            s.px[n] = d[8 + n];
+            s.py[n] = d[11 + n];
+        }
+        s.column_open = d[14];
+        for (const auto& p : j.at("recent")) c.recent.push_back(WritePos{p.at(0), p.at(1), p.at(2), p.at(3), p.at(4)});
+        return c;
+    } catch (const nlohmann::json::exception& e) {
+        throw InputError(std::string("cycle model checkpoint: ") + e.what());
+    }
 }
 
 std::vector<std::vector<std::uint8_t>> run_reference(const Stream& s, const spec::ReferenceOptions& o,

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -60,10 +61,45 @@ struct CycleRun : SourceRun {
     long mixed_windows = 0;            ///< windows entering find-max that mix two frames
     long max_publications = 0;         ///< times find-max published a maximum
     std::vector<long> publications_in_frame;   ///< publications while each frame streamed
+    /// a span that stops before the stream's end: the publications (and the last maximum)
+    /// while the next frame's first columns were written, which belong to that frame
+    long next_publications = 0;
+    std::int64_t next_max = 0;
+};
+
+/// A point of a stream where the cycle model resumes exactly: before the first write of a
+/// frame's body (after its first columns were preloaded by the previous frame's tail).
+struct CycleCheckpoint {
+    int frame = 0;                   ///< the frame whose body starts here
+    std::string model;               ///< HarrisTop::save_state(): every register
+    DriverState driver;              ///< the host driver's position
+    long writes = 0;                 ///< writes before this point
+    std::vector<WritePos> recent;    ///< where the last writes came from (oldest first), for
+                                     ///< the stage tags of windows still in the pipeline
+};
+nlohmann::json to_json(const CycleCheckpoint& c);
+CycleCheckpoint checkpoint_from_json(const nlohmann::json& j);   ///< InputError when malformed
+
+/// Which part of a stream a cycle run covers. The stream handed to it holds frames
+/// [offset, offset + size) of a stream of `frames_total` frames; the run reports frames
+/// [first, last) and starts at `start` (none: reset, frame 0), stopping after `end_write`
+/// writes (0: at the stream's end), which must be a checkpoint's `writes`.
+struct CycleSpan {
+    int offset = 0, first = 0, last = 0, frames_total = 0;
+    const CycleCheckpoint* start = nullptr;
+    long end_write = 0;
 };
 
 SourceRun run_spec(const Stream& s, const spec::Options& o, int threads);
+/// The whole stream from reset.
 CycleRun run_cycle(const Stream& s, const Formats& f, bool progress);
+/// A span of a stream (see CycleSpan); vectors are indexed from span.first.
+CycleRun run_cycle(const Stream& s, const Formats& f, const CycleSpan& span, bool progress);
+/// The checkpoint before frame `to`'s body: the model run from `from` (none: reset) over
+/// the stream (frames [offset, offset + size) of `frames_total`), which must hold the frames
+/// from `from`'s through `to`. The serial pre-pass of a run split within a sequence.
+CycleCheckpoint cycle_checkpoint(const Stream& s, const Formats& f, int offset, int frames_total,
+                                 const CycleCheckpoint* from, int to);
 
 /// The reference masks of all frames (in parallel).
 std::vector<std::vector<std::uint8_t>> run_reference(const Stream& s, const spec::ReferenceOptions& o,

@@ -15,6 +15,7 @@
 #include "cosim/verilator/lockstep.hpp"
 #include "cosim/verilator/netlist.hpp"
 #include "eval/evaluate.hpp"
+#include "eval/sequences.hpp"
 #include "model/driver/host_driver.hpp"
 
 namespace fs = std::filesystem;
@@ -111,6 +112,167 @@ SourceRun run_rtl_source(const Stream& stream, long& mismatches) {
 
 }  // namespace
 
+std::vector<AblationVariant> ablation_variants() {
+    std::vector<AblationVariant> vs;
+    spec::Options base;
+    vs.push_back({"none: thesis spec model", base});
+    { auto x = base; x.k = spec::KRule::exact; vs.push_back({"k = 0.04 exactly", x}); }
+    { auto x = base; x.thr = spec::ThrRule::exact; vs.push_back({"threshold 0.01 x max exactly", x}); }
+    { auto x = base; x.formats = spec::Options::untruncated(); vs.push_back({"no truncation in M and block sum", x}); }
+    { auto x = base; x.max_from = spec::MaxFrom::current; vs.push_back({"current-frame maximum", x}); }
+    { auto x = base; x.nms = spec::Nms::non_strict; vs.push_back({"non-strict NMS (== dilate)", x}); }
+    { auto x = base; x.border = spec::Border::reflect101; vs.push_back({"OpenCV border (reflect-101)", x}); }
+    {
+        spec::Options x;
+        x.k = spec::KRule::exact; x.thr = spec::ThrRule::exact; x.formats = spec::Options::untruncated();
+        x.max_from = spec::MaxFrom::current; x.nms = spec::Nms::non_strict; x.border = spec::Border::reflect101;
+        vs.push_back({"all of the above together", x});
+    }
+    return vs;
+}
+
+namespace {
+
+/// Frames [a, b) of a stream (indices into it).
+Stream slice(const Stream& s, int a, int b) {
+    Stream o;
+    o.frames.assign(s.frames.begin() + a, s.frames.begin() + b);
+    o.names.assign(s.names.begin() + a, s.names.begin() + b);
+    o.pair_index.assign(s.pair_index.begin() + a, s.pair_index.begin() + b);
+    o.description = s.description;
+    return o;
+}
+
+}  // namespace
+
+Part evaluate_part(const PartInput& in) {
+    const Stream& s = *in.stream;
+    const int held = static_cast<int>(s.frames.size());
+    const bool look_back = in.first > 0;   // the previous frame's maximum sets the first threshold
+    if (in.first >= in.last || in.first - (look_back ? 1 : 0) < in.offset || in.last > in.offset + held ||
+        in.last > in.frames_total)
+        throw InternalError(fmt::format("eval part: frames [{}, {}) and their neighbours are not in the frames [{}, {}) held",
+                                        in.first, in.last, in.offset, in.offset + held));
+    const Source source = in.source;
+    const Stream own = slice(s, in.first - in.offset, in.last - in.offset);
+    const Stream with_prev = slice(s, in.first - in.offset - (look_back ? 1 : 0), in.last - in.offset);
+    const int n = in.last - in.first;
+    // the spec model over the part, its first threshold from the previous frame's maximum
+    const auto spec_run = [&](const spec::Options& opt) {
+        SourceRun r = run_spec(with_prev, opt, in.threads);
+        if (look_back) {
+            r.masks.erase(r.masks.begin());
+            r.thr.erase(r.thr.begin());
+            r.max.erase(r.max.begin());
+        }
+        return r;
+    };
+    Part p;
+    p.sequence = own.names.front().substr(0, own.names.front().find('/'));
+    p.width = own.frames[0].width;
+    p.height = own.frames[0].height;
+    p.first_pair = in.first_pair;
+    p.last_pair = in.last_pair;
+
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto ref = run_reference(own, spec::ReferenceOptions{}, in.threads);
+    p.seconds_reference = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    SourceRun run;
+    CycleRun cyc;
+    if (source == Source::spec) {
+        run = spec_run(spec::Options{});
+    } else if (source == Source::rtl) {
+        if (in.first != 0 || in.last != in.frames_total)
+            throw InternalError("eval part: the RTL source runs whole sequences only");
+        run = run_rtl_source(own, p.rtl_mismatches);
+    } else {
+        cyc = run_cycle(s, Formats{}, CycleSpan{in.offset, in.first, in.last, in.frames_total, in.start, in.end_write},
+                        true);
+        run = cyc;
+        p.publications = cyc.publications_in_frame;
+        p.next_publications = cyc.next_publications;
+        p.next_max = cyc.next_max;
+        p.mixed_windows = cyc.mixed_windows;
+        p.max_publications = cyc.max_publications;
+        p.writes = cyc.writes;
+        p.reads = cyc.reads;
+    }
+    p.seconds_source = run.seconds;
+    // scoring: drop the first pair (threshold seed) and, but for the spec model, the last
+    // (its last windows are read only while a next pair is written)
+    auto scored = [&](int k) {
+        return own.pair_index[k] != in.first_pair && (source == Source::spec || own.pair_index[k] != in.last_pair);
+    };
+    for (int k = 0; k < n; ++k) {
+        FrameRow row;
+        row.frame = in.first + k;
+        row.name = own.names[k];
+        row.pair = own.pair_index[k];
+        row.scored = scored(k);
+        row.c = classify(run.masks[k], ref[k]);
+        row.source_corners = spec::count_corners(run.masks[k]);
+        row.reference_corners = spec::count_corners(ref[k]);
+        row.thr = run.thr[k];
+        row.max = run.max[k];
+        p.rows.push_back(row);
+        if (in.on_masks) in.on_masks(in.first + k, own.frames[k], run.masks[k], ref[k]);
+    }
+
+    if (in.ablation) {
+        for (const auto& v : ablation_variants()) {
+            const auto r = spec_run(v.opt);
+            Confusion c;
+            for (int k = 0; k < n; ++k)
+                if (own.pair_index[k] != in.first_pair) c.add(classify(r.masks[k], ref[k]));
+            p.ablation.push_back(c);
+        }
+    }
+
+    // ---- deviations (cycle source) -----------------------------------------------------
+    if (source == Source::cycle) {
+        const Geometry g{p.width, p.height};
+        const int W = g.width, H = g.height;
+        const spec::SpecModel sm;
+        const auto sp = spec_run(spec::Options{});
+        const int x_lost = g.width / 2 - 1, x_lost2 = x_lost + g.dj();          // latched under load
+        const int x_hw_max = g.width / 2 - 1 + g.dj(), y_hw_max = g.height / 2 - 1 + g.di();
+        std::vector<std::vector<std::uint8_t>> at_hw_thr(n);
+        tbb::task_arena arena(in.threads > 0 ? in.threads : tbb::task_arena::automatic);
+        arena.execute([&] {
+            tbb::parallel_for(0, n, [&](int k) {
+                if (!scored(k)) return;
+                spec::Response r;
+                sm.response(own.frames[k], r);
+                const auto& tm = cyc.thr_map[k];
+                sm.corners(r, [&](int x, int y) { return tm[static_cast<size_t>(y) * W + x] < 0 ? INT64_MAX / 4 : tm[static_cast<size_t>(y) * W + x]; },
+                           at_hw_thr[k]);
+            });
+        });
+        for (int k = 0; k < n; ++k) {
+            if (!scored(k)) continue;
+            ++p.scored_frames;
+            const auto& hw = run.masks[k];
+            const auto& sk = sp.masks[k];
+            const auto& t = at_hw_thr[k];
+            for (int y = 3; y < H - 3; ++y)
+                for (int x = 3; x < W - 3; ++x) {
+                    const size_t i = static_cast<size_t>(y) * W + x;
+                    const bool in_spec = x <= W - 4 && y <= H - 4;
+                    if (!in_spec) continue;
+                    const bool out_hw = x > x_hw_max || y > y_hw_max;
+                    const bool lost = !out_hw && (x == x_lost || x == x_lost2);
+                    p.diff_total += hw[i] != sk[i];
+                    if (out_hw) { p.outside += sk[i]; continue; }
+                    if (lost) { p.lost_col += sk[i]; continue; }
+                    p.drift += sk[i] != t[i];
+                    p.residual += hw[i] != t[i];
+                }
+        }
+    }
+    return p;
+}
+
 Report evaluate(const Request& o) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
@@ -123,7 +285,6 @@ Report evaluate(const Request& o) {
     const std::vector<int>& overlays = o.overlays;
     cv::setNumThreads(1);   // frames run in parallel; OpenCV's own threads would oversubscribe
 
-    // ---- frames ------------------------------------------------------------------------
     std::fprintf(stderr, "eval: loading frames...\n");
     Stream stream;
     const fs::path& kitti_dir = o.kitti;
@@ -136,161 +297,37 @@ Report evaluate(const Request& o) {
         if (f < 0 || f >= n) throw InputError(fmt::format("--overlay frame {} is not in the stream (0..{})", f, n - 1));
     fs::create_directories(o.out);
     std::fprintf(stderr, "eval: %s\n", stream.description.c_str());
+    std::fprintf(stderr, "eval: OpenCV reference, %s source%s on %d frames...\n", source_name(source).c_str(),
+                 o.ablation ? ", ablation" : "", n);
 
-    // ---- reference ---------------------------------------------------------------------
-    std::fprintf(stderr, "eval: OpenCV reference on %d frames...\n", n);
-    const double tr0 = secs();
-    const auto ref = run_reference(stream, spec::ReferenceOptions{}, o.threads);
-    const double t_ref = secs() - tr0;
-
-    // ---- source ------------------------------------------------------------------------
-    std::fprintf(stderr, "eval: %s source...\n", source_name(source).c_str());
-    SourceRun run;
-    CycleRun cyc;
-    long rtl_mismatches = 0;
-    if (source == Source::spec) {
-        run = run_spec(stream, spec::Options{}, o.threads);
-    } else if (source == Source::rtl) {
-        run = run_rtl_source(stream, rtl_mismatches);
-    } else {
-        cyc = run_cycle(stream, Formats{}, true);
-        run = cyc;
-    }
-    // scoring: drop the first pair (threshold seed) and, for the cycle model, the last
-    // (its last windows are read only while a next pair is written)
-    const int last_pair = stream.pair_index.back();
-    auto scored = [&](int k) {
-        return stream.pair_index[k] != stream.pair_index.front() &&
-               (source == Source::spec || stream.pair_index[k] != last_pair);
+    PartInput in;
+    in.source = source;
+    in.stream = &stream;
+    in.first = 0;
+    in.last = n;
+    in.frames_total = n;
+    in.first_pair = stream.pair_index.front();
+    in.last_pair = stream.pair_index.back();
+    in.ablation = o.ablation;
+    in.threads = o.threads;
+    std::vector<std::string> overlay_files;
+    in.on_masks = [&](int k, const Image& img, const std::vector<std::uint8_t>& src, const std::vector<std::uint8_t>& ref) {
+        if (std::find(overlays.begin(), overlays.end(), k) == overlays.end()) return;
+        const std::string file = fmt::format("overlay_{:03}.png", k);
+        write_overlay(fs::path(o.out) / file, img, src, ref);
+        overlay_files.push_back(file);
     };
-    Report rep;
-    rep.source = source_name(source);
+    const Part part = evaluate_part(in);
+
+    Report rep = merge_parts({part}, source, o.ablation);
     rep.stream = stream.description;
     rep.threads = o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency();
     rep.command = o.command;
-    rep.seconds_source = run.seconds;
-    if (source == Source::rtl)
-        rep.notes.push_back(fmt::format(
-            "RTL source: GHDL-synthesised netlist under Verilator (gate passed), {} reads disagreeing with the "
-            "cycle model run in lock step; the thr/max columns are not observed on the netlist (-1).",
-            rtl_mismatches));
-    rep.seconds_reference = t_ref;
-    for (int k = 0; k < n; ++k) {
-        FrameRow row;
-        row.frame = k;
-        row.name = stream.names[k];
-        row.pair = stream.pair_index[k];
-        row.scored = scored(k);
-        row.c = classify(run.masks[k], ref[k]);
-        row.source_corners = spec::count_corners(run.masks[k]);
-        row.reference_corners = spec::count_corners(ref[k]);
-        row.thr = run.thr[k];
-        row.max = run.max[k];
-        if (row.scored) rep.total.add(row.c);
-        rep.frames.push_back(row);
-    }
-
-    // ---- ablation (spec model) ---------------------------------------------------------
-    if (o.ablation) {
-        std::fprintf(stderr, "eval: ablation...\n");
-        struct V { std::string name; spec::Options opt; };
-        std::vector<V> vs;
-        spec::Options base;
-        vs.push_back({"none: thesis spec model", base});
-        { auto x = base; x.k = spec::KRule::exact; vs.push_back({"k = 0.04 exactly", x}); }
-        { auto x = base; x.thr = spec::ThrRule::exact; vs.push_back({"threshold 0.01 x max exactly", x}); }
-        { auto x = base; x.formats = spec::Options::untruncated(); vs.push_back({"no truncation in M and block sum", x}); }
-        { auto x = base; x.max_from = spec::MaxFrom::current; vs.push_back({"current-frame maximum", x}); }
-        { auto x = base; x.nms = spec::Nms::non_strict; vs.push_back({"non-strict NMS (== dilate)", x}); }
-        { auto x = base; x.border = spec::Border::reflect101; vs.push_back({"OpenCV border (reflect-101)", x}); }
-        {
-            spec::Options x;
-            x.k = spec::KRule::exact; x.thr = spec::ThrRule::exact; x.formats = spec::Options::untruncated();
-            x.max_from = spec::MaxFrom::current; x.nms = spec::Nms::non_strict; x.border = spec::Border::reflect101;
-            vs.push_back({"all of the above together", x});
-        }
-        for (const auto& v : vs) {
-            const auto r = run_spec(stream, v.opt, o.threads);
-            AblationRow a{v.name, v.opt.describe(), {}};
-            for (int k = 0; k < n; ++k)
-                if (stream.pair_index[k] != stream.pair_index.front()) a.c.add(classify(r.masks[k], ref[k]));
-            rep.ablation.push_back(a);
-        }
-        rep.notes.push_back("Ablation rows score every pair but the first (the spec model has no incomplete last pair).");
-    }
-
-    // ---- deviations (cycle source) -----------------------------------------------------
-    if (source == Source::cycle) {
-        std::fprintf(stderr, "eval: deviation catalog...\n");
-        const Geometry g{stream.frames[0].width, stream.frames[0].height};
-        const int W = g.width, H = g.height;
-        const spec::SpecModel sm;
-        const auto sp = run_spec(stream, spec::Options{}, o.threads);
-        const int x_lost = g.width / 2 - 1, x_lost2 = x_lost + g.dj();          // latched under load
-        const int x_hw_max = g.width / 2 - 1 + g.dj(), y_hw_max = g.height / 2 - 1 + g.di();
-        long lost_col = 0, outside = 0, drift = 0, residual = 0, diff_total = 0;
-        long outside_px = 0;
-        std::vector<std::vector<std::uint8_t>> at_hw_thr(n);
-        tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
-        arena.execute([&] {
-            tbb::parallel_for(0, n, [&](int k) {
-                if (!scored(k)) return;
-                spec::Response r;
-                sm.response(stream.frames[k], r);
-                const auto& tm = cyc.thr_map[k];
-                sm.corners(r, [&](int x, int y) { return tm[static_cast<size_t>(y) * W + x] < 0 ? INT64_MAX / 4 : tm[static_cast<size_t>(y) * W + x]; },
-                           at_hw_thr[k]);
-            });
-        });
-        long scored_frames = 0;
-        for (int k = 0; k < n; ++k) {
-            if (!scored(k)) continue;
-            ++scored_frames;
-            const auto& hw = run.masks[k];
-            const auto& s = sp.masks[k];
-            const auto& t = at_hw_thr[k];
-            for (int y = 3; y < H - 3; ++y)
-                for (int x = 3; x < W - 3; ++x) {
-                    const size_t i = static_cast<size_t>(y) * W + x;
-                    const bool in_spec = x <= W - 4 && y <= H - 4;
-                    if (!in_spec) continue;
-                    const bool out_hw = x > x_hw_max || y > y_hw_max;
-                    const bool lost = !out_hw && (x == x_lost || x == x_lost2);
-                    diff_total += hw[i] != s[i];
-                    if (out_hw) { outside += s[i]; continue; }
-                    if (lost) { lost_col += s[i]; continue; }
-                    drift += s[i] != t[i];
-                    residual += hw[i] != t[i];
-                }
-        }
-        outside_px = static_cast<long>((W - 4) - x_hw_max) * (H - 7) + static_cast<long>((H - 4) - y_hw_max) * (W - 7);
-        rep.deviations.push_back({"window of a row's last column latched while load is high (never processed)",
-                                  fmt::format("columns x = {} and {} (rows 3..{}): {} pixels per frame", x_lost, x_lost2,
-                                              y_hw_max, 2 * (g.height / 2 - 3)),
-                                  lost_col, "spec corners on those columns, summed over scored frames (the hardware reports none)"});
-        rep.deviations.push_back({"find-max period (h/2-3)(w/2+3)*4 != enabled steps per frame: threshold drifts",
-                                  fmt::format("every processed pixel; {} maxima published over {} frames", cyc.max_publications, n),
-                                  drift, "pixels where spec corners with the previous frame's maximum differ from spec corners with the threshold the cycle model applied to each window"});
-        rep.deviations.push_back({"windows mixing two frames at a frame start (load not raised at frame end)",
-                                  fmt::format("{} windows entered find-max with columns of two frames", cyc.mixed_windows), 0,
-                                  "window provenance tags of the cycle model; their centres have x < 3 and are never read, they only feed find-max"});
-        rep.deviations.push_back({"border and last column/row of odd sizes (centres beyond the host's loops)",
-                                  fmt::format("x in {}..{} or y in {}..{}: {} pixels per frame", x_hw_max + 1, W - 4,
-                                              y_hw_max + 1, H - 4, outside_px),
-                                  outside, "spec corners there, summed over scored frames"});
-        rep.deviations.push_back({"unexplained (cycle model vs spec model at the cycle model's thresholds)", "processed pixels",
-                                  residual, "must be 0: every remaining difference is a bug"});
-        rep.notes.push_back(fmt::format("Cycle vs spec corner masks differ on {} pixels of {} scored frames in total "
-                                        "(pixels x,y in 3..w-4, 3..h-4).", diff_total, scored_frames));
-        rep.notes.push_back(fmt::format("Cycle model: {} writes, {} reads, {:.1f} s.", cyc.writes, cyc.reads, cyc.seconds));
-    }
-
-    // ---- outputs -----------------------------------------------------------------------
-    for (int f : overlays) {
-        const std::string file = fmt::format("overlay_{:03}.png", f);
-        write_overlay(fs::path(o.out) / file, stream.frames[f], run.masks[f], ref[f]);
-        rep.overlays.push_back(file);
-    }
+    rep.seconds_source = part.seconds_source;
+    rep.seconds_reference = part.seconds_reference;
+    for (int f : overlays)   // in the order asked for
+        if (std::find(overlay_files.begin(), overlay_files.end(), fmt::format("overlay_{:03}.png", f)) != overlay_files.end())
+            rep.overlays.push_back(fmt::format("overlay_{:03}.png", f));
     rep.seconds_total = secs();
     write_plot(o.out, rep);
     write_reports(o.out, rep);

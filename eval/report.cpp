@@ -38,8 +38,11 @@ std::string markdown(const Report& r) {
     std::ostringstream m;
     m << "# Harris co-processor vs OpenCV: " << r.source << " source\n\n";
     m << "Stream: " << r.stream << "  \nCommand: `" << r.command << "`  \n";
-    m << fmt::format("Time: source {:.2f} s, OpenCV reference {:.2f} s, total {:.2f} s ({} threads)\n\n",
-                     r.seconds_source, r.seconds_reference, r.seconds_total, r.threads);
+    if (r.seconds_total > 0)
+        m << fmt::format("Time: source {:.2f} s, OpenCV reference {:.2f} s, total {:.2f} s ({} threads)\n\n",
+                         r.seconds_source, r.seconds_reference, r.seconds_total, r.threads);
+    else
+        m << "\n";
     m << "Metrics, reference and protocol: docs/metrics.md. Scored frames: "
       << std::count_if(r.frames.begin(), r.frames.end(), [](const FrameRow& f) { return f.scored; }) << " of "
       << r.frames.size() << ".\n\n";
@@ -55,6 +58,18 @@ std::string markdown(const Report& r) {
     m << fmt::format("| F1 | {:.6f} | {:.6f} |\n\n", r.total.f1(), th.f1());
     m << "The thesis scored KITTI sequence 00 (4541 pairs); only one stereo pair of 00 is available here, so "
          "the figures are not directly comparable.\n\n";
+    if (!r.sequences.empty()) {
+        m << "## Per sequence (each streamed from its own reset)\n\n";
+        m << "| sequence | pairs | frames | scored | TP | FP | FN | recall | precision |\n"
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+        for (const auto& q : r.sequences)
+            m << fmt::format("| {} | {}..{} | {} | {} | {} | {} | {} | {:.6f} | {:.6f} |\n", q.sequence, q.first_pair,
+                             q.last_pair, q.frames, q.scored, num(q.c.tp), num(q.c.fp), num(q.c.fn), q.c.recall(),
+                             q.c.precision());
+        m << fmt::format("| total | | {} | {} | {} | {} | {} | {:.6f} | {:.6f} |\n\n", r.frames.size(),
+                         std::count_if(r.frames.begin(), r.frames.end(), [](const FrameRow& f) { return f.scored; }),
+                         num(r.total.tp), num(r.total.fp), num(r.total.fn), r.total.recall(), r.total.precision());
+    }
     if (!r.ablation.empty()) {
         m << "## Ablation: one approximation switched back to ideal at a time (spec model)\n\n";
         m << "| variant | recall | precision | F1 | TP | FP | FN | options |\n|---|---:|---:|---:|---:|---:|---:|---|\n";
@@ -71,7 +86,8 @@ std::string markdown(const Report& r) {
         m << "\n";
     }
     for (const auto& n : r.notes) m << "- " << n << "\n";
-    m << "\nFiles: `frames.csv` (per frame), `totals.json`";
+    m << "\nFiles: `frames.csv` (per frame), " << (r.sequences.empty() ? "" : "`sequences.csv` (per sequence), ")
+      << "`totals.json`";
     if (!r.overlays.empty()) {
         m << ", overlays (green both, red " << r.source << " only, blue OpenCV only):";
         for (const auto& f : r.overlays) m << " `" << f << "`";
@@ -102,7 +118,17 @@ void write_reports(const fs::path& out, const Report& r) {
     };
     j["totals"] = conf(r.total);
     j["scored_frames"] = std::count_if(r.frames.begin(), r.frames.end(), [](const FrameRow& f) { return f.scored; });
-    j["seconds"] = {{"source", r.seconds_source}, {"reference", r.seconds_reference}, {"total", r.seconds_total}};
+    if (r.seconds_total > 0)
+        j["seconds"] = {{"source", r.seconds_source}, {"reference", r.seconds_reference}, {"total", r.seconds_total}};
+    std::ostringstream seq_csv;
+    seq_csv << "sequence,first_pair,last_pair,frames,scored,tp,tn,fp,fn,recall,precision\n";
+    for (const auto& q : r.sequences) {
+        j["sequences"].push_back({{"sequence", q.sequence}, {"first_pair", q.first_pair}, {"last_pair", q.last_pair},
+                                  {"frames", q.frames}, {"scored_frames", q.scored}, {"metrics", conf(q.c)}});
+        seq_csv << fmt::format("{},{},{},{},{},{},{},{},{},{:.6f},{:.6f}\n", q.sequence, q.first_pair, q.last_pair,
+                               q.frames, q.scored, q.c.tp, q.c.tn, q.c.fp, q.c.fn, q.c.recall(), q.c.precision());
+    }
+    if (!r.sequences.empty()) util::write_file_atomic(out / "sequences.csv", seq_csv.str());
     j["thesis_table5"] = {{"tp", kTp}, {"tn", kTn}, {"fp", kFp}, {"fn", kFn},
                           {"recall", 0.964830}, {"specificity", 0.999912}, {"precision", 0.965546}};
     for (const auto& a : r.ablation) j["ablation"].push_back({{"variant", a.name}, {"options", a.options}, {"metrics", conf(a.c)}});

@@ -33,11 +33,20 @@ struct DeviationRow {
     std::string measured;   ///< how it was measured
 };
 
+/// One sequence of a report over several (per-sequence totals of its scored frames).
+struct SequenceRow {
+    std::string sequence;
+    int first_pair = 0, last_pair = 0;   ///< stereo pairs first..last, both included
+    int frames = 0, scored = 0;
+    Confusion c;
+};
+
 struct Report {
     std::string source, stream, command;
     int threads = 0;
     double seconds_source = 0, seconds_reference = 0, seconds_total = 0;
     std::vector<FrameRow> frames;
+    std::vector<SequenceRow> sequences;   ///< empty: a single stream
     Confusion total;
     std::vector<AblationRow> ablation;
     std::vector<DeviationRow> deviations;
@@ -45,6 +54,9 @@ struct Report {
     std::vector<std::string> overlays;   ///< overlay PNG files written (names in the output directory)
 };
 
+/// summary.md, frames.csv, totals.json (and sequences.csv with several sequences). Timings
+/// appear only when measured (seconds_total > 0): a report folded from the parts of a
+/// sharded run carries none, so its CSV and JSON are the same whichever way it was split.
 void write_reports(const std::filesystem::path& out, const Report& r);
 /// Overlay: the frame in grey, both = green, source only = red, reference only = blue.
 void write_overlay(const std::filesystem::path& file, const Image& img, const std::vector<std::uint8_t>& src,

@@ -10,6 +10,8 @@ namespace hc::jobs {
 const cluster::JobRegistry& registry() {
     static const cluster::JobRegistry reg = [] {
         cluster::JobRegistry r;
+        add_eval_job(r);
+        add_verilate_job(r);
         return r;
     }();
     return reg;

@@ -6,20 +6,28 @@
 
 #include <fmt/format.h>
 
+#include "cluster/cluster.hpp"
 #include "eval/evaluate.hpp"
+#include "eval/sequences.hpp"
 #include "frames/frames.hpp"
+#include "jobs/jobs.hpp"
 #include "tools/commands.hpp"
+#include "tools/runner_flags.hpp"
 
 namespace fs = std::filesystem;
+using nlohmann::json;
 
 namespace hc::tools {
 
 namespace {
 
 struct EvalOptions {
-    std::string kitti, sequence = "01", source = "spec", out = "eval-report", frames, overlay, data;
+    std::string kitti, sequence = "01", sequences, source = "spec", out = "eval-report", frames, overlay, data;
     int threads = 0;
     bool ablation = true;
+    RunnerFlags runner;
+    bool sharded = false;        ///< a sharding flag was given
+    bool threads_given = false;
 };
 
 std::vector<int> parse_list(const std::string& s) {
@@ -37,7 +45,57 @@ std::vector<int> parse_list(const std::string& s) {
     return v;
 }
 
+/// Several sequences, or any run through the runner: a manifest of parts, run in this
+/// process or sharded, the report rendered from the merged data only.
+void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
+    if (!o.overlay.empty())
+        throw InputError("--overlay draws frames of a single stream: leave out --sequences and the sharding flags");
+    jobs::EvalJob j;
+    j.source = eval::source_name(eval::parse_source(o.source));
+    j.kitti = kitti;
+    j.sequences = o.sequences.empty() ? std::vector<std::string>{o.sequence} : eval::parse_sequences(o.sequences);
+    if (!o.frames.empty()) j.pairs = util::parse_range(o.frames, "--frames");
+    j.pairs_flag = "--frames " + (o.frames.empty() ? std::string("(all)") : o.frames);
+    j.ablation = o.ablation;
+    j.shards = o.sharded ? o.runner.shards : 0;
+    // a shard is one process on one core unless --threads says otherwise
+    j.threads = o.sharded && !o.threads_given ? 1 : o.threads;
+    const cluster::Manifest m = jobs::eval_manifest(j);
+    if (j.source == "rtl") jobs::prepare_rtl(m);
+    json merged;
+    if (o.sharded) {
+        const fs::path dir = o.runner.run_dir.empty() ? fs::path(o.out) / "run" : fs::path(o.runner.run_dir);
+        std::fprintf(stderr, "eval: %zu shard(s) in %s\n", m.shards.size(), dir.c_str());
+        merged = jobs::run_and_merge(dir, m, run_options(o.runner, dir));
+    } else {
+        merged = cluster::run_in_process(jobs::registry(), m);
+    }
+    eval::Report rep = jobs::eval_report(merged);
+    rep.command = fmt::format("harris-cosim eval --source {} --kitti {} --sequences {}{}{} --out {}", j.source,
+                              kitti.string(), o.sequences.empty() ? o.sequence : o.sequences,
+                              o.frames.empty() ? "" : " --frames " + o.frames, o.ablation ? "" : " --no-ablation", o.out);
+    fs::create_directories(o.out);
+    eval::write_plot(o.out, rep);
+    eval::write_reports(o.out, rep);
+    for (const auto& q : rep.sequences)
+        std::fprintf(stderr, "eval: sequence %s: %d scored frames, recall %.6f precision %.6f\n", q.sequence.c_str(),
+                     q.scored, q.c.recall(), q.c.precision());
+    std::fprintf(stderr, "eval: %s: recall %.6f precision %.6f (TP %llu FP %llu FN %llu); report in %s\n",
+                 rep.source.c_str(), rep.total.recall(), rep.total.precision(), (unsigned long long)rep.total.tp,
+                 (unsigned long long)rep.total.fp, (unsigned long long)rep.total.fn,
+                 (fs::path(o.out) / "summary.md").c_str());
+}
+
 void run_eval(const EvalOptions& o) {
+    if (!o.sequences.empty() || o.sharded) {
+        fs::path kitti = o.kitti;
+        if (kitti.empty()) {
+            if (auto d = frames::data_dir(o.data); d && fs::is_directory(*d / "kitti")) kitti = *d / "kitti";
+            else throw InputError("--sequences and sharded runs need KITTI data: give --kitti DIR or --data DIR");
+        }
+        run_eval_job(o, kitti);
+        return;
+    }
     eval::Request r;
     r.source = eval::parse_source(o.source);
     if (!o.frames.empty()) r.pairs = util::parse_range(o.frames, "--frames");
@@ -67,6 +125,9 @@ void add_eval_command(CLI::App& app) {
         "eval", "precision/recall of the co-processor against OpenCV's Harris (thesis 6.3.2), with ablation");
     cmd->add_option("--kitti", o->kitti, "KITTI odometry root holding sequences/ (default: <data>/kitti)");
     cmd->add_option("--sequence", o->sequence, "KITTI sequence")->capture_default_str();
+    cmd->add_option("--sequences", o->sequences,
+                    "KITTI sequences, each from its own reset: a range 00-21 or a list 00,01,05 (per-sequence rows "
+                    "and the total; --frames applies to each)");
     cmd->add_option("--source", o->source, "corner source: spec, cycle or rtl")->capture_default_str();
     cmd->add_option("--out", o->out, "output directory")->capture_default_str();
     cmd->add_option("--frames", o->frames, "stereo pair range a:b (b excluded)");
@@ -74,7 +135,13 @@ void add_eval_command(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
     cmd->add_option("--data", o->data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");
     cmd->add_flag("!--no-ablation", o->ablation, "skip the ablation table");
-    cmd->callback([o] { run_eval(*o); });
+    add_runner_flags(cmd, o->runner);
+    cmd->callback([o, cmd] {
+        for (const char* f : {"--runner", "--shards", "--run-dir", "--resume", "--jobs"})
+            if (cmd->count(f)) o->sharded = true;
+        o->threads_given = cmd->count("--threads") > 0;
+        run_eval(*o);
+    });
 }
 
 }  // namespace hc::tools

@@ -11,10 +11,14 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "cluster/cluster.hpp"
 #include "cosim/verilator/verilate.hpp"
+#include "eval/sequences.hpp"
+#include "jobs/jobs.hpp"
 #include "model/harris/formats_json.hpp"
 #include "tools/commands.hpp"
 #include "tools/frame_source.hpp"
+#include "tools/runner_flags.hpp"
 
 namespace hc::tools {
 
@@ -29,6 +33,9 @@ struct VerilateArgs {
     bool keep_going = false, obs = false, no_gate = false, gate_only = false, build_only = false;
     std::string json_path, reads_path, cache;
     std::vector<std::string> variants;
+    std::string sequences;     ///< several KITTI sequences, each from its own reset
+    RunnerFlags runner;
+    bool sharded = false;      ///< a sharding flag was given
 };
 
 json mismatch_json(const vl::Mismatch& m) {
@@ -37,7 +44,56 @@ json mismatch_json(const vl::Mismatch& m) {
             {"expected", m.expected}, {"actual", m.actual}};
 }
 
+/// Several sequences, or a run through the runner: one shard per sequence, the summary
+/// (per-sequence rows and totals) from the merged data only.
+void run_verilate_job(const VerilateArgs& a) {
+    if (a.no_gate || a.gate_only || a.build_only || a.obs || !a.variants.empty() || !a.reads_path.empty())
+        throw InputError("--sequences and the sharding flags run the gated lock step only: leave out --no-gate, "
+                         "--gate-only, --build-only, --obs, --variant and --reads");
+    if (!a.src.images.empty() || !a.src.pattern.empty())
+        throw InputError("--sequences and the sharding flags stream KITTI sequences: leave out images and --pattern");
+    jobs::VerilateJob j;
+    if (!a.src.kitti.empty()) j.kitti = a.src.kitti;
+    else if (auto d = frames::data_dir(a.src.data); d && fs::is_directory(*d / "kitti")) j.kitti = *d / "kitti";
+    else throw InputError("--sequences needs KITTI data: give --kitti DIR or --data DIR");
+    j.sequences = a.sequences.empty() ? std::vector<std::string>{a.src.sequence} : eval::parse_sequences(a.sequences);
+    if (!a.src.pairs.empty()) j.pairs = util::parse_range(a.src.pairs, "--pairs");
+    if (a.src.frames > 0) j.pairs.last = std::min(j.pairs.last, j.pairs.first + (a.src.frames + 1) / 2);
+    j.pairs_flag = "--pairs " + (a.src.pairs.empty() ? std::string("(all)") : a.src.pairs);
+    j.formats = a.config.empty() ? Formats{} : formats_from_file(a.config);
+    j.cache = a.cache;
+    j.keep_going = a.keep_going;
+    const cluster::Manifest m = jobs::verilate_manifest(j);
+    jobs::prepare_rtl(m);
+    json merged;
+    if (a.sharded) {
+        if (a.runner.run_dir.empty()) throw InputError("a sharded verilate needs --run-dir");
+        merged = jobs::run_and_merge(a.runner.run_dir, m, run_options(a.runner, a.runner.run_dir));
+    } else {
+        merged = cluster::run_in_process(jobs::registry(), m);
+    }
+    for (const auto& s : merged.at("sequences"))
+        std::fprintf(stderr, "verilate: sequence %s: %ld frames, %ld writes, %ld reads, %ld corners, %ld mismatches (%s)\n",
+                     s.at("sequence").get<std::string>().c_str(), s.at("frames").get<long>(), s.value("writes", 0L),
+                     s.value("reads", 0L), s.value("corners", 0L), s.value("mismatches", 0L),
+                     s.at("status").get<std::string>().c_str());
+    const json& t = merged.at("totals");
+    std::fprintf(stderr, "verilate: total %ld frames, %ld writes, %ld reads, %ld corners, %ld mismatches: %s\n",
+                 t.at("frames").get<long>(), t.at("writes").get<long>(), t.at("reads").get<long>(),
+                 t.at("corners").get<long>(), t.at("mismatches").get<long>(), merged.at("status").get<std::string>().c_str());
+    if (!a.json_path.empty()) util::write_file_atomic(a.json_path, merged.dump(2) + "\n");
+    const std::string status = merged.at("status");
+    if (status == "translation_fault") throw TranslationFault("GHDL's netlist and GHDL's simulation of the VHDL disagree");
+    if (status == "rtl_fault") throw MismatchError("the RTL differs from the model in the gate");
+    if (status == "mismatch")
+        throw MismatchError(std::to_string(t.at("mismatches").get<long>()) + " mismatch(es) between the netlist and the model");
+}
+
 void run_verilate(const VerilateArgs& a) {
+    if (!a.sequences.empty() || a.sharded) {
+        run_verilate_job(a);
+        return;
+    }
     const auto t0 = std::chrono::steady_clock::now();
     vl::VerilateRun run;
     run.formats = a.config.empty() ? Formats{} : formats_from_file(a.config);
@@ -158,7 +214,15 @@ void add_verilate_command(CLI::App& app) {
     c->add_flag("--no-gate", a->no_gate, "Skip the three-way gate (results are then marked untrusted)");
     c->add_flag("--gate-only", a->gate_only, "Run the gate only");
     c->add_flag("--build-only", a->build_only, "Build (or find) the netlist for the frames' size and stop");
-    c->callback([a] { run_verilate(*a); });
+    c->add_option("--sequences", a->sequences,
+                  "KITTI sequences, each from its own reset: a range 00-21 or a list 00,01,05 (one shard per "
+                  "sequence; --pairs applies to each; --json gets per-sequence rows and totals)");
+    add_runner_flags(c, a->runner);
+    c->callback([a, c] {
+        for (const char* f : {"--runner", "--shards", "--run-dir", "--resume", "--jobs"})
+            if (c->count(f)) a->sharded = true;
+        run_verilate(*a);
+    });
 }
 
 }  // namespace hc::tools

@@ -59,6 +59,43 @@ void HostDriver::decode(const ReadPos& r, std::uint32_t value, std::vector<Corne
         if ((value >> (3 - q)) & 1U) out.push_back(quadrant_centre(r, q));
 }
 
+DriverState HostDriver::state() const {
+    DriverState s;
+    s.frame = frame_;
+    s.i = i_;
+    s.j = j_;
+    s.k = k_;
+    s.in_tail = in_tail_;
+    s.tail_col = tail_col_;
+    s.preload = preload_;
+    s.done = done_;
+    for (int n = 0; n < 3; ++n) {
+        s.px[n] = px_[n];
+        s.py[n] = py_[n];
+    }
+    s.column_open = column_open_;
+    return s;
+}
+
+void HostDriver::restore(const DriverState& s) {
+    if (s.frame < 0 || s.frame >= static_cast<int>(frames_.size()))
+        throw std::invalid_argument("host driver state at frame " + std::to_string(s.frame) + " of a stream of " +
+                                    std::to_string(frames_.size()) + " frames");
+    frame_ = s.frame;
+    i_ = s.i;
+    j_ = s.j;
+    k_ = s.k;
+    in_tail_ = s.in_tail;
+    tail_col_ = s.tail_col;
+    preload_ = s.preload;
+    done_ = s.done;
+    for (int n = 0; n < 3; ++n) {
+        px_[n] = s.px[n];
+        py_[n] = s.py[n];
+    }
+    column_open_ = s.column_open;
+}
+
 bool HostDriver::next(BusEvent& ev) {
     if (done_) return false;
     const int last_frame = static_cast<int>(frames_.size()) - 1;

@@ -57,6 +57,19 @@ struct BusEvent {
     std::optional<ReadPos> read;
 };
 
+/// The driver's position in its stream (its loop variables): with the cycle model's state
+/// (HarrisTop::save_state) it resumes a stream half-way.
+struct DriverState {
+    int frame = 0, i = 3, j = 0, k = -3;
+    bool in_tail = false;
+    int tail_col = 0;
+    bool preload = true, done = false;
+    int px[3] = {-1, -1, -1};
+    int py[3] = {-1, -1, -1};
+    bool column_open = false;
+    friend bool operator==(const DriverState&, const DriverState&) = default;
+};
+
 class HostDriver {
 public:
     /// `frames` must all have the geometry's size; they are referenced, not copied.
@@ -77,6 +90,11 @@ public:
     Corner write_centre(const WritePos& p, int q) const;
 
     const Geometry& geometry() const { return g_; }
+
+    /// Where the stream stands: the next call of next() continues from here.
+    DriverState state() const;
+    /// Continues from a state() of a driver over the same geometry and number of frames.
+    void restore(const DriverState& s);
 
 private:
     void start_column();

@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "harris/compiled_formats.hpp"
@@ -51,6 +53,24 @@ HarrisTop::HarrisTop(const Geometry& g, const Formats& f, Specialisation s) : g_
         m_ = kFactories[static_cast<std::size_t>(i)](g_);
     else
         m_ = std::make_unique<HarrisTopT<DynamicFormats>>(g_, DynamicFormats{f_});
+}
+
+namespace {
+/// What a state image belongs to: geometry, formats and instance.
+std::string state_key(const Geometry& g, const Formats& f, bool compiled) {
+    return "harris_top " + std::to_string(g.width) + "x" + std::to_string(g.height) + " formats " +
+           std::to_string(formats_hash(f)) + (compiled ? " compiled" : " run-time") + "\n";
+}
+}  // namespace
+
+std::string HarrisTop::save_state() const { return state_key(g_, f_, compiled_) + m_->state(); }
+
+void HarrisTop::restore_state(const std::string& image) {
+    const std::string key = state_key(g_, f_, compiled_);
+    if (image.compare(0, key.size(), key) != 0)
+        throw std::invalid_argument("the cycle model state belongs to another geometry, formats or instance (expected '" +
+                                    key.substr(0, key.size() - 1) + "')");
+    m_->restore(image.substr(key.size()));
 }
 
 }  // namespace hc

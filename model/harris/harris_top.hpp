@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "model/harris/find_max.hpp"
@@ -52,6 +53,9 @@ public:
     virtual long writes() const = 0;
     virtual FindMax find_max() const = 0;
     virtual const StageTags& tags() const = 0;
+    /// Every register (the image of the register set after the last edge), and its inverse.
+    virtual std::string state() const = 0;
+    virtual void restore(const std::string& image) = 0;
 };
 
 /// How HarrisTop chooses its instance.
@@ -84,6 +88,14 @@ public:
     long writes() const { return m_->writes(); }
     FindMax find_max() const { return m_->find_max(); }
     const StageTags& tags() const { return m_->tags(); }
+    /// The full state: every register of harris_top (and the write count), prefixed by the
+    /// geometry, the formats and the instance, as a byte string. A model of the same
+    /// geometry, formats and instance restored from it computes exactly what this one
+    /// computes from here on (a shard of a stream starts from it).
+    std::string save_state() const;
+    /// Restores save_state()'s image; std::invalid_argument when it belongs to another
+    /// geometry, formats or instance, or is truncated.
+    void restore_state(const std::string& image);
     /// True when this model runs an instance compiled for its formats.
     bool compiled() const { return compiled_; }
 

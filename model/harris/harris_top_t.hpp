@@ -16,6 +16,8 @@
 
 #include <array>
 #include <cstdint>
+#include <cstring>
+#include <string>
 #include <stdexcept>
 #include <type_traits>
 
@@ -144,6 +146,29 @@ public:
     long writes() const override { return q().writes; }
     const StageTags& tags() const override { return q().tags; }
 
+    std::string state() const override {
+        std::string s;
+        visit_registers(q(), [&](const auto& v) {
+            s.append(reinterpret_cast<const char*>(&v), sizeof v);
+        });
+        return s;
+    }
+
+    void restore(const std::string& image) override {
+        Registers r = q();
+        std::size_t at = 0;
+        visit_registers(r, [&](auto& v) {
+            if (at + sizeof v > image.size())
+                throw std::invalid_argument("cycle model state of " + std::to_string(image.size()) + " bytes is truncated");
+            std::memcpy(&v, image.data() + at, sizeof v);
+            at += sizeof v;
+        });
+        if (at != image.size())
+            throw std::invalid_argument("cycle model state of " + std::to_string(image.size()) + " bytes, expected " +
+                                        std::to_string(at));
+        reg_[cur_] = r;
+    }
+
     FindMax find_max() const override {
         const FindMaxT<Back>& m = q().fm;
         FindMax out(fs_.get());
@@ -182,6 +207,32 @@ public:
 
 private:
     const Registers& q() const { return reg_[cur_]; }
+
+    /// Calls f on every scalar of every register (arrays element by element), in one fixed
+    /// order: the state image is these values' bytes, without the structs' padding.
+    template <class R, class F>
+    static void visit_registers(R& r, F&& f) {
+        const auto each = [&](auto& x, const auto& self) -> void {
+            if constexpr (std::is_arithmetic_v<std::remove_cvref_t<decltype(x)>>) {
+                f(x);
+            } else {
+                for (auto& e : x) self(e, self);
+            }
+        };
+        const auto v = [&](auto& x) { each(x, each); };
+        const auto word = [&](auto& w) { v(w.v); v(w.w); v(w.s); };
+        const auto tag = [&](auto& t) { v(t.write); v(t.quadrant); };
+        v(r.writes);
+        v(r.lc.row); v(r.lc.col); v(r.lc.load);
+        v(r.icmux.i); v(r.icmux.i_dly); v(r.icmux.data_dly); v(r.icmux.win); v(r.icmux.a); v(r.icmux.a_defined);
+        v(r.ctrl.t);
+        v(r.sxm); v(r.sym); v(r.mam); v(r.mbm); v(r.mcm); v(r.bfam); v(r.bfbm); v(r.bfcm);
+        v(r.ac); v(r.bb); v(r.ktr2); v(r.step1_defined); v(r.hrm); v(r.r0_delay); v(r.trm);
+        v(r.fm.count); word(r.fm.running); word(r.fm.max);
+        v(r.sr.c);
+        tag(r.tags.window); tag(r.tags.sobel); tag(r.tags.m); tag(r.tags.block);
+        tag(r.tags.terms); tag(r.tags.response); tag(r.tags.delay); tag(r.tags.thresholded);
+    }
 
     /// A signed register value of `width` bits as a Front or Back word.
     template <class T>

@@ -1,0 +1,158 @@
+// eval_job.cpp: the "eval" job kind: an evaluation over KITTI-layout sequences in parts
+// (eval/sequences.hpp), whole sequences or ranges of stereo pairs, the cycle source's
+// parts starting at checkpoints of a serial pre-pass; the merge folds the parts per sequence.
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
+#include <fmt/format.h>
+#include <opencv2/core.hpp>
+
+#include "eval/sequences.hpp"
+#include "frames/frames.hpp"
+#include "jobs/jobs.hpp"
+
+namespace hc::jobs {
+
+namespace {
+
+/// Stereo pairs [first, last) of a sequence, as a job selects them.
+util::Range sequence_pairs(const fs::path& kitti, const std::string& seq, util::Range r, const std::string& what) {
+    const frames::KittiSequence k = frames::open_kitti(kitti, seq);
+    const int last = std::min(r.last, k.pairs());
+    if (last - r.first < 2)
+        throw InputError(fmt::format("{} gives {} stereo pair(s) of KITTI sequence {} ({} has {}); at least 2 are needed",
+                                     what, std::max(0, last - r.first), seq, k.root.string(), k.pairs()));
+    return {r.first, last};
+}
+
+/// Parts per sequence: one each, the remaining shards in proportion to the pairs (largest
+/// remainder), never more parts than pairs.
+std::vector<int> parts_per_sequence(const std::vector<int>& pairs, int shards) {
+    const int n = static_cast<int>(pairs.size());
+    std::vector<int> k(n, 1);
+    const long total = std::accumulate(pairs.begin(), pairs.end(), 0L);
+    int extra = std::max(0, shards - n);
+    std::vector<std::pair<double, int>> rem;
+    for (int s = 0; s < n; ++s) {
+        const double share = static_cast<double>(shards) * pairs[s] / static_cast<double>(total);
+        const int whole = std::clamp(static_cast<int>(share) - 1, 0, std::min(extra, pairs[s] - 1));
+        k[s] += whole;
+        extra -= whole;
+        rem.push_back({share - static_cast<int>(share), s});
+    }
+    std::stable_sort(rem.begin(), rem.end(), [](auto& a, auto& b) { return a.first > b.first; });
+    for (bool grew = true; extra > 0 && grew;) {
+        grew = false;
+        for (auto [r, s] : rem)
+            if (extra > 0 && k[s] < pairs[s]) {
+                ++k[s];
+                --extra;
+                grew = true;
+            }
+    }
+    return k;
+}
+
+json run_eval_shard(const json& common, const json& shard, std::size_t) {
+    cv::setNumThreads(1);   // frames run in parallel; OpenCV's own threads would oversubscribe
+    const fs::path kitti = common.at("kitti").get<std::string>();
+    const std::string seq = shard.at("sequence");
+    const int p0 = shard.at("pairs").at(0), p1 = shard.at("pairs").at(1);
+    const int a = shard.at("part").at(0), b = shard.at("part").at(1);
+    // the pair before (its right frame's maximum sets the first threshold) and the pair
+    // after (the cycle model preloads its first columns before this part's last reads)
+    const int lo = std::max(p0, a - 1), hi = std::min(p1, b + 1);
+    const std::string what = fmt::format("pairs {}:{} of sequence {}", lo, hi, seq);
+    const eval::Stream s = frames::load_kitti_stream(kitti, seq, {lo, hi}, what, common.at("threads").get<int>(), 1);
+    std::optional<eval::CycleCheckpoint> start;
+    if (!shard.at("start").is_null()) start = eval::checkpoint_from_json(shard.at("start"));
+    eval::PartInput in;
+    in.source = eval::parse_source(common.at("source"));
+    in.stream = &s;
+    in.offset = 2 * (lo - p0);
+    in.first = 2 * (a - p0);
+    in.last = 2 * (b - p0);
+    in.frames_total = 2 * (p1 - p0);
+    in.first_pair = p0;
+    in.last_pair = p1 - 1;
+    in.start = start ? &*start : nullptr;
+    in.end_write = shard.at("end_write");
+    in.ablation = common.at("ablation");
+    in.threads = common.at("threads");
+    std::fprintf(stderr, "eval shard: %s source, sequence %s, pairs %d..%d%s\n", in.source == eval::Source::spec ? "spec"
+                 : in.source == eval::Source::cycle ? "cycle" : "rtl", seq.c_str(), a, b - 1,
+                 start ? fmt::format(" from the checkpoint after {} writes", start->writes).c_str() : "");
+    return eval::evaluate_part(in).to_json();
+}
+
+json merge_eval(const json& common, const std::vector<json>& data) {
+    const eval::Source source = eval::parse_source(common.at("source"));
+    std::vector<eval::Part> parts;
+    for (const auto& d : data) parts.push_back(eval::Part::from_json(d));
+    json seqs = json::array();
+    for (const auto& p : eval::fold_sequences(parts, source)) seqs.push_back(p.to_json());
+    return {{"source", common.at("source")}, {"ablation", common.at("ablation")}, {"sequences", seqs}};
+}
+
+}  // namespace
+
+cluster::Manifest eval_manifest(const EvalJob& j) {
+    const eval::Source source = eval::parse_source(j.source);
+    if (j.sequences.empty()) throw InputError("eval: no sequence given");
+    eval::check_sequences(j.kitti, j.sequences);
+    std::vector<util::Range> ranges;
+    std::vector<int> pairs;
+    for (const auto& q : j.sequences) {
+        ranges.push_back(sequence_pairs(j.kitti, q, j.pairs, j.pairs_flag));
+        pairs.push_back(ranges.back().last - ranges.back().first);
+    }
+    const int n = static_cast<int>(j.sequences.size());
+    const std::vector<int> k = source == eval::Source::rtl ? std::vector<int>(n, 1)
+                                                           : parts_per_sequence(pairs, std::max(j.shards, n));
+    cluster::Manifest m;
+    m.job = "eval";
+    m.common = {{"source", eval::source_name(source)}, {"kitti", fs::absolute(j.kitti).lexically_normal().string()},
+                {"ablation", j.ablation}, {"threads", j.threads}};
+    for (int s = 0; s < n; ++s) {
+        const auto [p0, p1] = ranges[s];
+        const auto parts = cluster::split_range(p0, p1, k[s]);
+        // the serial pre-pass: the cycle model from each checkpoint to the next part's start
+        std::vector<json> starts(parts.size());
+        std::vector<long> end_writes(parts.size(), 0);
+        if (source == eval::Source::cycle && parts.size() > 1) {
+            std::optional<eval::CycleCheckpoint> prev;
+            for (std::size_t t = 1; t < parts.size(); ++t) {
+                const int from = static_cast<int>(parts[t - 1].first), to = static_cast<int>(parts[t].first);
+                std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (pre-pass from pair %d)\n",
+                             j.sequences[s].c_str(), to, from);
+                const eval::Stream st = frames::load_kitti_stream(j.kitti, j.sequences[s], {from, to + 1},
+                                                                  j.pairs_flag, j.threads, 1);
+                prev = eval::cycle_checkpoint(st, Formats{}, 2 * (from - p0), 2 * (p1 - p0), prev ? &*prev : nullptr,
+                                              2 * (to - p0));
+                starts[t] = eval::to_json(*prev);
+                end_writes[t - 1] = prev->writes;
+            }
+        }
+        const frames::KittiSequence ks = frames::open_kitti(j.kitti, j.sequences[s]);
+        const Image first = frames::load_image(ks.left.at(static_cast<std::size_t>(p0)));
+        for (std::size_t t = 0; t < parts.size(); ++t)
+            m.shards.push_back({{"sequence", j.sequences[s]},
+                                {"pairs", {p0, p1}},
+                                {"part", {parts[t].first, parts[t].second}},
+                                {"geometry", {first.width, first.height}},
+                                {"start", starts[t]},
+                                {"end_write", end_writes[t]}});
+    }
+    return m;
+}
+
+eval::Report eval_report(const json& merged) {
+    std::vector<eval::Part> parts;
+    for (const auto& p : merged.at("sequences")) parts.push_back(eval::Part::from_json(p));
+    return eval::merge_parts(parts, eval::parse_source(merged.at("source")), merged.at("ablation"));
+}
+
+void add_eval_job(cluster::JobRegistry& r) { r.add({"eval", run_eval_shard, merge_eval}); }
+
+}  // namespace hc::jobs

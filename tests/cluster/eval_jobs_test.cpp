@@ -1,0 +1,292 @@
+// eval_jobs_test: the eval and verilate job kinds. The cycle model's state and the host
+// driver's position restore exactly; a cycle run started at a checkpoint reports the serial
+// run's frames; and every sharded run (local pool, or a Slurm job array with tag [slurm])
+// merges to exactly the data of the same evaluation computed in one process.
+//
+// `eval_jobs_tests --make-standin DIR` writes the stand-in KITTI sequences 02 and 03 into
+// DIR, `--make-standin DIR SEQ WxH PAIRS` one of that size (for the command-line tests). Runs whose tags name [kitti] exit 77 (skipped) without
+// KITTI sequence 01.
+#define CATCH_CONFIG_RUNNER
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstring>
+
+#include "cluster/cluster.hpp"
+#include "eval/sequences.hpp"
+#include "frames/frames.hpp"
+#include "jobs/jobs.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/harris/harris_top.hpp"
+#include "tests/cluster/standin_kitti.hpp"
+
+using namespace hc;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+fs::path g_kitti;   // KITTI root holding sequences/01 (tests tagged [kitti])
+
+fs::path scratch(const std::string& name) {
+    fs::path d = fs::temp_directory_path() / ("hc-eval-jobs-" + std::to_string(::getpid())) / name;
+    fs::remove_all(d);
+    return d;
+}
+
+/// Stand-in sequences 02 (7 pairs) and 03 (5 pairs), 96x40, in the KITTI layout.
+void make_standin(const fs::path& root) {
+    test::write_standin_sequence(root, "02", 96, 40, 7, Pattern::blocks, 1);
+    test::write_standin_sequence(root, "03", 96, 40, 5, Pattern::blocks, 7);
+}
+
+const fs::path& standin() {
+    static const fs::path root = [] {
+        fs::path r = scratch("standin");
+        make_standin(r);
+        return r;
+    }();
+    return root;
+}
+
+eval::Stream pattern_stream(int w, int h, int frames) {
+    eval::Stream s;
+    for (int k = 0; k < frames; ++k) {
+        s.frames.push_back(make_pattern(Pattern::blocks, w, h, k));
+        s.names.push_back("p/" + std::to_string(k));
+        s.pair_index.push_back(k / 2);
+    }
+    return s;
+}
+
+cluster::RunOptions runner(cluster::RunnerKind kind) {
+    cluster::RunOptions o;
+    o.runner = kind;
+    o.jobs = 2;
+    o.retries = 0;
+    o.worker = {HC_HARRIS_COSIM, "shard", "run"};
+    o.merger = {HC_HARRIS_COSIM, "shard", "merge"};
+    o.slurm.poll_s = 0.5;
+    return o;
+}
+
+/// The job run sharded through `kind` and the same evaluation in one process (one shard
+/// per sequence) give the same data.
+void check_sharded_equals_single(const cluster::Manifest& sharded, const cluster::Manifest& single,
+                                 cluster::RunnerKind kind, const std::string& name) {
+    const fs::path dir = scratch(name);
+    const json merged = jobs::run_and_merge(dir, sharded, runner(kind));
+    const json once = cluster::run_in_process(jobs::registry(), single);
+    CHECK(merged == once);
+    CHECK(jobs::merged_path(dir).string().size() > 0);
+    CHECK(fs::exists(jobs::merged_path(dir)));
+}
+
+}  // namespace
+
+TEST_CASE("the cycle model's saved state restores every register and the run continues identically", "[cluster]") {
+    const Geometry g{64, 36};
+    const auto s = pattern_stream(64, 36, 3);
+    const auto ptrs = frames::pointers(s.frames);
+    HostDriver da(g, ptrs), db(g, ptrs);
+    HarrisTop a(g, Formats{}), b(g, Formats{});
+    BusEvent ev, evb;
+    for (int w = 0; w < 5000 && da.next(ev); ++w) a.write(ev.data);
+    const std::string image = a.save_state();
+    b.restore_state(image);
+    db.restore(da.state());
+    CHECK(db.state() == da.state());
+    CHECK(b.save_state() == image);
+    CHECK(b.writes() == 5000);
+    long compared = 0, differing = 0;
+    while (da.next(ev)) {
+        REQUIRE(db.next(evb));
+        CHECK(evb.data == ev.data);
+        a.write(ev.data);
+        b.write(evb.data);
+        differing += a.corner() != b.corner() || a.thr().value() != b.thr().value();
+        if (++compared % 997 == 0) differing += a.save_state() != b.save_state();
+    }
+    CHECK_FALSE(db.next(evb));
+    CHECK(compared > 5000);
+    CHECK(differing == 0);
+    CHECK(a.save_state() == b.save_state());
+
+    HarrisTop other(Geometry{66, 36}, Formats{});
+    CHECK_THROWS_AS(other.restore_state(image), std::invalid_argument);
+    CHECK_THROWS_AS(b.restore_state(image.substr(0, image.size() - 1)), std::invalid_argument);
+}
+
+TEST_CASE("cycle runs started at checkpoints report exactly the serial run's frames", "[cluster]") {
+    const auto s = pattern_stream(96, 40, 8);
+    const Formats f{};
+    const eval::CycleRun serial = eval::run_cycle(s, f, false);
+    const eval::CycleCheckpoint c2 = eval::checkpoint_from_json(eval::to_json(eval::cycle_checkpoint(s, f, 0, 8, nullptr, 2)));
+    // the second checkpoint from the first, over only the frames it needs (2..5)
+    eval::Stream held;
+    for (int k = 2; k <= 5; ++k) {
+        held.frames.push_back(s.frames[k]);
+        held.names.push_back(s.names[k]);
+        held.pair_index.push_back(s.pair_index[k]);
+    }
+    const eval::CycleCheckpoint c5 = eval::cycle_checkpoint(held, f, 2, 8, &c2, 5);
+    CHECK(c5.frame == 5);
+    CHECK(c5.writes > c2.writes);
+    std::vector<eval::CycleRun> parts;
+    parts.push_back(eval::run_cycle(s, f, eval::CycleSpan{0, 0, 2, 8, nullptr, c2.writes}, false));
+    parts.push_back(eval::run_cycle(held, f, eval::CycleSpan{2, 2, 5, 8, &c2, c5.writes}, false));
+    parts.push_back(eval::run_cycle(s, f, eval::CycleSpan{0, 5, 8, 8, &c5, 0}, false));
+    const int firsts[] = {0, 2, 5};
+    long writes = 0, reads = 0, mixed = 0, publications = 0, frames_equal = 0;
+    for (int p = 0; p < 3; ++p) {
+        const auto& r = parts[static_cast<std::size_t>(p)];
+        writes += r.writes;
+        reads += r.reads;
+        mixed += r.mixed_windows;
+        publications += r.max_publications;
+        for (std::size_t k = 0; k < r.masks.size(); ++k) {
+            const std::size_t fr = static_cast<std::size_t>(firsts[p]) + k;
+            // a frame's maximum: the part's own publication, else the previous part's
+            // during this frame's preloaded columns
+            const std::int64_t max = k == 0 && p > 0 && r.publications_in_frame[0] == 0 &&
+                                             parts[static_cast<std::size_t>(p) - 1].next_publications > 0
+                                         ? parts[static_cast<std::size_t>(p) - 1].next_max
+                                         : r.max[k];
+            frames_equal += r.masks[k] == serial.masks[fr] && r.thr_map[k] == serial.thr_map[fr] &&
+                            r.thr[k] == serial.thr[fr] && max == serial.max[fr];
+        }
+    }
+    CHECK(frames_equal == 8);
+    CHECK(writes == serial.writes);
+    CHECK(reads == serial.reads);
+    CHECK(mixed == serial.mixed_windows);
+    CHECK(publications == serial.max_publications);
+    CHECK(serial.max_publications >= 4);   // maxima published in several frames
+}
+
+TEST_CASE("the spec model's threshold of a frame depends only on the previous frame", "[cluster]") {
+    const auto s = pattern_stream(96, 40, 6);
+    const auto whole = eval::run_spec(s, spec::Options{}, 1);
+    eval::Stream tail;   // frames 3.. with frame 2 before them for its maximum
+    for (int k = 2; k < 6; ++k) {
+        tail.frames.push_back(s.frames[k]);
+        tail.names.push_back(s.names[k]);
+        tail.pair_index.push_back(s.pair_index[k]);
+    }
+    const auto part = eval::run_spec(tail, spec::Options{}, 1);
+    for (int k = 3; k < 6; ++k) {
+        CHECK(part.masks[k - 2] == whole.masks[k]);
+        CHECK(part.thr[k - 2] == whole.thr[k]);
+    }
+}
+
+TEST_CASE("a list or range of sequences is parsed and missing sequences are named", "[cluster]") {
+    CHECK(eval::parse_sequences("00-03") == std::vector<std::string>{"00", "01", "02", "03"});
+    CHECK(eval::parse_sequences("00,01,05") == std::vector<std::string>{"00", "01", "05"});
+    CHECK_THROWS_AS(eval::parse_sequences("03-01"), InputError);
+    CHECK_THROWS_AS(eval::parse_sequences("0a"), InputError);
+    CHECK_THROWS_AS(eval::parse_sequences("01,01"), InputError);
+    try {
+        eval::check_sequences(standin(), {"02", "04", "03", "09"});
+        FAIL("missing sequences were not reported");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("04, 09") != std::string::npos);
+    }
+}
+
+TEST_CASE("spec and cycle evaluations sharded within sequences merge to the single-process data", "[cluster]") {
+    jobs::EvalJob j;
+    j.kitti = standin();
+    j.sequences = {"02", "03"};
+    j.threads = 1;
+    for (const char* source : {"spec", "cycle"}) {
+        j.source = source;
+        j.shards = 0;
+        const cluster::Manifest single = jobs::eval_manifest(j);
+        j.shards = 5;
+        const cluster::Manifest sharded = jobs::eval_manifest(j);
+        REQUIRE(single.shards.size() == 2);
+        REQUIRE(sharded.shards.size() == 5);
+        if (std::string(source) == "cycle") CHECK_FALSE(sharded.shards[1].at("start").is_null());
+        check_sharded_equals_single(sharded, single, cluster::RunnerKind::local, std::string("local-") + source);
+        const eval::Report r = jobs::eval_report(cluster::run_in_process(jobs::registry(), single));
+        CHECK(r.frames.size() == 24);
+        CHECK(r.sequences.size() == 2);
+    }
+}
+
+TEST_CASE("rtl evaluations and verilate runs sharded by sequence merge to the single-process data", "[cluster][rtl]") {
+    jobs::EvalJob j;
+    j.kitti = standin();
+    j.sequences = {"02", "03"};
+    j.source = "rtl";
+    j.ablation = false;
+    j.threads = 1;
+    const cluster::Manifest m = jobs::eval_manifest(j);
+    REQUIRE(m.shards.size() == 2);
+    jobs::prepare_rtl(m);
+    check_sharded_equals_single(m, m, cluster::RunnerKind::local, "local-rtl");
+    jobs::VerilateJob v;
+    v.kitti = standin();
+    v.sequences = {"02", "03"};
+    const cluster::Manifest vm = jobs::verilate_manifest(v);
+    jobs::prepare_rtl(vm);
+    const json once = cluster::run_in_process(jobs::registry(), vm);
+    CHECK(once.at("status") == "pass");
+    CHECK(once.at("totals").at("frames") == 24);
+    check_sharded_equals_single(vm, vm, cluster::RunnerKind::local, "local-verilate");
+}
+
+TEST_CASE("a Slurm array of cycle shards within KITTI 01 merges to the single-process data", "[slurm][kitti]") {
+    jobs::EvalJob j;
+    j.kitti = g_kitti;
+    j.sequences = {"01"};
+    j.pairs = {0, 8};
+    j.source = "cycle";
+    j.ablation = false;
+    j.threads = 1;
+    const cluster::Manifest single = jobs::eval_manifest(j);
+    j.shards = 4;
+    const cluster::Manifest sharded = jobs::eval_manifest(j);
+    REQUIRE(sharded.shards.size() == 4);
+    check_sharded_equals_single(sharded, single, cluster::RunnerKind::slurm, "slurm-cycle");
+}
+
+TEST_CASE("a Slurm array of rtl shards, one per sequence, merges to the single-process data", "[slurm]") {
+    jobs::EvalJob j;
+    j.kitti = standin();
+    j.sequences = {"02", "03"};
+    j.source = "rtl";
+    j.ablation = false;
+    j.threads = 1;
+    const cluster::Manifest m = jobs::eval_manifest(j);
+    jobs::prepare_rtl(m);
+    check_sharded_equals_single(m, m, cluster::RunnerKind::slurm, "slurm-rtl");
+}
+
+int main(int argc, char** argv) {
+    if (argc == 3 && std::strcmp(argv[1], "--make-standin") == 0) {
+        make_standin(argv[2]);
+        return 0;
+    }
+    if (argc == 6 && std::strcmp(argv[1], "--make-standin") == 0) {   // DIR SEQ WxH PAIRS
+        const auto [w, h] = util::parse_size(argv[4], "size");
+        test::write_standin_sequence(argv[2], argv[3], w, h, std::stoi(argv[5]), Pattern::blocks, 3);
+        return 0;
+    }
+    bool kitti = false;
+    for (int k = 1; k < argc; ++k) kitti |= std::strstr(argv[k], "kitti") != nullptr;
+    const auto d = frames::data_dir("");
+    if (d && fs::is_directory(*d / "kitti/sequences/01/image_0")) g_kitti = *d / "kitti";
+    if (kitti && g_kitti.empty()) {
+        std::printf("SKIPPED: no KITTI sequence 01 (set HARRIS_COSIM_DATA to a directory holding "
+                    "kitti/sequences/01; see the data README.md (../shared/data beside the repository))\n");
+        return 77;
+    }
+    const int rc = Catch::Session().run(argc, argv);
+    std::error_code ec;
+    fs::remove_all(fs::temp_directory_path() / ("hc-eval-jobs-" + std::to_string(::getpid())), ec);
+    return rc;
+}
