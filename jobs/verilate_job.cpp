@@ -116,7 +116,8 @@ void prepare_rtl(const cluster::Manifest& m) {
     if (!vl::toolchain_available(&why)) throw InputError("the RTL needs GHDL and Verilator: " + why);
     const bool verilate = m.job == "verilate";
     std::set<std::pair<int, int>> geometries;
-    for (const auto& s : m.shards) geometries.insert({s.at("geometry").at(0), s.at("geometry").at(1)});
+    for (const auto& s : m.shards)
+        geometries.insert(std::make_pair(s.at("geometry").at(0).get<int>(), s.at("geometry").at(1).get<int>()));
     for (auto [w, h] : geometries) {
         vl::VerilateRun run;
         run.frames.emplace_back(w, h);
