@@ -213,15 +213,21 @@ CycleRun run_cycle(const Stream& s, const Formats& f, const CycleSpan& span, boo
     return r;
 }
 
-CycleCheckpoint cycle_checkpoint(const Stream& s, const Formats& f, int offset, int frames_total,
-                                 const CycleCheckpoint* from, int to) {
+namespace {
+
+/// The model from `from` (rebased to `rebase` = {writes, count} when given) up to frame
+/// `to`'s body; counts find-max publications after the first `margin` writes.
+CycleCheckpoint run_to(const Stream& s, const Formats& f, int offset, int frames_total, const CycleCheckpoint* from,
+                       const long* rebase, int to, long margin = 0, long* publications = nullptr) {
     const Geometry g{s.frames.at(0).width, s.frames.at(0).height};
-    if (to <= (from ? from->frame : 0) || to >= frames_total || to >= offset + static_cast<int>(s.frames.size()))
+    if (to <= (from ? from->driver.frame : 0) || to >= frames_total || to >= offset + static_cast<int>(s.frames.size()))
         throw InternalError("cycle checkpoint: frame " + std::to_string(to) + " is not after the start and in the stream");
     SpanDriver sd(s, offset, frames_total);
     HostDriver& drv = sd.drv;
     HarrisTop top(g, f);
     start_at(from, top, drv);
+    if (rebase) top.rebase(rebase[0], rebase[1]);
+    const long begin = top.writes();
     std::deque<WritePos> recent;
     if (from) recent.assign(from->recent.begin(), from->recent.end());
     BusEvent ev;
@@ -237,10 +243,62 @@ CycleCheckpoint cycle_checkpoint(const Stream& s, const Formats& f, int offset, 
             c.recent.assign(recent.begin(), recent.end());
             return c;
         }
+        const long count_before = top.find_max().count;
         top.write(ev.data);
+        if (publications && top.writes() - begin > margin && top.find_max().count == 1 && count_before != 1)
+            ++*publications;
         recent.push_back(ev.pos);
         if (recent.size() > kRecentWrites) recent.pop_front();
     }
+}
+
+HarrisTop model_of(const CycleCheckpoint& c, const Geometry& g, const Formats& f) {
+    HarrisTop top(g, f);
+    top.restore_state(c.model);
+    return top;
+}
+
+}  // namespace
+
+CycleCheckpoint cycle_checkpoint(const Stream& s, const Formats& f, int offset, int frames_total,
+                                 const CycleCheckpoint* from, int to) {
+    return run_to(s, f, offset, frames_total, from, nullptr, to);
+}
+
+CheckpointBase checkpoint_base(const Stream& s, const Formats& f, int frames_total) {
+    const Geometry g{s.frames.at(0).width, s.frames.at(0).height};
+    CheckpointBase b;
+    b.at1 = cycle_checkpoint(s, f, 0, frames_total, nullptr, 1);
+    const CycleCheckpoint at2 = cycle_checkpoint(s, f, 0, frames_total, &b.at1, 2);
+    b.period = g.find_max_period();
+    b.writes_per_frame = at2.writes - b.at1.writes;
+    const long c1 = model_of(b.at1, g, f).find_max().count, c2 = model_of(at2, g, f).find_max().count;
+    b.count_per_frame = ((c2 - c1) % b.period + b.period) % b.period;
+    return b;
+}
+
+CycleCheckpoint warm_checkpoint(const Stream& s, const Formats& f, int offset, int frames_total,
+                                const CheckpointBase& base, int to, int warm) {
+    const Geometry g{s.frames.at(0).width, s.frames.at(0).height};
+    const int from = to - warm;
+    if (from < 1) throw InternalError("warm checkpoint: the warm-up would start before frame 1");
+    CycleCheckpoint start = base.at1;
+    start.frame = from;
+    start.driver.frame = from;
+    for (WritePos& p : start.recent) p.frame += from - 1;
+    const long c1 = model_of(base.at1, g, f).find_max().count;
+    const long rebase[2] = {base.at1.writes + (from - 1) * base.writes_per_frame,
+                            (c1 - 1 + (from - 1) * base.count_per_frame) % base.period + 1};
+    start.writes = rebase[0];
+    long publications = 0;
+    // the pipeline holds no window older than a few columns: publications after the first
+    // kRecentWrites writes see only responses of the warm-up's own pixels
+    CycleCheckpoint c = run_to(s, f, offset, frames_total, &start, rebase, to, static_cast<long>(kRecentWrites),
+                               &publications);
+    if (publications < 3)
+        throw InternalError("warm checkpoint: " + std::to_string(publications) + " find-max publication(s) in a warm-up of " +
+                            std::to_string(warm) + " frames; at least 3 are needed to flush the maximum");
+    return c;
 }
 
 namespace {

@@ -90,6 +90,29 @@ struct CycleSpan {
     long end_write = 0;
 };
 
+/// What the fast pre-pass needs from a stream's start: the checkpoint at frame 1's body and
+/// how writes and find-max's period counter advance per frame. The control registers
+/// (load control, input converter counters, stage enables) do not depend on the pixels, and
+/// every frame after the first is written the same way, so they repeat at each frame's body
+/// start; only the write count and the period counter advance (the counter by the frame's
+/// enabled steps, modulo the period: the drift of docs/deviations.md).
+struct CheckpointBase {
+    CycleCheckpoint at1;
+    long writes_per_frame = 0;
+    long count_per_frame = 0;   ///< find-max counter advance per frame, modulo the period
+    long period = 0;
+};
+/// From a serial run over frames 0..2 (the stream holds at least those, from frame 0).
+CheckpointBase checkpoint_base(const Stream& s, const Formats& f, int frames_total);
+/// The fast pre-pass: the checkpoint before frame `to`'s body from a warm-up over the
+/// `warm` frames before it: the model starts at frame to-warm's body with the control
+/// registers of `base` (rebased) and whatever data registers it holds, and the warm-up
+/// flushes those: the pipeline within a column, find-max's maximum after its second
+/// complete period (checked: fewer than 3 publications in the warm-up is InternalError).
+/// The stream holds frames [offset, ...) including to-warm .. to; to - warm >= 1.
+CycleCheckpoint warm_checkpoint(const Stream& s, const Formats& f, int offset, int frames_total,
+                                const CheckpointBase& base, int to, int warm);
+
 SourceRun run_spec(const Stream& s, const spec::Options& o, int threads);
 /// The whole stream from reset.
 CycleRun run_cycle(const Stream& s, const Formats& f, bool progress);

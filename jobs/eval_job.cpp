@@ -16,6 +16,10 @@ namespace hc::jobs {
 
 namespace {
 
+/// Frames of warm-up before a cycle checkpoint (whole pairs): enough for three find-max
+/// publications (about one per frame) after the pipeline has flushed.
+constexpr int kWarmFrames = 6;
+
 /// Stereo pairs [first, last) of a sequence, as a job selects them.
 util::Range sequence_pairs(const fs::path& kitti, const std::string& seq, util::Range r, const std::string& what) {
     const frames::KittiSequence k = frames::open_kitti(kitti, seq);
@@ -117,21 +121,31 @@ cluster::Manifest eval_manifest(const EvalJob& j) {
     for (int s = 0; s < n; ++s) {
         const auto [p0, p1] = ranges[s];
         const auto parts = cluster::split_range(p0, p1, k[s]);
-        // the serial pre-pass: the cycle model from each checkpoint to the next part's start
+        // the pre-pass: each part's checkpoint from a warm-up over the frames before it
+        // (eval::warm_checkpoint), or from reset for a part starting within the first frames
         std::vector<json> starts(parts.size());
         std::vector<long> end_writes(parts.size(), 0);
         if (source == eval::Source::cycle && parts.size() > 1) {
-            std::optional<eval::CycleCheckpoint> prev;
+            const int total = 2 * (p1 - p0);
+            const auto load = [&](int a, int b) {   // pairs [a, b) of the sequence
+                return frames::load_kitti_stream(j.kitti, j.sequences[s], {a, b}, j.pairs_flag, j.threads, 1);
+            };
+            std::optional<eval::CheckpointBase> base;
             for (std::size_t t = 1; t < parts.size(); ++t) {
-                const int from = static_cast<int>(parts[t - 1].first), to = static_cast<int>(parts[t].first);
-                std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (pre-pass from pair %d)\n",
-                             j.sequences[s].c_str(), to, from);
-                const eval::Stream st = frames::load_kitti_stream(j.kitti, j.sequences[s], {from, to + 1},
-                                                                  j.pairs_flag, j.threads, 1);
-                prev = eval::cycle_checkpoint(st, Formats{}, 2 * (from - p0), 2 * (p1 - p0), prev ? &*prev : nullptr,
-                                              2 * (to - p0));
-                starts[t] = eval::to_json(*prev);
-                end_writes[t - 1] = prev->writes;
+                const int to_pair = static_cast<int>(parts[t].first), to = 2 * (to_pair - p0);
+                eval::CycleCheckpoint c;
+                if (to - kWarmFrames < 1) {
+                    std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (from reset)\n", j.sequences[s].c_str(), to_pair);
+                    c = eval::cycle_checkpoint(load(p0, to_pair + 1), Formats{}, 0, total, nullptr, to);
+                } else {
+                    if (!base) base = eval::checkpoint_base(load(p0, p0 + 2), Formats{}, total);
+                    std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (warm-up from pair %d)\n",
+                                 j.sequences[s].c_str(), to_pair, to_pair - kWarmFrames / 2);
+                    c = eval::warm_checkpoint(load(to_pair - kWarmFrames / 2, to_pair + 1), Formats{},
+                                              to - kWarmFrames, total, *base, to, kWarmFrames);
+                }
+                starts[t] = eval::to_json(c);
+                end_writes[t - 1] = c.writes;
             }
         }
         const frames::KittiSequence ks = frames::open_kitti(j.kitti, j.sequences[s]);

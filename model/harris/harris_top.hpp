@@ -56,6 +56,8 @@ public:
     /// Every register (the image of the register set after the last edge), and its inverse.
     virtual std::string state() const = 0;
     virtual void restore(const std::string& image) = 0;
+    /// Sets the write count and find-max's period counter, keeping every other register.
+    virtual void rebase(long writes, long find_max_count) = 0;
 };
 
 /// How HarrisTop chooses its instance.
@@ -96,6 +98,12 @@ public:
     /// Restores save_state()'s image; std::invalid_argument when it belongs to another
     /// geometry, formats or instance, or is truncated.
     void restore_state(const std::string& image);
+    /// Moves the model to another point of a stream whose control registers repeat: sets
+    /// the write count and find-max's period counter (1 .. find_max_period()), keeping every
+    /// other register. The data registers are then those of another point: a run from here
+    /// is exact only after the pipeline and two find-max periods have flushed them (the
+    /// warm-up of a checkpoint, eval.hpp).
+    void rebase(long writes, long find_max_count) { m_->rebase(writes, find_max_count); }
     /// True when this model runs an instance compiled for its formats.
     bool compiled() const { return compiled_; }
 

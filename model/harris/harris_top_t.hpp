@@ -169,6 +169,11 @@ public:
         reg_[cur_] = r;
     }
 
+    void rebase(long writes, long find_max_count) override {
+        reg_[cur_].writes = writes;
+        reg_[cur_].fm.count = find_max_count;
+    }
+
     FindMax find_max() const override {
         const FindMaxT<Back>& m = q().fm;
         FindMax out(fs_.get());

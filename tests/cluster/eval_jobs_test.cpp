@@ -166,6 +166,27 @@ TEST_CASE("cycle runs started at checkpoints report exactly the serial run's fra
     CHECK(serial.max_publications >= 4);   // maxima published in several frames
 }
 
+TEST_CASE("a checkpoint from a warm-up of six frames equals the one from the serial run", "[cluster]") {
+    const auto s = pattern_stream(96, 40, 12);
+    const Formats f{};
+    const eval::CycleCheckpoint serial = eval::cycle_checkpoint(s, f, 0, 12, nullptr, 10);
+    const eval::CheckpointBase base = eval::checkpoint_base(s, f, 12);
+    CHECK(base.writes_per_frame > 0);
+    eval::Stream held;   // frames 4..10 only
+    for (int k = 4; k <= 10; ++k) {
+        held.frames.push_back(s.frames[k]);
+        held.names.push_back(s.names[k]);
+        held.pair_index.push_back(s.pair_index[k]);
+    }
+    const eval::CycleCheckpoint warm = eval::warm_checkpoint(held, f, 4, 12, base, 10, 6);
+    CHECK(warm.writes == serial.writes);
+    CHECK(warm.driver == serial.driver);
+    CHECK(warm.model == serial.model);
+    CHECK(eval::to_json(warm) == eval::to_json(serial));
+    // too short a warm-up to flush find-max's maximum is refused
+    CHECK_THROWS_AS(eval::warm_checkpoint(held, f, 4, 12, base, 10, 1), InternalError);
+}
+
 TEST_CASE("the spec model's threshold of a frame depends only on the previous frame", "[cluster]") {
     const auto s = pattern_stream(96, 40, 6);
     const auto whole = eval::run_spec(s, spec::Options{}, 1);
