@@ -16,9 +16,10 @@ namespace hc::jobs {
 
 namespace {
 
-/// Frames of warm-up before a cycle checkpoint (whole pairs): enough for three find-max
-/// publications (about one per frame) after the pipeline has flushed.
-constexpr int kWarmFrames = 6;
+/// Frames of warm-up before a cycle checkpoint (whole pairs): find-max publishes about once
+/// per frame and needs three publications after the pipeline has flushed; a warm-up that
+/// sees fewer (eval::warm_checkpoint refuses it) is repeated with the longer one.
+constexpr int kWarmFrames = 4, kWarmFramesLong = 8;
 
 /// Stereo pairs [first, last) of a sequence, as a job selects them.
 util::Range sequence_pairs(const fs::path& kitti, const std::string& seq, util::Range r, const std::string& what) {
@@ -134,15 +135,21 @@ cluster::Manifest eval_manifest(const EvalJob& j) {
             for (std::size_t t = 1; t < parts.size(); ++t) {
                 const int to_pair = static_cast<int>(parts[t].first), to = 2 * (to_pair - p0);
                 eval::CycleCheckpoint c;
-                if (to - kWarmFrames < 1) {
+                if (to - kWarmFramesLong < 1) {
                     std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (from reset)\n", j.sequences[s].c_str(), to_pair);
                     c = eval::cycle_checkpoint(load(p0, to_pair + 1), Formats{}, 0, total, nullptr, to);
                 } else {
                     if (!base) base = eval::checkpoint_base(load(p0, p0 + 2), Formats{}, total);
                     std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (warm-up from pair %d)\n",
                                  j.sequences[s].c_str(), to_pair, to_pair - kWarmFrames / 2);
-                    c = eval::warm_checkpoint(load(to_pair - kWarmFrames / 2, to_pair + 1), Formats{},
-                                              to - kWarmFrames, total, *base, to, kWarmFrames);
+                    try {
+                        c = eval::warm_checkpoint(load(to_pair - kWarmFrames / 2, to_pair + 1), Formats{},
+                                                  to - kWarmFrames, total, *base, to, kWarmFrames);
+                    } catch (const InternalError& e) {
+                        std::fprintf(stderr, "eval: %s: warm-up of %d frames instead\n", e.what(), kWarmFramesLong);
+                        c = eval::warm_checkpoint(load(to_pair - kWarmFramesLong / 2, to_pair + 1), Formats{},
+                                                  to - kWarmFramesLong, total, *base, to, kWarmFramesLong);
+                    }
                 }
                 starts[t] = eval::to_json(c);
                 end_writes[t - 1] = c.writes;
