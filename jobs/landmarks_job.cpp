@@ -24,16 +24,17 @@ lm::Dataset load_pairs(const json& common, long first, long last) {
         const int f = common.at("first");
         return lm::kitti_dataset(root, common.at("sequence"), f + static_cast<int>(first), f + static_cast<int>(last));
     }
-    lm::Dataset all = lm::middlebury_dataset(root, common.at("need_truth"));
-    if (last > static_cast<long>(all.pairs.size()))
-        throw cluster::ClusterInputError("landmarks: " + root.string() + " holds " + std::to_string(all.pairs.size()) +
+    // the shard's scenes only, each loaded as middlebury_dataset loads it
+    const auto scenes = lm::middlebury_scenes(root);
+    if (last > static_cast<long>(scenes.size()))
+        throw cluster::ClusterInputError("landmarks: " + root.string() + " holds " + std::to_string(scenes.size()) +
                                          " scenes, the run expects at least " + std::to_string(last));
     lm::Dataset ds;
-    ds.name = all.name;
     for (long k = first; k < last; ++k) {
-        ds.pairs.push_back(all.pairs[k]);
-        ds.disparity.push_back(k < static_cast<long>(all.disparity.size()) ? all.disparity[k] : cv::Mat());
-        ds.calib.push_back(all.calib[k]);
+        lm::Dataset one = lm::middlebury_dataset(scenes[k], common.at("need_truth"));
+        ds.pairs.push_back(std::move(one.pairs.at(0)));
+        ds.disparity.push_back(std::move(one.disparity.at(0)));
+        ds.calib.push_back(one.calib.at(0));
     }
     return ds;
 }
