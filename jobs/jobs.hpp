@@ -52,7 +52,8 @@ struct SweepShards {
 /// InputError (sweep's) for a bad spec.
 cluster::Manifest sweep_manifest(const SweepShards& p);
 /// The merged points as a result: spec, points in spec order, stream, Pareto front and the
-/// points to verify marked, synthesis counts; timings zero, no RTL checks run.
+/// points to verify marked, synthesis counts, the phases' times summed over the shards; no
+/// RTL checks run.
 sweep::SweepResult sweep_result(const cluster::Manifest& m, const json& merged);
 
 // ---- mutate (jobs/mutate_job.cpp) ------------------------------------------------------

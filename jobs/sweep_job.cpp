@@ -108,6 +108,11 @@ sweep::SweepResult sweep_result(const cluster::Manifest& m, const json& merged) 
         throw cluster::ClusterInputError("sweep: the merged data holds " + std::to_string(r.points.size()) +
                                          " points, the spec " + std::to_string(r.spec.configs.size()));
     r.stream = merged.at("stream");
+    // the phases' times summed over the shards (each shard loads the frames and computes the reference)
+    r.seconds_load = merged.at("seconds").at("load");
+    r.seconds_reference = merged.at("seconds").at("reference");
+    r.seconds_cost = merged.at("seconds").at("cost");
+    r.seconds_accuracy = merged.at("seconds").at("accuracy");
     r.scored_frames = merged.at("scored_frames");
     for (const auto& p : r.points)
         for (const sweep::Cost* c : {&p.cost, p.has_cost_ghdl ? &p.cost_ghdl : nullptr}) {
@@ -139,18 +144,25 @@ cluster::ShardJob sweep_job() {
                 const sweep::PointsRun pr = sweep::evaluate_points(spec, which, o);
                 json points = json::array();
                 for (const auto& p : pr.points) points.push_back(point_json(p));
-                return json{{"stream", pr.stream}, {"scored_frames", pr.scored_frames}, {"points", points}};
+                return json{{"stream", pr.stream},
+                            {"scored_frames", pr.scored_frames},
+                            {"points", points},
+                            {"seconds", {{"load", pr.seconds_load}, {"reference", pr.seconds_reference},
+                                         {"cost", pr.seconds_cost}, {"accuracy", pr.seconds_accuracy}}}};
             },
             [](const json&, const std::vector<json>& data) {
                 json points = json::array();
+                json seconds = {{"load", 0.0}, {"reference", 0.0}, {"cost", 0.0}, {"accuracy", 0.0}};
                 for (const auto& d : data) {
+                    for (auto& [k, v] : seconds.items()) v = v.get<double>() + d.at("seconds").at(k).get<double>();
                     if (d.at("stream") != data.front().at("stream") || d.at("scored_frames") != data.front().at("scored_frames"))
                         throw cluster::ClusterInputError("sweep: shards measured different streams");
                     for (const auto& p : d.at("points")) points.push_back(p);
                 }
                 return json{{"stream", data.empty() ? json("") : data.front().at("stream")},
                             {"scored_frames", data.empty() ? json(0) : data.front().at("scored_frames")},
-                            {"points", points}};
+                            {"points", points},
+                            {"seconds", seconds}};
             }};
 }
 
