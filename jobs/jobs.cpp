@@ -1,6 +1,8 @@
 // jobs.cpp: the registry of job kinds and the run-then-merge sequence every sharded command uses.
 #include "jobs/jobs.hpp"
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "util/util.hpp"
@@ -12,10 +14,35 @@ const cluster::JobRegistry& registry() {
         cluster::JobRegistry r;
         add_eval_job(r);
         add_verilate_job(r);
+        r.add(detail::sweep_job());
+        r.add(detail::mutate_job());
+        r.add(detail::landmarks_job());
+        r.add(detail::slam_job());
         return r;
     }();
     return reg;
 }
+
+namespace detail {
+
+json doubles(const std::vector<double>& v) {
+    json a = json::array();
+    for (double x : v) a.push_back(std::isnan(x) ? json(nullptr) : json(x));
+    return a;
+}
+
+std::vector<double> doubles(const json& j) {
+    std::vector<double> v;
+    for (const auto& x : j) v.push_back(x.is_null() ? std::numeric_limits<double>::quiet_NaN() : x.get<double>());
+    return v;
+}
+
+std::vector<std::pair<long, long>> groups(long n, int k) {
+    if (n <= 0) return {};
+    return cluster::split_range(0, n, k <= 0 || k > n ? static_cast<int>(n) : k);
+}
+
+}  // namespace detail
 
 fs::path merged_path(const fs::path& dir) { return dir / "merged.json"; }
 

@@ -11,7 +11,11 @@
 
 #include "cluster/cluster.hpp"
 #include "eval/report.hpp"
+#include "landmarks/landmarks.hpp"
 #include "model/harris/harris_pkg.hpp"
+#include "mutate/mutate.hpp"
+#include "slam/slam.hpp"
+#include "sweep/sweep.hpp"
 #include "util/util.hpp"
 
 namespace hc::jobs {
@@ -79,5 +83,91 @@ cluster::Manifest verilate_manifest(const VerilateJob& j);
 /// for every geometry of the manifest, so that shards find them in the cache instead of
 /// building the same files at once. Progress to stderr; throws as vl::run_verilate.
 void prepare_rtl(const cluster::Manifest& m);
+
+// ---- sweep (jobs/sweep_job.cpp) --------------------------------------------------------
+// A shard evaluates a group of configurations (sweep::evaluate_points: synthesis cost,
+// overflow audit, accuracy); the merge lists the points in spec order. The RTL checks of
+// the Pareto points need the whole front: the command runs them after the merge.
+
+struct SweepShards {
+    std::string spec_text;        ///< the spec file's contents (the manifest carries them)
+    std::string spec_name;        ///< the spec file, for messages
+    fs::path kitti, cache;        ///< as sweep::SweepOptions
+    int threads = 1;              ///< accuracy threads per shard
+    int jobs = 1;                 ///< synthesis processes per shard
+    int shards = 0;               ///< 0: one per configuration
+};
+/// InputError (sweep's) for a bad spec.
+cluster::Manifest sweep_manifest(const SweepShards& p);
+/// The merged points as a result: spec, points in spec order, stream, Pareto front and the
+/// points to verify marked, synthesis counts, the phases' times summed over the shards; no
+/// RTL checks run.
+sweep::SweepResult sweep_result(const cluster::Manifest& m, const json& merged);
+
+// ---- mutate (jobs/mutate_job.cpp) ------------------------------------------------------
+// A shard co-simulates a group of the list's mutants (mutate::run_mutant); the first shard
+// also the unmutated baseline. The manifest carries the list file's path and hash and the
+// hash of rtl/: a shard refuses a list or RTL that changed since.
+
+struct MutateShards {
+    fs::path list;                ///< the mutation list (mutate/mutations.json)
+    std::string only;             ///< only this mutant id ("" all)
+    int shards = 0;               ///< 0: one per mutant (the baseline with the first)
+};
+cluster::Manifest mutate_manifest(const MutateShards& p);
+/// The campaign the manifest ran (the list file read again and checked against its hash).
+mutate::Campaign mutate_campaign(const cluster::Manifest& m);
+/// The verdicts in list order and the counts (mutate::tally).
+mutate::CampaignResult mutate_result(const cluster::Manifest& m, const json& merged);
+
+// ---- landmarks (jobs/landmarks_job.cpp) ------------------------------------------------
+// The descriptor comparison: a shard computes, for one detector and a range of the
+// dataset's pairs, every descriptor's matches (landmarks::match_pair). Hardware detectors
+// carry state from pair to pair, so their shards span the whole dataset.
+
+struct LandmarksShards {
+    std::string dataset = "middlebury";   ///< middlebury or kitti
+    fs::path root;                        ///< Middlebury folder of scenes, or the KITTI root
+    bool need_truth = true;               ///< Middlebury: require disp1.png
+    std::string sequence = "01";          ///< KITTI
+    int first = 0, last = 0;              ///< KITTI stereo pairs [first, last)
+    landmarks::ComparisonOptions options; ///< detectors, descriptors, grid, match, corners
+    std::size_t pairs = 0;                ///< pairs of the dataset (to split them)
+    int shards = 0;                       ///< 0: one per detector and pair
+};
+/// InputError (landmarks') for an impossible detector/descriptor combination.
+cluster::Manifest landmarks_manifest(const LandmarksShards& p);
+/// The rows of the comparison (detectors x descriptors, in the options' order), each pair's
+/// result as match_pair returned it (its time included).
+std::vector<landmarks::ComparisonRow> landmarks_rows(const json& merged);
+
+// ---- slam (jobs/slam_job.cpp) ----------------------------------------------------------
+// A shard simulates a range of Monte-Carlo seeds (slam::run_simulation, slam::run_errors);
+// the merge folds the runs in seed order (slam::fold_monte_carlo), so the statistics equal
+// slam::monte_carlo's bit for bit.
+
+struct SlamShards {
+    slam::SimConfig config;
+    int runs = 50;
+    std::uint64_t first_seed = 1;
+    double confidence = 0.95;
+    int shards = 0;               ///< 0: one per seed
+};
+/// InputError (slam's) for a bad configuration or run count.
+cluster::Manifest slam_manifest(const SlamShards& p);
+slam::MonteCarlo slam_result(const cluster::Manifest& m, const json& merged);
+
+namespace detail {
+/// Registration of each kind (jobs/<kind>_job.cpp).
+cluster::ShardJob sweep_job();
+cluster::ShardJob mutate_job();
+cluster::ShardJob landmarks_job();
+cluster::ShardJob slam_job();
+/// A list of doubles with NaN as null (JSON has no NaN) and back, bit for bit.
+json doubles(const std::vector<double>& v);
+std::vector<double> doubles(const json& j);
+/// [first, last) of `n` items in `k` groups (k <= 0 or > n: one per item).
+std::vector<std::pair<long, long>> groups(long n, int k);
+}  // namespace detail
 
 }  // namespace hc::jobs

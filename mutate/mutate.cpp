@@ -25,8 +25,9 @@ std::string md_code(std::string s) {
     return "`" + s + "`";
 }
 
-/// Applies the mutation (or none), analyses and co-simulates.
-Outcome run_one(const Mutant* m, const frames::LoadedFrames& lf, const fs::path& work) {
+}  // namespace
+
+Outcome run_mutant(const Mutant* m, const frames::LoadedFrames& lf, const fs::path& work) {
     Outcome out;
     const auto t0 = std::chrono::steady_clock::now();
     fs::remove_all(work);
@@ -70,7 +71,27 @@ Outcome run_one(const Mutant* m, const frames::LoadedFrames& lf, const fs::path&
     return out;
 }
 
-}  // namespace
+Verdict judge(const Mutant& m, const Outcome& o) {
+    Verdict v{m, o};
+    v.caught = o.status == "mismatch";
+    v.ok = m.equivalent ? o.status == "pass" : v.caught && o.stage == m.stage;
+    return v;
+}
+
+CampaignResult tally(const Outcome& baseline, std::vector<Verdict> verdicts) {
+    CampaignResult r;
+    r.baseline = baseline;
+    if (r.baseline.status != "pass") ++r.problems;
+    for (const auto& v : verdicts) {
+        if (!v.mutant.equivalent) {
+            ++r.total;
+            r.caught += v.caught;
+        }
+        if (!v.ok) ++r.problems;
+    }
+    r.verdicts = std::move(verdicts);
+    return r;
+}
 
 Campaign load_campaign(const fs::path& p) {
     const std::string what = "mutation list '" + p.string() + "'";
@@ -111,27 +132,17 @@ CampaignResult run_campaign(const Campaign& c, const std::string& only,
                             const std::function<void(const std::string&)>& progress) {
     const frames::LoadedFrames lf = frames::load_frames(c.stream);
     util::ScratchDir scratch("harris-mutate");
-    CampaignResult r;
     progress("baseline (no mutation) ...");
-    r.baseline = run_one(nullptr, lf, scratch.path() / "baseline");
-    if (r.baseline.status != "pass") ++r.problems;
+    const Outcome baseline = run_mutant(nullptr, lf, scratch.path() / "baseline");
+    std::vector<Verdict> verdicts;
     for (const auto& m : c.mutants) {
         if (!only.empty() && m.id != only) continue;
         progress(m.id + " " + m.file + ": " + m.kind + " ...");
-        Verdict v{m, run_one(&m, lf, scratch.path() / m.id)};
-        v.caught = v.outcome.status == "mismatch";
-        if (m.equivalent) {
-            v.ok = v.outcome.status == "pass";
-        } else {
-            ++r.total;
-            r.caught += v.caught;
-            v.ok = v.caught && v.outcome.stage == m.stage;
-        }
-        if (!v.ok) ++r.problems;
-        progress(m.id + ": " + v.outcome.status + (v.outcome.stage.empty() ? "" : ", first stage " + v.outcome.stage));
-        r.verdicts.push_back(std::move(v));
+        verdicts.push_back(judge(m, run_mutant(&m, lf, scratch.path() / m.id)));
+        const Outcome& o = verdicts.back().outcome;
+        progress(m.id + ": " + o.status + (o.stage.empty() ? "" : ", first stage " + o.stage));
     }
-    return r;
+    return tally(baseline, std::move(verdicts));
 }
 
 std::string markdown(const Campaign& c, const CampaignResult& r, const std::string& list) {

@@ -54,6 +54,15 @@ struct CampaignResult {
     int problems = 0;               ///< verdicts not ok, plus a failing baseline
 };
 
+/// Applies mutation `m` (nullptr: none, the baseline) to a copy of rtl/ in the scratch folder
+/// `work` (emptied first), analyses it and co-simulates `frames`. InputError when the
+/// mutation's `find` does not occur exactly once in its file.
+Outcome run_mutant(const Mutant* m, const frames::LoadedFrames& frames, const std::filesystem::path& work);
+/// The judgement of mutant `m` from its outcome.
+Verdict judge(const Mutant& m, const Outcome& o);
+/// The campaign's counts from the baseline's outcome and the verdicts (in list order).
+CampaignResult tally(const Outcome& baseline, std::vector<Verdict> verdicts);
+
 /// Runs the baseline and the mutants (only the one with id `only` when not empty), each in
 /// its own directory under a scratch directory. `progress` gets a line per step.
 CampaignResult run_campaign(const Campaign& c, const std::string& only,

@@ -131,7 +131,25 @@ RunTrace run_simulation(const SimConfig& config, uint64_t seed, UpdateForm form)
         record();
     }
     t.final_filter = ekf;
+    for (int id : ekf.landmark_ids()) {
+        t.final_map.push_back(ekf.landmark(id));
+        t.final_map_cov.push_back(ekf.landmark_covariance(id));
+    }
     return t;
+}
+
+RunErrors run_errors(const RunTrace& t) {
+    RunErrors e;
+    e.pose_nees = t.pose_nees;
+    e.map_nees = t.map_nees;
+    e.map_dof = t.map_dof;
+    e.map_rmse = t.map_rmse;
+    for (size_t k = 0; k < t.truth.size(); ++k) {
+        e.position_sq.push_back((t.truth[k] - t.estimate[k]).head<2>().squaredNorm());
+        const double eh = wrap_angle(t.truth[k](2) - t.estimate[k](2));
+        e.heading_sq.push_back(eh * eh);
+    }
+    return e;
 }
 
 MonteCarlo monte_carlo(const SimConfig& config, int runs, uint64_t first_seed, double confidence,
@@ -139,15 +157,34 @@ MonteCarlo monte_carlo(const SimConfig& config, int runs, uint64_t first_seed, d
     config.validate();
     if (runs < 1) throw InputError("--runs must be at least 1, got " + std::to_string(runs));
     if (!(confidence > 0 && confidence < 1)) throw InputError("the confidence must be in (0, 1)");
-    const int T = config.steps + 1;
+    std::vector<RunErrors> errors;
+    RunTrace first;
+    for (int r = 0; r < runs; ++r) {
+        RunTrace t = run_simulation(config, first_seed + r);
+        errors.push_back(run_errors(t));
+        if (r == 0) first = std::move(t);
+        if (progress) progress(r + 1, runs);
+    }
+    return fold_monte_carlo(errors, std::move(first), confidence);
+}
+
+MonteCarlo fold_monte_carlo(const std::vector<RunErrors>& errors, RunTrace first, double confidence) {
+    const int runs = static_cast<int>(errors.size());
+    if (runs < 1) throw InputError("a Monte-Carlo fold needs at least one run");
+    if (!(confidence > 0 && confidence < 1)) throw InputError("the confidence must be in (0, 1)");
+    const int T = static_cast<int>(errors.front().pose_nees.size());
+    for (const auto& e : errors)
+        if (static_cast<int>(e.pose_nees.size()) != T || static_cast<int>(e.map_nees.size()) != T ||
+            static_cast<int>(e.map_dof.size()) != T || static_cast<int>(e.map_rmse.size()) != T ||
+            static_cast<int>(e.position_sq.size()) != T || static_cast<int>(e.heading_sq.size()) != T)
+            throw InputError("Monte-Carlo runs of different lengths cannot be folded");
     std::vector<double> pose_sum(T, 0), map_sum(T, 0), pos_sq(T, 0), head_sq(T, 0), map_sq(T, 0);
     std::vector<int> pose_n(T, 0), map_n(T, 0);
     std::vector<long> dof_sum(T, 0);
     MonteCarlo mc;
     mc.runs = runs;
     mc.confidence = confidence;
-    for (int r = 0; r < runs; ++r) {
-        RunTrace t = run_simulation(config, first_seed + r);
+    for (const RunErrors& t : errors) {
         for (int k = 0; k < T; ++k) {
             if (std::isfinite(t.pose_nees[k])) {
                 pose_sum[k] += t.pose_nees[k];
@@ -159,13 +196,11 @@ MonteCarlo monte_carlo(const SimConfig& config, int runs, uint64_t first_seed, d
                 ++map_n[k];
                 map_sq[k] += t.map_rmse[k] * t.map_rmse[k];
             }
-            pos_sq[k] += (t.truth[k] - t.estimate[k]).head<2>().squaredNorm();
-            const double eh = wrap_angle(t.truth[k](2) - t.estimate[k](2));
-            head_sq[k] += eh * eh;
+            pos_sq[k] += t.position_sq[k];
+            head_sq[k] += t.heading_sq[k];
         }
-        if (r == 0) mc.first = std::move(t);
-        if (progress) progress(r + 1, runs);
     }
+    mc.first = std::move(first);
     const double lo_p = (1 - confidence) / 2, hi_p = (1 + confidence) / 2;
     mc.pose_lo = chi2_quantile(lo_p, 3.0 * runs) / runs;
     mc.pose_hi = chi2_quantile(hi_p, 3.0 * runs) / runs;

@@ -152,8 +152,7 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
     // plots
     std::string lm, est_lm;
     for (const auto& p : t.world.landmarks) lm += num(p.x()) + ' ' + num(p.y()) + '\n';
-    for (int id : t.final_filter.landmark_ids())
-        est_lm += ellipse(t.final_filter.landmark(id), t.final_filter.landmark_covariance(id), 3);
+    for (size_t i = 0; i < t.final_map.size(); ++i) est_lm += ellipse(t.final_map[i], t.final_map_cov[i], 3);
     std::string robot_ell;
     for (size_t k = 0; k < t.estimate.size(); k += std::max<size_t>(1, t.estimate.size() / 12))
         robot_ell += ellipse(t.estimate[k].head<2>(), t.pose_cov[k].topLeftCorner<2, 2>(), 3);

@@ -245,7 +245,9 @@ struct RunTrace {
     std::vector<int> map_dof;          ///< 2 × mapped landmarks
     std::vector<double> map_rmse;      ///< RMS landmark position error (m)
     World world;
-    Ekf final_filter;
+    Ekf final_filter;                  ///< the filter at the end (not carried by sharded runs' results)
+    std::vector<Vec2> final_map;       ///< the filter's landmark estimates at the end, in state order
+    std::vector<Mat2> final_map_cov;   ///< their covariances
 };
 /// Runs the filter on a simulated run (known data association, landmarks initialised on
 /// first sight).
@@ -265,7 +267,22 @@ struct MonteCarlo {
     double pose_nees_average = 0, map_nees_per_dof_average = 0;   ///< over steps
     RunTrace first;   ///< the run of first_seed, for the plots
 };
-/// `progress` (may be empty) is called after each run with (done, total).
+/// One run's contributions to the Monte-Carlo statistics, per step.
+struct RunErrors {
+    std::vector<double> pose_nees, map_nees;   ///< NaN where undefined
+    std::vector<int> map_dof;
+    std::vector<double> map_rmse;              ///< NaN while no landmark is mapped
+    std::vector<double> position_sq;           ///< squared planar position error (m²)
+    std::vector<double> heading_sq;            ///< squared wrapped heading error (rad²)
+};
+RunErrors run_errors(const RunTrace& t);
+/// The statistics of runs of consecutive seeds, folded in the order given (seed order: the
+/// order fixes every floating-point sum, so runs computed anywhere and folded here give the
+/// same bits as monte_carlo()). `first` is the first seed's trace. Throws InputError for
+/// no runs, runs of different lengths or a confidence outside (0, 1).
+MonteCarlo fold_monte_carlo(const std::vector<RunErrors>& runs, RunTrace first, double confidence = 0.95);
+/// run_simulation() of every seed, then fold_monte_carlo(). `progress` (may be empty) is
+/// called after each run with (done, total).
 MonteCarlo monte_carlo(const SimConfig& config, int runs, uint64_t first_seed, double confidence = 0.95,
                        const std::function<void(int, int)>& progress = {});
 

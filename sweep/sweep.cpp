@@ -117,14 +117,12 @@ void mark_verify(SweepResult& r) {
         if (i >= 0) r.points[i].verify = true;
 }
 
-SweepResult run_sweep(const SweepOptions& o) {
-    const auto t0 = Clock::now();
-    SweepResult res;
-    res.spec = load_sweep_spec(o.spec_file);   // InputError: status 2
-    const SweepSpec& spec = res.spec;
-    const size_t n = spec.configs.size();
-    progress(o.progress, fmt::format("{} configurations from {}", n, o.spec_file.string()));
-    for (const auto& note : spec.notes) progress(o.progress, "note: " + note);
+PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& which, const SweepOptions& o) {
+    PointsRun res;
+    for (size_t i : which)
+        if (i >= spec.configs.size())
+            throw InputError(fmt::format("sweep: configuration {} does not exist ({} in the spec)", i, spec.configs.size()));
+    const size_t n = which.size();
     cv::setNumThreads(1);   // frames run in parallel; OpenCV's own threads would oversubscribe
 
     // ---- 1. frames and reference -------------------------------------------------------
@@ -146,10 +144,9 @@ SweepResult run_sweep(const SweepOptions& o) {
 
     res.points.resize(n);
     for (size_t i = 0; i < n; ++i) {
-        res.points[i].config = spec.configs[i];
-        res.points[i].register_bits = datapath_register_bits(spec.configs[i].formats, spec.cost_geometry);
+        res.points[i].config = spec.configs[which[i]];
+        res.points[i].register_bits = datapath_register_bits(res.points[i].config.formats, spec.cost_geometry);
     }
-
     // ---- 2. cost -----------------------------------------------------------------------
     t = Clock::now();
     CostOptions co;
@@ -161,13 +158,13 @@ SweepResult run_sweep(const SweepOptions& o) {
     std::vector<Job> jobs;
     for (size_t i = 0; i < n; ++i) {
         jobs.push_back({i, Variant::signed_mul});
-        if (spec.configs[i].formats == Formats{}) jobs.push_back({i, Variant::ghdl});   // the DSP note
+        if (res.points[i].config.formats == Formats{}) jobs.push_back({i, Variant::ghdl});   // the DSP note
     }
     std::atomic<int> done{0};
     std::mutex m;
     run_pool(jobs.size(), o.jobs, [&](size_t k) {
         const Job& j = jobs[k];
-        const Cost c = synth_cost(ctx, spec.configs[j.point].formats, j.v);
+        const Cost c = synth_cost(ctx, res.points[j.point].config.formats, j.v);
         {
             std::lock_guard<std::mutex> l(m);
             PointResult& p = res.points[j.point];
@@ -177,7 +174,7 @@ SweepResult run_sweep(const SweepOptions& o) {
             else { ++res.synthesised; res.synth_seconds_sum += c.seconds; }
         }
         progress(o.progress, fmt::format("[cost {}/{}] {} ({}): {} LUT, {} FF, {} DSP, {} CARRY4 {}", ++done, jobs.size(),
-                                         spec.configs[j.point].name, variant_name(j.v), c.luts, c.ffs, c.dsps, c.carry4,
+                                         res.points[j.point].config.name, variant_name(j.v), c.luts, c.ffs, c.dsps, c.carry4,
                                          c.cached ? "(cached)" : fmt::format("({:.0f} s)", c.seconds)));
     });
     res.seconds_cost = since(t);
@@ -203,11 +200,48 @@ SweepResult run_sweep(const SweepOptions& o) {
     }
     res.seconds_accuracy = since(t);
 
-    // ---- 4. Pareto front and its RTL checks --------------------------------------------
+    return res;
+}
+
+SweepResult run_sweep(const SweepOptions& o) {
+    const auto t0 = Clock::now();
+    SweepResult res;
+    res.spec = load_sweep_spec(o.spec_file);   // InputError: status 2
+    const size_t n = res.spec.configs.size();
+    progress(o.progress, fmt::format("{} configurations from {}", n, o.spec_file.string()));
+    for (const auto& note : res.spec.notes) progress(o.progress, "note: " + note);
+    std::vector<size_t> all(n);
+    for (size_t i = 0; i < n; ++i) all[i] = i;
+    PointsRun pr = evaluate_points(res.spec, all, o);
+    res.points = std::move(pr.points);
+    res.stream = pr.stream;
+    res.scored_frames = pr.scored_frames;
+    res.seconds_load = pr.seconds_load;
+    res.seconds_reference = pr.seconds_reference;
+    res.seconds_cost = pr.seconds_cost;
+    res.seconds_accuracy = pr.seconds_accuracy;
+    res.synthesised = pr.synthesised;
+    res.synth_cached = pr.synth_cached;
+    res.synth_seconds_sum = pr.synth_seconds_sum;
     mark_pareto(res.points);
     mark_verify(res);
-    t = Clock::now();
+    check_points(res, o);
+    res.seconds_total = since(t0);
+    return res;
+}
+
+void check_points(SweepResult& res, const SweepOptions& o) {
+    const SweepSpec& spec = res.spec;
+    const size_t n = res.points.size();
+    std::mutex m;
+    auto t = Clock::now();
+    // ---- 4. RTL checks of the points marked verify ------------------------------------
     if (o.trust && (spec.trust.rtl || !spec.trust.verilator_pairs.empty())) {
+        CostOptions co;
+        co.rtl_sources = cosim::rtl_sources();
+        co.cache_dir = o.cache / "synth";
+        co.geometry = spec.cost_geometry;
+        const CostContext ctx(co);
         const fs::path trust_cache = o.cache / "trust";
         fs::create_directories(trust_cache);
         const auto rset = util::read_regression_set(o.regression_set);
@@ -337,8 +371,6 @@ SweepResult run_sweep(const SweepOptions& o) {
         }
     }
     res.seconds_trust = since(t);
-    res.seconds_total = since(t0);
-    return res;
 }
 
 }  // namespace hc::sweep

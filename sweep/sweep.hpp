@@ -74,8 +74,26 @@ void mark_pareto(std::vector<PointResult>& pts);
 /// findings' points (findings() in sweep_report.hpp), which need not be Pareto-optimal.
 void mark_verify(SweepResult& r);
 
-/// The whole sweep (throws InputError on bad input, SimulatorError on a tool failure).
-/// The RTL checks call cosim::run_ghdl and vl::run_verilate. Progress on stderr.
+/// The whole sweep (throws InputError on bad input, SimulatorError on a tool failure):
+/// evaluate_points() on every configuration, mark_pareto(), mark_verify(), check_points().
+/// Progress on stderr.
 SweepResult run_sweep(const SweepOptions& o);
+
+/// What the per-configuration phases measure for some configurations of a spec.
+struct PointsRun {
+    std::vector<PointResult> points;   ///< in the order asked for; pareto/verify not set
+    std::string stream;
+    int scored_frames = 0;
+    double seconds_load = 0, seconds_reference = 0, seconds_cost = 0, seconds_accuracy = 0;
+    int synthesised = 0, synth_cached = 0;
+    double synth_seconds_sum = 0;
+};
+/// Synthesis cost, overflow audit and accuracy of the configurations `which` (indices into
+/// spec.configs; InputError for one out of range). Each point depends on its configuration
+/// only, so any split of the indices gives the same points.
+PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& which, const SweepOptions& o);
+/// The RTL checks (cosim::run_ghdl, vl::run_verilate) of the points marked verify, when
+/// o.trust and the spec asks for them; sets r.seconds_trust.
+void check_points(SweepResult& r, const SweepOptions& o);
 
 }  // namespace hc::sweep

@@ -7,10 +7,13 @@
 #include <filesystem>
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 #include <fmt/format.h>
 
+#include "jobs/jobs.hpp"
 #include "tools/commands.hpp"
+#include "tools/runner_flags.hpp"
 #include "frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
 #include "util/util.hpp"
@@ -28,6 +31,8 @@ struct LandmarksOptions {
     int g = 16, h = 3, overlays = 2, threads = 0;
     double ratio = 0, sigma = 0.5;
     bool drop_ties = false, compare = false, study = false, corrected = false, landmark_files = true, no_truth = false;
+    RunnerFlags runner;   ///< the comparison in shards (--runner, --shards)
+    bool sharded = false;
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -58,10 +63,11 @@ std::string safe(const std::string& s) {
     return r;
 }
 
-landmarks::Dataset load_dataset(const LandmarksOptions& o) {
+/// The dataset of the flags; `root` receives its folder.
+landmarks::Dataset load_dataset(const LandmarksOptions& o, fs::path& root) {
     const auto data = frames::data_dir(o.data);
     if (o.dataset == "middlebury") {
-        fs::path root = o.middlebury;
+        root = o.middlebury;
         if (root.empty()) {
             if (!data) throw InputError("no --middlebury folder and no data directory (--data, $HARRIS_COSIM_DATA)");
             root = *data / "middlebury2006" / "half";
@@ -69,7 +75,7 @@ landmarks::Dataset load_dataset(const LandmarksOptions& o) {
         return landmarks::middlebury_dataset(root, !o.no_truth);
     }
     if (o.dataset == "kitti") {
-        fs::path root = o.kitti;
+        root = o.kitti;
         if (root.empty()) {
             if (!data) throw InputError("no --kitti root and no data directory (--data, $HARRIS_COSIM_DATA)");
             root = *data / "kitti";
@@ -108,12 +114,30 @@ void run_landmarks(const LandmarksOptions& o) {
         co.progress = [](const std::string& line) { std::fprintf(stderr, "landmarks: %s\n", line.c_str()); };
 
         std::fprintf(stderr, "landmarks: loading %s...\n", o.dataset.c_str());
-        const landmarks::Dataset ds = load_dataset(o);
+        fs::path root;
+        const landmarks::Dataset ds = load_dataset(o, root);
         std::fprintf(stderr, "landmarks: %s, %zu pairs\n", ds.name.c_str(), ds.pairs.size());
         fs::create_directories(o.out);
 
         std::vector<std::vector<landmarks::PairKeypoints>> kps;
-        const auto rows = landmarks::compare(ds, co, &kps);
+        std::vector<landmarks::ComparisonRow> rows;
+        if (o.sharded) {
+            if (o.study) throw InputError("--study runs in one process: leave out --runner and --shards");
+            jobs::LandmarksShards p;
+            p.dataset = o.dataset;
+            p.root = root;
+            p.need_truth = !o.no_truth;
+            p.sequence = o.sequence;
+            std::tie(p.first, p.last) = o.dataset == "kitti" ? pair_range(o.frames) : std::pair<int, int>{0, 0};
+            p.options = co;
+            p.pairs = ds.pairs.size();
+            p.shards = o.runner.shards;
+            const cluster::Manifest m = jobs::landmarks_manifest(p);
+            const fs::path dir = o.runner.run_dir.empty() ? fs::path(o.out) / "run" : fs::path(o.runner.run_dir);
+            rows = jobs::landmarks_rows(jobs::run_and_merge(dir, m, run_options(o.runner, dir)));
+        } else {
+            rows = landmarks::compare(ds, co, &kps);
+        }
         const double t_compare = secs();
 
         // landmarks and overlays of every row
@@ -244,7 +268,11 @@ void add_landmarks_command(CLI::App& app) {
     cmd->add_flag("!--no-landmark-files", o->landmark_files, "skip the per-pair landmark CSV/PLY files");
     cmd->add_option("--threads", o->threads, "worker threads of the study (0: all cores)");
     cmd->add_option("--out", o->out, "output directory")->capture_default_str();
-    cmd->callback([o] { run_landmarks(*o); });
+    add_runner_flags(cmd, o->runner);
+    cmd->callback([o, cmd] {
+        o->sharded = cmd->count("--runner") + cmd->count("--shards") > 0;
+        run_landmarks(*o);
+    });
 }
 
 }  // namespace hc::tools

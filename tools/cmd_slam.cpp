@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "tools/commands.hpp"
+#include "tools/runner_flags.hpp"
+#include "jobs/jobs.hpp"
 #include "frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
 #include "util/util.hpp"
@@ -36,6 +38,9 @@ struct SlamOptions {
     // --landmarks-from stereo: the landmark pipeline's options
     std::string corners = "opencv", descriptor_name = "grid", config;
     int g = 16, h = 3;
+    // --simulate: Monte-Carlo seeds in shards (--runner, --shards)
+    RunnerFlags runner;
+    bool sharded = false;
 };
 
 std::string num(double v) {
@@ -66,9 +71,21 @@ void run_simulate(const SlamOptions& o) {
         " --sigma-range " + num(o.sigma_range) + " --sigma-bearing " + num(o.sigma_bearing_deg) + " --fov " +
         num(o.fov_deg) + " --max-range " + num(o.max_range) + " --sigma-dx " + num(c.odometry.sigma_dx) +
         " --sigma-dtheta " + num(c.odometry.sigma_dtheta / deg) + " --out " + o.out;
-    const auto mc = slam::monte_carlo(c, o.runs, o.seed, 0.95, [](int done, int total) {
-        if (done % 10 == 0 || done == total) std::fprintf(stderr, "slam: run %d/%d\n", done, total);
-    });
+    slam::MonteCarlo mc;
+    if (o.sharded) {
+        jobs::SlamShards p;
+        p.config = c;
+        p.runs = o.runs;
+        p.first_seed = o.seed;
+        p.shards = o.runner.shards;
+        const cluster::Manifest m = jobs::slam_manifest(p);
+        const std::filesystem::path dir = o.runner.run_dir.empty() ? std::filesystem::path(o.out) / "run" : std::filesystem::path(o.runner.run_dir);
+        mc = jobs::slam_result(m, jobs::run_and_merge(dir, m, run_options(o.runner, dir)));
+    } else {
+        mc = slam::monte_carlo(c, o.runs, o.seed, 0.95, [](int done, int total) {
+            if (done % 10 == 0 || done == total) std::fprintf(stderr, "slam: run %d/%d\n", done, total);
+        });
+    }
     slam::write_simulation_report(o.out, c, mc, command);
     std::printf("pose NEES average %.3f, 95 %% bounds [%.3f, %.3f], %.1f %% of steps inside\n", mc.pose_nees_average,
                 mc.pose_lo, mc.pose_hi, 100 * mc.pose_inside);
@@ -230,7 +247,12 @@ void add_slam_command(CLI::App& app) {
     cmd->add_option("--forget-after", o->forget_after, "remove landmarks unseen for this many frames (0: keep)")->capture_default_str();
     cmd->add_option("--max-observations", o->max_observations,
                     "observations used per frame, the most precise first (0: all)")->capture_default_str();
-    cmd->callback([o] { run_slam(*o); });
+    add_runner_flags(cmd, o->runner);
+    cmd->callback([o, cmd] {
+        o->sharded = cmd->count("--runner") + cmd->count("--shards") > 0;
+        if (o->sharded && !o->simulate) throw InputError("--runner and --shards shard the Monte-Carlo seeds of --simulate only");
+        run_slam(*o);
+    });
 }
 
 }  // namespace hc::tools

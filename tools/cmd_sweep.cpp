@@ -13,8 +13,11 @@
 #include "cosim/cosim.hpp"
 #include "frames/frames.hpp"
 #include "sweep/sweep.hpp"
+#include "jobs/jobs.hpp"
 #include "tools/commands.hpp"
+#include "tools/runner_flags.hpp"
 #include "sweep/sweep_report.hpp"
+#include "util/util.hpp"
 
 namespace fs = std::filesystem;
 
@@ -24,8 +27,10 @@ namespace {
 
 struct SweepCli {
     std::string config, out = "sweep-report", cache, kitti, data, backend;
-    int threads = 0, jobs = 2;
+    int threads = 0;
     bool no_rtl = false, quiet = false;
+    RunnerFlags runner;   ///< runner.jobs: also the synthesis / GHDL processes at once
+    bool sharded = false;
 };
 
 void run(const SweepCli& c) {
@@ -48,10 +53,29 @@ void run(const SweepCli& c) {
     const auto backends = cosim::ghdl_backends();
     o.ghdl_backend = !c.backend.empty() ? c.backend : backends.empty() ? "gcc" : backends.front();
     o.threads = c.threads;
-    o.jobs = c.jobs;
+    o.jobs = c.runner.jobs;
     o.trust = !c.no_rtl;
     o.progress = !c.quiet;
-    sweep::SweepResult r = sweep::run_sweep(o);
+    sweep::SweepResult r;
+    if (c.sharded) {
+        // configurations in shards, then the RTL checks of the merged Pareto front here
+        const auto t0 = std::chrono::steady_clock::now();
+        jobs::SweepShards p;
+        p.spec_text = util::read_file(o.spec_file, "--config");
+        p.spec_name = c.config;
+        p.kitti = o.kitti;
+        p.cache = o.cache;
+        p.threads = c.threads;
+        p.jobs = 1;
+        p.shards = c.runner.shards;
+        const cluster::Manifest m = jobs::sweep_manifest(p);
+        const fs::path dir = c.runner.run_dir.empty() ? o.out / "run" : fs::path(c.runner.run_dir);
+        r = jobs::sweep_result(m, jobs::run_and_merge(dir, m, run_options(c.runner, dir)));
+        sweep::check_points(r, o);
+        r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    } else {
+        r = sweep::run_sweep(o);
+    }
     r.command = fmt::format("harris-cosim sweep --config {} --out {}{}", c.config, c.out, c.no_rtl ? " --no-rtl" : "");
     sweep::write_reports(r, o.out);
     std::fprintf(stderr, "sweep: %zu configurations in %.1f s; reports in %s (sweep.md, sweep.csv, sweep.json, pareto.png)\n",
@@ -72,18 +96,25 @@ void add_sweep_command(CLI::App& app) {
         "sweep",
         "Bit-width exploration: per configuration of a JSON sweep spec, recall/precision against OpenCV on KITTI\n"
         "(spec model), overflow audit, yosys synth_xilinx cost (cached); Pareto front, each Pareto point verified on\n"
-        "the RTL (GHDL co-simulation + Verilator). Exit status: 0 done, 1 an RTL check failed, 2 bad input, 3 tool failure.");
+        "the RTL (GHDL co-simulation + Verilator). Exit status: 0 done, 1 an RTL check failed, 2 bad input, 3 tool failure.\n"
+        "--jobs: shards at once, and the synthesis / GHDL processes at once of a single-process run and of the RTL checks.\n"
+        "With --runner or --shards the configurations run in shards (run directory --run-dir, default <out>/run); the RTL\n"
+        "checks of the merged Pareto front run after the merge, here.");
     s->add_option("--config", c->config, "JSON sweep spec (configs/*.json; see sweep/sweep_config.hpp)")->required();
     s->add_option("--out", c->out, "output directory (sweep.md, sweep.csv, sweep.json, pareto.png)")->capture_default_str();
     s->add_option("--cache", c->cache, "synthesis/RTL-check cache (else $HARRIS_COSIM_SWEEP_CACHE or <build>/sweep-cache)");
     s->add_option("--kitti", c->kitti, "KITTI odometry root (holds sequences/NN); default <data>/kitti");
     s->add_option("--data", c->data, "data directory (default $HARRIS_COSIM_DATA, else ../shared/data)");
     s->add_option("--threads", c->threads, "threads for the accuracy runs (0: all cores)")->check(CLI::NonNegativeNumber);
-    s->add_option("--jobs", c->jobs, "synthesis / GHDL processes at once")->check(CLI::PositiveNumber)->capture_default_str();
     s->add_option("--backend", c->backend, "GHDL back end of the RTL checks (default: the first built: gcc, llvm, mcode)");
     s->add_flag("--no-rtl", c->no_rtl, "skip the RTL checks of the Pareto points");
     s->add_flag("--quiet", c->quiet, "no progress lines");
-    s->callback([c] { run(*c); });
+    c->runner.jobs = 2;
+    add_runner_flags(s, c->runner);
+    s->callback([c, s] {
+        c->sharded = s->count("--runner") + s->count("--shards") > 0;
+        run(*c);
+    });
 }
 
 }  // namespace hc::tools

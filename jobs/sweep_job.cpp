@@ -1,0 +1,171 @@
+// sweep_job.cpp: the "sweep" job kind, configurations of a bit-width sweep in shards.
+#include "jobs/jobs.hpp"
+
+#include <string>
+
+#include "model/harris/formats_json.hpp"
+#include "util/util.hpp"
+
+namespace hc::jobs {
+
+namespace {
+
+template <class A>
+json array_json(const A& a) {
+    return json(std::vector<std::uint64_t>(a.begin(), a.end()));
+}
+
+template <class A>
+void array_from(const json& j, A& a) {
+    if (j.size() != a.size()) throw cluster::ClusterInputError("sweep: an overflow count list has the wrong length");
+    for (std::size_t k = 0; k < a.size(); ++k) a[k] = j.at(k).get<std::uint64_t>();
+}
+
+json cost_json(const sweep::Cost& c) {
+    return {{"luts", c.luts},   {"inv", c.inv},     {"ffs", c.ffs},         {"dsps", c.dsps},
+            {"carry4", c.carry4}, {"muxf", c.muxf}, {"srl", c.srl},         {"cells", c.cells},
+            {"seconds", c.seconds}, {"cached", c.cached}, {"key", c.key}};
+}
+
+sweep::Cost cost_from(const json& j) {
+    sweep::Cost c;
+    c.luts = j.at("luts");
+    c.inv = j.at("inv");
+    c.ffs = j.at("ffs");
+    c.dsps = j.at("dsps");
+    c.carry4 = j.at("carry4");
+    c.muxf = j.at("muxf");
+    c.srl = j.at("srl");
+    c.cells = j.at("cells").get<std::map<std::string, long>>();
+    c.seconds = j.at("seconds");
+    c.cached = j.at("cached");
+    c.key = j.at("key");
+    return c;
+}
+
+json point_json(const sweep::PointResult& p) {
+    json j = {{"name", p.config.name},
+              {"formats", json::parse(formats_to_json(p.config.formats))},
+              {"overflow", {{"wrapped", array_json(p.overflow.wrapped)}, {"sign_lost", array_json(p.overflow.sign_lost)},
+                            {"values", array_json(p.overflow.values)}}},
+              {"confusion", {{"tp", p.accuracy.tp}, {"tn", p.accuracy.tn}, {"fp", p.accuracy.fp}, {"fn", p.accuracy.fn}}},
+              {"cost", cost_json(p.cost)},
+              {"register_bits", p.register_bits},
+              {"wraps", p.wraps},
+              {"eval_seconds", p.eval_seconds},
+              {"overflow_seconds", p.overflow_seconds}};
+    if (p.has_cost_ghdl) j["cost_ghdl"] = cost_json(p.cost_ghdl);
+    return j;
+}
+
+sweep::PointResult point_from(const json& j) {
+    sweep::PointResult p;
+    p.config.name = j.at("name");
+    p.config.formats = formats_from_json(j.at("formats"), "sweep shard result, configuration " + p.config.name);
+    array_from(j.at("overflow").at("wrapped"), p.overflow.wrapped);
+    array_from(j.at("overflow").at("sign_lost"), p.overflow.sign_lost);
+    array_from(j.at("overflow").at("values"), p.overflow.values);
+    const json& c = j.at("confusion");
+    p.accuracy.tp = c.at("tp");
+    p.accuracy.tn = c.at("tn");
+    p.accuracy.fp = c.at("fp");
+    p.accuracy.fn = c.at("fn");
+    p.cost = cost_from(j.at("cost"));
+    p.register_bits = j.at("register_bits");
+    p.wraps = j.at("wraps");
+    p.eval_seconds = j.at("eval_seconds");
+    p.overflow_seconds = j.at("overflow_seconds");
+    if (j.contains("cost_ghdl")) {
+        p.cost_ghdl = cost_from(j.at("cost_ghdl"));
+        p.has_cost_ghdl = true;
+    }
+    return p;
+}
+
+}  // namespace
+
+cluster::Manifest sweep_manifest(const SweepShards& p) {
+    const sweep::SweepSpec spec = sweep::parse_sweep_spec(p.spec_text, p.spec_name);
+    cluster::Manifest m;
+    m.job = "sweep";
+    m.common = {{"spec", p.spec_text},
+                {"spec_name", p.spec_name},
+                {"spec_hash", util::hex64(util::fnv1a(p.spec_text))},
+                {"kitti", fs::absolute(p.kitti).string()},
+                {"cache", fs::absolute(p.cache).string()},
+                {"threads", p.threads},
+                {"jobs", p.jobs}};
+    for (auto [a, b] : detail::groups(static_cast<long>(spec.configs.size()), p.shards))
+        m.shards.push_back({{"first", a}, {"last", b}});
+    return m;
+}
+
+sweep::SweepResult sweep_result(const cluster::Manifest& m, const json& merged) {
+    sweep::SweepResult r;
+    r.spec = sweep::parse_sweep_spec(m.common.at("spec"), m.common.at("spec_name"));
+    for (const auto& j : merged.at("points")) r.points.push_back(point_from(j));
+    if (r.points.size() != r.spec.configs.size())
+        throw cluster::ClusterInputError("sweep: the merged data holds " + std::to_string(r.points.size()) +
+                                         " points, the spec " + std::to_string(r.spec.configs.size()));
+    r.stream = merged.at("stream");
+    // the phases' times summed over the shards (each shard loads the frames and computes the reference)
+    r.seconds_load = merged.at("seconds").at("load");
+    r.seconds_reference = merged.at("seconds").at("reference");
+    r.seconds_cost = merged.at("seconds").at("cost");
+    r.seconds_accuracy = merged.at("seconds").at("accuracy");
+    r.scored_frames = merged.at("scored_frames");
+    for (const auto& p : r.points)
+        for (const sweep::Cost* c : {&p.cost, p.has_cost_ghdl ? &p.cost_ghdl : nullptr}) {
+            if (!c) continue;
+            if (c->cached) ++r.synth_cached;
+            else {
+                ++r.synthesised;
+                r.synth_seconds_sum += c->seconds;
+            }
+        }
+    sweep::mark_pareto(r.points);
+    sweep::mark_verify(r);
+    return r;
+}
+
+namespace detail {
+
+cluster::ShardJob sweep_job() {
+    return {"sweep",
+            [](const json& common, const json& shard, std::size_t) {
+                const sweep::SweepSpec spec = sweep::parse_sweep_spec(common.at("spec"), common.at("spec_name"));
+                sweep::SweepOptions o;
+                o.kitti = common.at("kitti").get<std::string>();
+                o.cache = common.at("cache").get<std::string>();
+                o.threads = common.at("threads");
+                o.jobs = common.at("jobs");
+                std::vector<std::size_t> which;
+                for (long i = shard.at("first"); i < shard.at("last").get<long>(); ++i) which.push_back(i);
+                const sweep::PointsRun pr = sweep::evaluate_points(spec, which, o);
+                json points = json::array();
+                for (const auto& p : pr.points) points.push_back(point_json(p));
+                return json{{"stream", pr.stream},
+                            {"scored_frames", pr.scored_frames},
+                            {"points", points},
+                            {"seconds", {{"load", pr.seconds_load}, {"reference", pr.seconds_reference},
+                                         {"cost", pr.seconds_cost}, {"accuracy", pr.seconds_accuracy}}}};
+            },
+            [](const json&, const std::vector<json>& data) {
+                json points = json::array();
+                json seconds = {{"load", 0.0}, {"reference", 0.0}, {"cost", 0.0}, {"accuracy", 0.0}};
+                for (const auto& d : data) {
+                    for (auto& [k, v] : seconds.items()) v = v.get<double>() + d.at("seconds").at(k).get<double>();
+                    if (d.at("stream") != data.front().at("stream") || d.at("scored_frames") != data.front().at("scored_frames"))
+                        throw cluster::ClusterInputError("sweep: shards measured different streams");
+                    for (const auto& p : d.at("points")) points.push_back(p);
+                }
+                return json{{"stream", data.empty() ? json("") : data.front().at("stream")},
+                            {"scored_frames", data.empty() ? json(0) : data.front().at("scored_frames")},
+                            {"points", points},
+                            {"seconds", seconds}};
+            }};
+}
+
+}  // namespace detail
+
+}  // namespace hc::jobs

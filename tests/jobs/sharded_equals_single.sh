@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# sharded_equals_single.sh KIND HARRIS_COSIM WORKDIR [RUNNER FLAGS...]
+# Runs one command of job kind KIND (slam, mutate, sweep, landmarks) twice on small inputs:
+# in one process, then in shards through the given runner flags (default: --runner local
+# --jobs 2), with the same --out (moved aside in between, so that the command quoted in the
+# reports is the same), and compares the report data byte for byte; time columns and the
+# synthesis cache flag are left out of the comparison. Exit 77 (skipped) without the data.
+set -euo pipefail
+kind=$1; bin=$2; work=$3; shift 3
+runner=("$@"); [ ${#runner[@]} -gt 0 ] || runner=(--runner local --jobs 2)
+rm -rf "$work"; mkdir -p "$work"; cd "$work"
+data=${HARRIS_COSIM_DATA:-$(cd "$(dirname "$0")/../.." && pwd)/../shared/data}
+need() { [ -e "$1" ] || { echo "skipped: $1 not found (set HARRIS_COSIM_DATA)"; exit 77; }; }
+fail() { echo "FAIL: $*"; exit 1; }
+same() {   # same FILE-A FILE-B: byte for byte
+  cmp "$1" "$2" || { diff "$1" "$2" | head -20; fail "$1 and $2 differ"; }
+}
+both() {   # both ARGS...: the single-process run into single/, the sharded one into sharded/
+  mkdir -p out
+  "$bin" "$@" > single.log 2>&1 || { tail -20 single.log; fail "single-process run failed"; }
+  mv out single
+  mkdir -p out
+  "$bin" "$@" --shards "$shards" "${runner[@]}" > sharded.log 2>&1 || { tail -30 sharded.log; fail "sharded run failed"; }
+  mv out sharded
+  grep -q "^\[shards\] $shards/$shards done" sharded.log || fail "the sharded run did not report $shards/$shards shards done"
+}
+untimed_json() { jq -S 'del(.. | objects | .seconds?, .synth_seconds?, .eval_seconds?, .overflow_seconds?, .cached?, .synthesised?, .synth_cached?, .synth_seconds_sum?)' "$1"; }
+
+case "$kind" in
+slam)
+  shards=3
+  both slam --simulate --runs 6 --steps 80 --seed 7 --out out
+  for f in nees.csv states.csv summary.json report.md; do same single/$f sharded/$f; done
+  echo "slam: 6 seeds in 3 shards: nees.csv, states.csv, summary.json, report.md identical"
+  ;;
+mutate)
+  # HC_MUTATE_SUBSET=N: the first N mutants of the list; else all
+  list=$(cd "$(dirname "$0")/../.." && pwd)/mutate/mutations.json
+  if [ -n "${HC_MUTATE_SUBSET:-}" ]; then
+    jq --argjson n "$HC_MUTATE_SUBSET" '.mutants |= .[0:$n]' "$list" > subset.json
+    list=$PWD/subset.json
+  fi
+  shards=${HC_MUTATE_SHARDS:-4}
+  both mutate --mutations "$list" --report out/campaign.md
+  # the baseline's wall time is the report's only timing
+  sed -E 's/\(([0-9.]+) s\)/(TIME)/' single/campaign.md > single.md
+  sed -E 's/\(([0-9.]+) s\)/(TIME)/' sharded/campaign.md > sharded.md
+  same single.md sharded.md
+  echo "mutate: $(grep -c '^| M' single.md) mutants in $shards shards: campaign.md identical (baseline time aside)"
+  ;;
+sweep)
+  need "$data/kitti/sequences/01"
+  cat > spec.json <<'SPEC'
+{"name": "shard-test", "configs": [{"name": "thesis"}, {"name": "m6", "m_drop": 6}, {"name": "b5", "bf_drop": 5},
+ {"name": "sobel9", "sobel_w": 9}], "data": {"sequence": "01", "pairs": "0:3"}}
+SPEC
+  shards=3
+  both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$work/../sweep-shard-cache" --quiet --no-rtl --threads 1
+  same single/sweep.csv sharded/sweep.csv
+  untimed_json single/sweep.json > single.json
+  untimed_json sharded/sweep.json > sharded.json
+  same single.json sharded.json
+  grep -v '^Timing: ' single/sweep.md > single.md
+  grep -v '^Timing: ' sharded/sweep.md > sharded.md
+  same single.md sharded.md
+  echo "sweep: $(($(wc -l < single/sweep.csv) - 1)) configurations in 3 shards: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
+  ;;
+landmarks)
+  need "$data/middlebury2006/half/Aloe"
+  mkdir scenes
+  for s in Aloe Baby1; do ln -s "$data/middlebury2006/half/$s" scenes/$s; done
+  shards=6
+  both landmarks --compare --middlebury scenes --overlays 0 --out out
+  # results.csv without its ms_per_pair column (second to last), results.json without times
+  for r in single sharded; do
+    awk -F, -v OFS=, '{ $(NF-1) = ""; print }' $r/results.csv > $r-results.csv
+    untimed_json $r/results.json > $r-results.json
+  done
+  same single-results.csv sharded-results.csv
+  same single-results.json sharded-results.json
+  n=0
+  while IFS= read -r f; do same "single/$f" "sharded/$f"; n=$((n + 1)); done < <(cd single && find . -path '*/landmarks/*' -type f | sort)
+  [ "$n" -gt 0 ] || fail "no landmark files were written"
+  echo "landmarks: 2 scenes x 3 detectors x 6 descriptors in $shards shards: results.csv, results.json (times aside) and $n landmark files identical"
+  ;;
+*) echo "unknown kind $kind"; exit 2 ;;
+esac

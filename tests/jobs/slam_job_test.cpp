@@ -1,0 +1,86 @@
+// slam_job_test: Monte-Carlo seeds run in shards by `harris-cosim shard run` and folded by
+// jobs::slam_result give slam::monte_carlo's statistics bit for bit.
+#define CATCH_CONFIG_MAIN
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <cstring>
+
+#include "jobs/jobs.hpp"
+
+using namespace hc;
+
+namespace {
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (!same_bits(a[i], b[i])) return false;
+    return true;
+}
+
+template <class M>
+bool same_bits(const std::vector<M>& a, const std::vector<M>& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (std::memcmp(a[i].data(), b[i].data(), sizeof(double) * a[i].size()) != 0) return false;
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo statistics bit for bit", "[cluster]") {
+    slam::SimConfig c;
+    c.steps = 60;
+    jobs::SlamShards p;
+    p.config = c;
+    p.runs = 7;
+    p.first_seed = 3;
+    p.shards = 3;
+    const cluster::Manifest m = jobs::slam_manifest(p);
+    REQUIRE(m.shards.size() == 3);
+    const jobs::fs::path dir = jobs::fs::temp_directory_path() / ("hc-slam-job-test-" + std::to_string(::getpid()));
+    jobs::fs::remove_all(dir);
+    cluster::RunOptions o;
+    o.jobs = 2;
+    o.worker = {HC_CLI, "shard", "run"};
+    const jobs::json merged = jobs::run_and_merge(dir, m, o);
+    CHECK(merged == cluster::run_in_process(jobs::registry(), m));
+
+    const slam::MonteCarlo a = jobs::slam_result(m, merged);
+    const slam::MonteCarlo b = slam::monte_carlo(c, 7, 3);
+    CHECK(a.runs == 7);
+    CHECK(a.pose_nees.size() == 61);
+    CHECK(same_bits(a.pose_nees, b.pose_nees));
+    CHECK(same_bits(a.map_nees_per_dof, b.map_nees_per_dof));
+    CHECK(same_bits(a.map_lo, b.map_lo));
+    CHECK(same_bits(a.map_hi, b.map_hi));
+    CHECK(same_bits(a.position_rmse, b.position_rmse));
+    CHECK(same_bits(a.heading_rmse, b.heading_rmse));
+    CHECK(same_bits(a.map_rmse, b.map_rmse));
+    CHECK(same_bits(a.pose_lo, b.pose_lo));
+    CHECK(same_bits(a.pose_hi, b.pose_hi));
+    CHECK(same_bits(a.pose_inside, b.pose_inside));
+    CHECK(same_bits(a.map_inside, b.map_inside));
+    CHECK(same_bits(a.pose_nees_average, b.pose_nees_average));
+    CHECK(same_bits(a.map_nees_per_dof_average, b.map_nees_per_dof_average));
+    // the first seed's run, which the report draws
+    CHECK(same_bits(a.first.truth, b.first.truth));
+    CHECK(same_bits(a.first.estimate, b.first.estimate));
+    CHECK(same_bits(a.first.pose_cov, b.first.pose_cov));
+    CHECK(same_bits(a.first.pose_nees, b.first.pose_nees));
+    CHECK(a.first.map_dof == b.first.map_dof);
+    CHECK(same_bits(a.first.world.landmarks, b.first.world.landmarks));
+    CHECK(same_bits(a.first.final_map, b.first.final_map));
+    CHECK(same_bits(a.first.final_map_cov, b.first.final_map_cov));
+    jobs::fs::remove_all(dir);
+}
+
+TEST_CASE("a slam manifest refuses a bad run count with the input named", "[cluster]") {
+    jobs::SlamShards p;
+    p.runs = 0;
+    CHECK_THROWS_WITH(jobs::slam_manifest(p), Catch::Contains("--runs must be at least 1"));
+}
