@@ -23,7 +23,7 @@ namespace hc::tools {
 namespace {
 
 struct SweepCli {
-    std::string config, out = "sweep-report", cache, kitti, data, backend;
+    std::string config, out = "sweep-report", cache, kitti, data, backend, middlebury;
     int threads = 0, jobs = 2;
     bool no_rtl = false, quiet = false;
 };
@@ -44,6 +44,12 @@ void run(const SweepCli& c) {
     } else {
         throw InputError("no KITTI data: give --kitti DIR (holding sequences/NN) or --data DIR (holding kitti/)");
     }
+    if (!c.middlebury.empty()) {
+        if (!fs::is_directory(c.middlebury)) throw InputError("--middlebury '" + c.middlebury + "' is not a directory");
+        o.middlebury = c.middlebury;
+    } else if (auto d = frames::data_dir(c.data); d && fs::is_directory(*d / "middlebury2006" / "half")) {
+        o.middlebury = *d / "middlebury2006" / "half";
+    }   // else: no landmark column (the report says why)
     o.regression_set = fs::path(HC_SOURCE_DIR) / "golden" / "regression-set.txt";
     const auto backends = cosim::ghdl_backends();
     o.ghdl_backend = !c.backend.empty() ? c.backend : backends.empty() ? "gcc" : backends.front();
@@ -71,13 +77,16 @@ void add_sweep_command(CLI::App& app) {
     auto* s = app.add_subcommand(
         "sweep",
         "Bit-width exploration: per configuration of a JSON sweep spec, recall/precision against OpenCV on KITTI\n"
-        "(spec model), overflow audit, yosys synth_xilinx cost (cached); Pareto front, each Pareto point verified on\n"
+        "(spec model), correct stereo matches of the landmark chain on Middlebury pairs, overflow audit, yosys\n"
+        "synth_xilinx cost (cached); Pareto front, each Pareto point verified on\n"
         "the RTL (GHDL co-simulation + Verilator). Exit status: 0 done, 1 an RTL check failed, 2 bad input, 3 tool failure.");
     s->add_option("--config", c->config, "JSON sweep spec (configs/*.json; see sweep/sweep_config.hpp)")->required();
     s->add_option("--out", c->out, "output directory (sweep.md, sweep.csv, sweep.json, pareto.png)")->capture_default_str();
     s->add_option("--cache", c->cache, "synthesis/RTL-check cache (else $HARRIS_COSIM_SWEEP_CACHE or <build>/sweep-cache)");
     s->add_option("--kitti", c->kitti, "KITTI odometry root (holds sequences/NN); default <data>/kitti");
     s->add_option("--data", c->data, "data directory (default $HARRIS_COSIM_DATA, else ../shared/data)");
+    s->add_option("--middlebury", c->middlebury,
+                  "Middlebury 2006 half-size folder of the stereo-match column (default <data>/middlebury2006/half)");
     s->add_option("--threads", c->threads, "threads for the accuracy runs (0: all cores)")->check(CLI::NonNegativeNumber);
     s->add_option("--jobs", c->jobs, "synthesis / GHDL processes at once")->check(CLI::PositiveNumber)->capture_default_str();
     s->add_option("--backend", c->backend, "GHDL back end of the RTL checks (default: the first built: gcc, llvm, mcode)");
