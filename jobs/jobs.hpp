@@ -93,6 +93,7 @@ struct SweepShards {
     std::string spec_text;        ///< the spec file's contents (the manifest carries them)
     std::string spec_name;        ///< the spec file, for messages
     fs::path kitti, cache;        ///< as sweep::SweepOptions
+    fs::path middlebury;          ///< as sweep::SweepOptions ("": no landmark column)
     int threads = 1;              ///< accuracy threads per shard
     int jobs = 1;                 ///< synthesis processes per shard
     int shards = 0;               ///< 0: one per configuration

@@ -55,6 +55,12 @@ json point_json(const sweep::PointResult& p) {
               {"eval_seconds", p.eval_seconds},
               {"overflow_seconds", p.overflow_seconds}};
     if (p.has_cost_ghdl) j["cost_ghdl"] = cost_json(p.cost_ghdl);
+    if (p.has_landmarks) {
+        const landmarks::Totals& l = p.landmarks;
+        j["landmarks"] = {{"keypoints", l.keypoints}, {"all", l.all}, {"correct", l.correct},
+                          {"truth_known", l.truth_known}, {"truth_correct", l.truth_correct},
+                          {"seconds", l.seconds}, {"pairs", l.pairs}};
+    }
     return j;
 }
 
@@ -79,6 +85,17 @@ sweep::PointResult point_from(const json& j) {
         p.cost_ghdl = cost_from(j.at("cost_ghdl"));
         p.has_cost_ghdl = true;
     }
+    if (j.contains("landmarks")) {
+        const json& l = j.at("landmarks");
+        p.landmarks.keypoints = l.at("keypoints");
+        p.landmarks.all = l.at("all");
+        p.landmarks.correct = l.at("correct");
+        p.landmarks.truth_known = l.at("truth_known");
+        p.landmarks.truth_correct = l.at("truth_correct");
+        p.landmarks.seconds = l.at("seconds");
+        p.landmarks.pairs = l.at("pairs");
+        p.has_landmarks = true;
+    }
     return p;
 }
 
@@ -92,6 +109,7 @@ cluster::Manifest sweep_manifest(const SweepShards& p) {
                 {"spec_name", p.spec_name},
                 {"spec_hash", util::hex64(util::fnv1a(p.spec_text))},
                 {"kitti", fs::absolute(p.kitti).string()},
+                {"middlebury", p.middlebury.empty() ? std::string() : fs::absolute(p.middlebury).string()},
                 {"cache", fs::absolute(p.cache).string()},
                 {"threads", p.threads},
                 {"jobs", p.jobs}};
@@ -114,6 +132,8 @@ sweep::SweepResult sweep_result(const cluster::Manifest& m, const json& merged) 
     r.seconds_cost = merged.at("seconds").at("cost");
     r.seconds_accuracy = merged.at("seconds").at("accuracy");
     r.scored_frames = merged.at("scored_frames");
+    r.landmark_pairs = merged.at("landmark_pairs");
+    r.seconds_landmarks = merged.at("seconds").at("landmarks");
     for (const auto& p : r.points)
         for (const sweep::Cost* c : {&p.cost, p.has_cost_ghdl ? &p.cost_ghdl : nullptr}) {
             if (!c) continue;
@@ -137,6 +157,7 @@ cluster::ShardJob sweep_job() {
                 sweep::SweepOptions o;
                 o.kitti = common.at("kitti").get<std::string>();
                 o.cache = common.at("cache").get<std::string>();
+                o.middlebury = common.at("middlebury").get<std::string>();
                 o.threads = common.at("threads");
                 o.jobs = common.at("jobs");
                 std::vector<std::size_t> which;
@@ -146,21 +167,25 @@ cluster::ShardJob sweep_job() {
                 for (const auto& p : pr.points) points.push_back(point_json(p));
                 return json{{"stream", pr.stream},
                             {"scored_frames", pr.scored_frames},
+                            {"landmark_pairs", pr.landmark_pairs},
                             {"points", points},
                             {"seconds", {{"load", pr.seconds_load}, {"reference", pr.seconds_reference},
-                                         {"cost", pr.seconds_cost}, {"accuracy", pr.seconds_accuracy}}}};
+                                         {"cost", pr.seconds_cost}, {"accuracy", pr.seconds_accuracy},
+                                         {"landmarks", pr.seconds_landmarks}}}};
             },
             [](const json&, const std::vector<json>& data) {
                 json points = json::array();
-                json seconds = {{"load", 0.0}, {"reference", 0.0}, {"cost", 0.0}, {"accuracy", 0.0}};
+                json seconds = {{"load", 0.0}, {"reference", 0.0}, {"cost", 0.0}, {"accuracy", 0.0}, {"landmarks", 0.0}};
                 for (const auto& d : data) {
                     for (auto& [k, v] : seconds.items()) v = v.get<double>() + d.at("seconds").at(k).get<double>();
-                    if (d.at("stream") != data.front().at("stream") || d.at("scored_frames") != data.front().at("scored_frames"))
-                        throw cluster::ClusterInputError("sweep: shards measured different streams");
+                    if (d.at("stream") != data.front().at("stream") || d.at("scored_frames") != data.front().at("scored_frames") ||
+                        d.at("landmark_pairs") != data.front().at("landmark_pairs"))
+                        throw cluster::ClusterInputError("sweep: shards measured different streams or landmark pairs");
                     for (const auto& p : d.at("points")) points.push_back(p);
                 }
                 return json{{"stream", data.empty() ? json("") : data.front().at("stream")},
                             {"scored_frames", data.empty() ? json(0) : data.front().at("scored_frames")},
+                            {"landmark_pairs", data.empty() ? json("") : data.front().at("landmark_pairs")},
                             {"points", points},
                             {"seconds", seconds}};
             }};

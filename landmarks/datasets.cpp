@@ -129,4 +129,45 @@ Dataset kitti_dataset(const fs::path& kitti_root, const std::string& sequence, i
     return ds;
 }
 
+// ---- a user's own rig ---------------------------------------------------------------------
+
+calib::StereoCalib read_rig_calibration(const fs::path& file) {
+    const std::string ext = file.extension().string();
+    if (ext == ".yml" || ext == ".yaml" || ext == ".json") return calib::read_opencv_storage(file);
+    return calib::read_kitti_calib(file);
+}
+
+StereoCalib rectified_calib(const calib::StereoCalib& rig) {
+    StereoCalib c;
+    c.P0 = cv::Matx34d(rig.P1);
+    c.P1 = cv::Matx34d(rig.P2);
+    c.validate();
+    return c;
+}
+
+Dataset rig_dataset(const std::vector<fs::path>& left, const std::vector<fs::path>& right, const calib::StereoCalib& rig) {
+    if (left.empty()) throw InputError("a rig's stereo pairs: no left image");
+    if (left.size() != right.size())
+        throw InputError("a rig's stereo pairs: " + std::to_string(left.size()) + " left images but " +
+                         std::to_string(right.size()) + " right images");
+    Dataset ds;
+    ds.name = "rig";
+    ds.rig = std::make_shared<const calib::StereoCalib>(rig);
+    const StereoCalib rect = rectified_calib(rig);
+    for (size_t k = 0; k < left.size(); ++k) {
+        StereoImages p{read_grey(left[k]), read_grey(right[k]), left[k].stem().string() + "+" + right[k].stem().string()};
+        for (const auto& [img, file] : {std::pair{&p.left, &left[k]}, std::pair{&p.right, &right[k]}})
+            if (!rig.image_size.empty() && img->size() != rig.image_size)
+                throw InputError("'" + file->string() + "' is " + std::to_string(img->cols) + "x" + std::to_string(img->rows) +
+                                 ", the calibration's images " + std::to_string(rig.image_size.width) + "x" +
+                                 std::to_string(rig.image_size.height));
+        if (p.left.size() != p.right.size())
+            throw InputError("'" + left[k].string() + "' and '" + right[k].string() + "' differ in size");
+        ds.pairs.push_back(std::move(p));
+        ds.disparity.emplace_back();
+        ds.calib.push_back(rect);
+    }
+    return ds;
+}
+
 }  // namespace hc::landmarks

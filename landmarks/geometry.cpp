@@ -1,12 +1,6 @@
-// geometry.cpp: triangulation through a rectified pair's projection matrices (thesis 4.3,
-// Eq. 4.6 generalised to P0, P1), covariance by first-order propagation of pixel noise,
-// landmark files and the depth error against ground-truth disparity.
-//
-// With P0 = [fx 0 cx0 tx0; 0 fy cy ty; 0 0 1 0] and P1 the same with cx1, tx1, a point
-// (X, Y, Z) of the rectified reference frame projects to
-//   u_l = (fx X + cx0 Z + tx0) / Z,   u_r = (fx X + cx1 Z + tx1) / Z,   v = (fy Y + cy Z + ty) / Z
-// so, with the effective disparity D = u_l - u_r - (cx0 - cx1) and B = tx0 - tx1 (= fx * baseline):
-//   Z = B / D,   X = ((u_l - cx0) Z - tx0) / fx,   Y = ((v - cy) Z - ty) / fy,   v = (v_l + v_r) / 2.
+// geometry.cpp: triangulation through a rectified pair's projection matrices (thesis 4.3;
+// the formulas are hc::stereo's, stereo/stereo.hpp), covariance by first-order propagation of
+// pixel noise, landmark files and the depth error against ground-truth disparity.
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -15,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "landmarks/landmarks.hpp"
+#include "stereo/stereo.hpp"
 
 namespace hc::landmarks {
 
@@ -42,19 +37,30 @@ StereoCalib middlebury_calib(double scale, double dmin_full, cv::Size image) {
     return c;
 }
 
+namespace {
+
+stereo::RectifiedRig rig(const StereoCalib& c) {
+    stereo::RectifiedRig r;
+    r.fx = c.P0(0, 0);
+    r.fy = c.P0(1, 1);
+    r.cx0 = c.P0(0, 2);
+    r.cx1 = c.P1(0, 2);
+    r.cy = c.P0(1, 2);
+    r.tx0 = c.P0(0, 3);
+    r.tx1 = c.P1(0, 3);
+    r.ty = c.P0(1, 3);
+    return r;
+}
+
+}  // namespace
+
 Triangulated triangulate(const StereoCalib& c, cv::Point2d l, cv::Point2d r, const PixelNoise& n) {
-    const double fx = c.P0(0, 0), fy = c.P0(1, 1), cx0 = c.P0(0, 2), cx1 = c.P1(0, 2), cy = c.P0(1, 2);
-    const double tx0 = c.P0(0, 3), ty = c.P0(1, 3), B = c.P0(0, 3) - c.P1(0, 3);
-    const double D = l.x - r.x - (cx0 - cx1);
+    const stereo::Point3 s = stereo::triangulate(rig(c), l.x, l.y, r.x, r.y);
     Triangulated t;
-    if (!(D > 0)) return t;
-    const double Z = B / D, v = 0.5 * (l.y + r.y);
-    t.p = cv::Vec3d(((l.x - cx0) * Z - tx0) / fx, ((v - cy) * Z - ty) / fy, Z);
-    const double dZ_dul = -Z / D, dZ_dur = Z / D;   // dZ/dD = -B/D^2 = -Z/D
-    t.J = cv::Matx<double, 3, 4>(
-        (Z + (l.x - cx0) * dZ_dul) / fx, 0, (l.x - cx0) * dZ_dur / fx, 0,
-        (v - cy) * dZ_dul / fy, Z / (2 * fy), (v - cy) * dZ_dur / fy, Z / (2 * fy),
-        dZ_dul, 0, dZ_dur, 0);
+    if (!s.valid) return t;
+    t.p = cv::Vec3d(s.p[0], s.p[1], s.p[2]);
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 4; ++k) t.J(i, k) = s.J[i][k];
     t.cov = (t.J * t.J.t()) * (n.sigma_px * n.sigma_px);
     t.valid = true;
     return t;

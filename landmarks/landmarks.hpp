@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -36,6 +37,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
+#include "calib/calib.hpp"
 #include "model/harris/harris_pkg.hpp"
 
 namespace hc::landmarks {
@@ -156,8 +158,13 @@ struct PairResult {
 /// Describes and matches one pair on given keypoints, timed on the calling thread (set
 /// cv::setNumThreads(1) for one-thread figures). `disparity` (CV_32F, left image's size,
 /// <= 0 unknown) scores the ground truth when non-empty.
+/// `rig`, when given, is the calibration of an unrectified pair (a user's own rig): each
+/// keypoint is moved to its undistorted, rectified position by calib::rectify_points (no
+/// image is warped). Descriptors that read the image are computed at the raw positions on the
+/// raw images; the grid, which reads only positions, on the rectified ones. The epipolar test,
+/// the matches' coordinates (and so triangulation and overlays) use the rectified positions.
 PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descriptor d, const GridParams& gp,
-                      const MatchParams& mp, const cv::Mat& disparity = {});
+                      const MatchParams& mp, const cv::Mat& disparity = {}, const calib::StereoCalib* rig = nullptr);
 
 // ---- datasets -------------------------------------------------------------------------
 
@@ -282,16 +289,31 @@ struct ComparisonRow {
 
 /// A dataset: stereo pairs with optional ground truth and a calibration per pair.
 struct Dataset {
-    std::string name;                    ///< "middlebury-half", "kitti-01"
+    std::string name;                    ///< "middlebury-half", "kitti-01", "rig"
     std::vector<StereoImages> pairs;
     std::vector<cv::Mat> disparity;      ///< per pair, empty if unknown
-    std::vector<StereoCalib> calib;      ///< per pair
+    std::vector<StereoCalib> calib;      ///< per pair: the rectified projections
+    /// Set when the pairs are a user's rig's unrectified images: every step that matches them
+    /// (compare, study, acquire_dataset, score_formats) rectifies keypoints with it (match_pair).
+    std::shared_ptr<const calib::StereoCalib> rig;
 };
 /// All scenes under `root`; InputError for a scene without disp1.png unless `need_truth` is
 /// false (then its ground-truth columns stay empty).
 Dataset middlebury_dataset(const std::filesystem::path& root, bool need_truth = true);
 /// KITTI odometry pairs [first, last) of a sequence (calib.txt of the sequence).
 Dataset kitti_dataset(const std::filesystem::path& kitti_root, const std::string& sequence, int first, int last);
+/// A calibration file of a user's rig: `harris-cosim calibrate`'s OpenCV storage (.yml, .yaml,
+/// .json: intrinsics, distortion, rectifying rotations and projections) or a KITTI-style
+/// calib.txt (any other name: images already rectified). Throws calib::InputError naming it.
+calib::StereoCalib read_rig_calibration(const std::filesystem::path& file);
+/// The rectified rig of a calibration (its P1, P2 as P0, P1); InputError when not rectified.
+StereoCalib rectified_calib(const calib::StereoCalib& rig);
+/// Stereo pairs left[i], right[i] of a user's rig (unrectified images, read as grey), with
+/// `rig` to rectify their keypoints. InputError naming an image that is missing, unreadable or
+/// of another size than the calibration's, or when the lists differ in length or are empty.
+Dataset rig_dataset(const std::vector<std::filesystem::path>& left, const std::vector<std::filesystem::path>& right,
+                    const calib::StereoCalib& rig);
+
 /// Landmarks of every pair of a dataset, pair by pair: the corners of all pairs first (a
 /// hardware source streams them once, carrying its state from frame to frame as the
 /// co-processor does, see detect_dataset), then description, matching and triangulation of
@@ -305,13 +327,14 @@ struct ComparisonOptions {
     MatchParams match{};
     CornerOptions corners{};
     std::function<void(const std::string&)> progress;   ///< one line per finished row
+    int threads = 0;   ///< workers over (descriptor, pair) tasks, each on one thread (0: all cores)
 };
 /// Corners of every pair of a dataset. Hardware sources stream the pairs of one size together
 /// (seed and flush as detect_pairs), and a dataset of several sizes scene by scene.
 std::vector<PairKeypoints> detect_dataset(const Dataset& ds, Detector d, const CornerOptions& o = {});
 
-/// Corners once per detector, then every descriptor on them; extraction and matching on one
-/// thread (cv::setNumThreads(1) while timing). `keypoints`, when given, receives the corners
+/// Corners once per detector, then every descriptor on them; each pair's extraction and
+/// matching on one thread (cv::setNumThreads(1)), `threads` pairs at once. `keypoints`, when given, receives the corners
 /// of each detector (o.detectors order) for reuse, e.g. by study().
 std::vector<ComparisonRow> compare(const Dataset& ds, const ComparisonOptions& o,
                                    std::vector<std::vector<PairKeypoints>>* keypoints = nullptr);

@@ -158,8 +158,21 @@ std::vector<cv::DMatch> run_matcher(const cv::Mat& dl, const std::vector<cv::Key
 
 }  // namespace
 
+namespace {
+
+/// Keypoints moved to their rectified positions (calib::rectify_points), the rest kept.
+void rectify(std::vector<cv::KeyPoint>& kp, const calib::StereoCalib& rig, calib::Side side) {
+    std::vector<cv::Point2f> pts;
+    pts.reserve(kp.size());
+    for (const auto& k : kp) pts.push_back(k.pt);
+    const auto rect = calib::rectify_points(rig, side, pts);
+    for (size_t i = 0; i < kp.size(); ++i) kp[i].pt = rect[i];
+}
+
+}  // namespace
+
 PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descriptor d, const GridParams& gp,
-                      const MatchParams& mp, const cv::Mat& disparity) {
+                      const MatchParams& mp, const cv::Mat& disparity, const calib::StereoCalib* rig) {
     check_combination(d, kp.left.source, mp.norm);
     if (img.left.size() != img.right.size()) throw InputError("pair '" + img.name + "': images differ in size");
     if (!disparity.empty() && disparity.size() != img.left.size())
@@ -170,12 +183,22 @@ PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descript
     r.kp_left = adapt(kp.left.points, d, kp.left.source);
     r.kp_right = adapt(kp.right.points, d, kp.right.source);
     const auto opts = match_options(d, mp);
+    // the grid reads positions only: described at the rectified ones; the others read the raw image
+    const bool positions_only = d == Descriptor::grid || d == Descriptor::grid_corrected;
     cv::Mat dr;
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<cv::DMatch> dm;
     try {
+        if (rig && positions_only) {
+            rectify(r.kp_left, *rig, calib::Side::left);
+            rectify(r.kp_right, *rig, calib::Side::right);
+        }
         desc->compute(img.left, r.kp_left, r.desc_left);
         desc->compute(img.right, r.kp_right, dr);
+        if (rig && !positions_only) {   // the survivors of the descriptor's border
+            rectify(r.kp_left, *rig, calib::Side::left);
+            rectify(r.kp_right, *rig, calib::Side::right);
+        }
         dm = run_matcher(r.desc_left, r.kp_left, dr, r.kp_right, opts);
     } catch (const features::InputError& e) {
         throw InputError("pair '" + img.name + "', " + descriptor_name(d) + ": " + e.what());
@@ -227,7 +250,7 @@ std::vector<std::vector<Landmark>> acquire_dataset(const Dataset& ds, const Pipe
     out.reserve(ds.pairs.size());
     for (size_t i = 0; i < ds.pairs.size(); ++i) {
         const cv::Mat truth = i < ds.disparity.size() ? ds.disparity[i] : cv::Mat();
-        out.push_back(landmarks_from(match_pair(ds.pairs[i], kp.at(i), o.descriptor, o.grid, o.match, truth),
+        out.push_back(landmarks_from(match_pair(ds.pairs[i], kp.at(i), o.descriptor, o.grid, o.match, truth, ds.rig.get()),
                                      ds.calib.at(i), o));
     }
     return out;
@@ -288,23 +311,34 @@ std::vector<ComparisonRow> compare(const Dataset& ds, const ComparisonOptions& o
     for (Detector det : o.detectors) {
         const auto kp = detect_dataset(ds, det, o.corners);
         if (keypoints) keypoints->push_back(kp);
-        for (Descriptor d : o.descriptors) {
-            check_combination(d, det, o.match.norm);
-            ComparisonRow row;
-            row.descriptor = d;
-            row.detector = det;
-            row.grid = o.grid;
-            one_thread([&] {
-                for (size_t k = 0; k < ds.pairs.size(); ++k) {
-                    row.pairs.push_back(match_pair(ds.pairs[k], kp[k], d, o.grid, o.match, truth_of(ds, k)));
-                    row.totals.add(row.pairs.back());
-                }
-                return 0;
+        std::vector<ComparisonRow> drows(o.descriptors.size());
+        for (size_t i = 0; i < drows.size(); ++i) {
+            check_combination(o.descriptors[i], det, o.match.norm);
+            drows[i].descriptor = o.descriptors[i];
+            drows[i].detector = det;
+            drows[i].grid = o.grid;
+            drows[i].pairs.resize(ds.pairs.size());
+        }
+        // every (descriptor, pair) is one task on one thread (OpenCV inside it on one thread
+        // too), so each pair's time is a one-thread time whatever the number of workers
+        const size_t n = ds.pairs.size();
+        tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
+        one_thread([&] {
+            arena.execute([&] {
+                tbb::parallel_for(size_t{0}, drows.size() * n, [&](size_t t) {
+                    const size_t i = t / n, k = t % n;
+                    drows[i].pairs[k] =
+                        match_pair(ds.pairs[k], kp[k], drows[i].descriptor, o.grid, o.match, truth_of(ds, k), ds.rig.get());
+                });
             });
+            return 0;
+        });
+        for (auto& row : drows) {
+            for (const auto& pr : row.pairs) row.totals.add(pr);
             row.descriptor_bytes = row.pairs.empty() ? 0 : row.pairs.front().descriptor_bytes;
             if (o.progress)
-                o.progress(detector_name(det) + " x " + descriptor_name(d) + ": " + std::to_string(row.totals.correct) +
-                           " correct of " + std::to_string(row.totals.all));
+                o.progress(detector_name(det) + " x " + descriptor_name(row.descriptor) + ": " +
+                           std::to_string(row.totals.correct) + " correct of " + std::to_string(row.totals.all));
             rows.push_back(std::move(row));
         }
     }
@@ -346,7 +380,8 @@ StudyResult study(const Dataset& ds, Detector d, const std::vector<PairKeypoints
         tbb::parallel_for(size_t{0}, res.cells.size(), [&](size_t i) {
             StudyCell& c = res.cells[i];
             for (size_t k = 0; k < ds.pairs.size(); ++k) {
-                const PairResult r = match_pair(ds.pairs[k], kp[k], desc, GridParams{c.g, c.h}, o.match, truth_of(ds, k));
+                const PairResult r =
+                    match_pair(ds.pairs[k], kp[k], desc, GridParams{c.g, c.h}, o.match, truth_of(ds, k), ds.rig.get());
                 c.all += r.all();
                 c.correct += r.correct();
                 c.truth_correct += r.truth_correct();
@@ -365,7 +400,7 @@ Totals score_formats(const Dataset& ds, const Formats& formats, Detector source,
     const auto kp = detect_dataset(ds, source, co);
     Totals t;
     for (size_t k = 0; k < ds.pairs.size(); ++k)
-        t.add(match_pair(ds.pairs[k], kp[k], Descriptor::grid, gp, mp, truth_of(ds, k)));
+        t.add(match_pair(ds.pairs[k], kp[k], Descriptor::grid, gp, mp, truth_of(ds, k), ds.rig.get()));
     return t;
 }
 

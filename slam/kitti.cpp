@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "slam/slam.hpp"
+#include "stereo/stereo.hpp"
 
 namespace hc::slam {
 
@@ -277,16 +278,26 @@ SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<Ster
 }
 
 StereoLandmarkObs triangulate(const StereoCamera& cam, double u, double v, double d) {
-    const double z = cam.fx * cam.baseline / d;
-    const double x = (u - cam.cx) * z / cam.fx, y = (v - cam.cy) * z / cam.fx;
-    // J = ∂(x, y, z)/∂(u, v, d); ∂z/∂d = −z/d
-    const double z_d = -z / d;
-    Eigen::Matrix3d J;
-    J << z / cam.fx, 0, (u - cam.cx) / cam.fx * z_d,   //
-        0, z / cam.fx, (v - cam.cy) / cam.fx * z_d,     //
-        0, 0, z_d;
+    // hc::stereo's triangulation of (u_l, v_l, u_r, v_r) = (u, v, u - d, v) on the rig
+    // P0 = [fx 0 cx 0; 0 fx cy 0; 0 0 1 0], P1 = P0 with tx1 = -fx b
+    stereo::RectifiedRig rig;
+    rig.fx = rig.fy = cam.fx;
+    rig.cx0 = rig.cx1 = cam.cx;
+    rig.cy = cam.cy;
+    rig.tx1 = -cam.fx * cam.baseline;
+    const stereo::Point3 t = stereo::triangulate(rig, u, v, u - d, v);
+    // J = d(x, y, z)/d(u, v, d) = d(x, y, z)/d(u_l, v_l, u_r, v_r) * d(u_l, v_l, u_r, v_r)/d(u, v, d)
+    Eigen::Matrix<double, 3, 4> J4;
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 4; ++k) J4(i, k) = t.J[i][k];
+    Eigen::Matrix<double, 4, 3> M;
+    M << 1, 0, 0,   //
+        0, 1, 0,    //
+        1, 0, -1,   //
+        0, 1, 0;
+    const Eigen::Matrix3d J = J4 * M;
     StereoLandmarkObs o;
-    o.p_cam = Eigen::Vector3d(x, y, z);
+    o.p_cam = Eigen::Vector3d(t.p[0], t.p[1], t.p[2]);
     o.cov = cam.sigma_pixel * cam.sigma_pixel * J * J.transpose();
     return o;
 }

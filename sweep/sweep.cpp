@@ -1,7 +1,8 @@
 // sweep.cpp: see sweep.hpp. Phases, each parallel over the cores:
 //   1. frames + OpenCV reference masks (once for all configurations)
 //   2. cost: synthesis of every configuration, `jobs` at a time (cache hits instant)
-//   3. accuracy and overflow audit per configuration (frames in parallel, TBB)
+//   3. accuracy and overflow audit per configuration (frames in parallel, TBB); correct stereo
+//      matches of the landmark chain per configuration (configurations in parallel, TBB)
 //   4. Pareto front; RTL checks of its points, `jobs` simulator processes at a time
 //      (results cached like the synthesis: an unchanged point is not simulated again)
 #include "sweep/sweep.hpp"
@@ -117,6 +118,47 @@ void mark_verify(SweepResult& r) {
         if (i >= 0) r.points[i].verify = true;
 }
 
+landmarks::Dataset landmark_dataset(const fs::path& middlebury, const LandmarkSpec& spec) {
+    landmarks::Dataset ds;
+    ds.name = "middlebury-" + middlebury.filename().string();
+    for (const auto& name : spec.scenes) {
+        const fs::path dir = middlebury / name;
+        if (!fs::is_directory(dir))
+            throw InputError("landmark column: Middlebury scene '" + dir.string() + "' is not a directory");
+        try {
+            landmarks::MiddleburyScene sc = landmarks::load_middlebury(dir);
+            ds.calib.push_back(landmarks::middlebury_calib(sc.scale, sc.dmin_full, sc.images.left.size()));
+            ds.pairs.push_back(std::move(sc.images));
+            ds.disparity.push_back(std::move(sc.disparity));
+        } catch (const landmarks::InputError& e) {
+            throw InputError(std::string("landmark column: ") + e.what());
+        }
+    }
+    return ds;
+}
+
+std::string describe_landmark_pairs(const landmarks::Dataset& ds, const LandmarkSpec& spec) {
+    std::string names;
+    for (const auto& p : ds.pairs) names += (names.empty() ? "" : ", ") + p.name;
+    return fmt::format("{} {} (view1 + view5, ground truth disp1), spec-model corners (a seed pair streamed first), "
+                       "grid g = {}, h = {}, appendix F matching",
+                       ds.name, names, spec.g, spec.h);
+}
+
+void score_landmarks(std::vector<PointResult>& pts, const landmarks::Dataset& ds, const LandmarkSpec& spec, int threads) {
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    const int before = cv::getNumThreads();
+    cv::setNumThreads(1);
+    arena.execute([&] {
+        tbb::parallel_for(size_t{0}, pts.size(), [&](size_t i) {
+            pts[i].landmarks = landmarks::score_formats(ds, pts[i].config.formats, landmarks::Detector::spec,
+                                                        landmarks::GridParams{spec.g, spec.h}, landmarks::MatchParams{});
+            pts[i].has_landmarks = true;
+        });
+    });
+    cv::setNumThreads(before);
+}
+
 PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& which, const SweepOptions& o) {
     PointsRun res;
     for (size_t i : which)
@@ -200,6 +242,24 @@ PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& whic
     }
     res.seconds_accuracy = since(t);
 
+    // ---- 3b. downstream: correct stereo matches of the landmark chain -------------------
+    t = Clock::now();
+    if (!spec.landmarks.enabled) {
+        res.landmark_pairs = "not scored (the spec's \"landmarks\" is false)";
+    } else if (o.middlebury.empty()) {
+        res.landmark_pairs = "not scored (no Middlebury 2006 half-size folder)";
+    } else {
+        const landmarks::Dataset ds = landmark_dataset(o.middlebury, spec.landmarks);
+        res.landmark_pairs = describe_landmark_pairs(ds, spec.landmarks);
+        progress(o.progress, "landmarks: " + res.landmark_pairs);
+        score_landmarks(res.points, ds, spec.landmarks, o.threads);
+        for (const auto& p : res.points)
+            progress(o.progress, fmt::format("[landmarks] {}: {} correct stereo matches ({} within 1 px of the ground truth) of {}",
+                                             p.config.name, p.landmarks.correct, p.landmarks.truth_correct, p.landmarks.all));
+    }
+    res.seconds_landmarks = since(t);
+    cv::setNumThreads(1);
+
     return res;
 }
 
@@ -223,6 +283,8 @@ SweepResult run_sweep(const SweepOptions& o) {
     res.synthesised = pr.synthesised;
     res.synth_cached = pr.synth_cached;
     res.synth_seconds_sum = pr.synth_seconds_sum;
+    res.landmark_pairs = pr.landmark_pairs;
+    res.seconds_landmarks = pr.seconds_landmarks;
     mark_pareto(res.points);
     mark_verify(res);
     check_points(res, o);

@@ -1,7 +1,9 @@
 // sweep.hpp: the bit-width sweep: per configuration the overflow audit, the accuracy
 // against OpenCV (spec model, thesis protocol), the synthesis cost; the Pareto front of
 // cost against accuracy; every Pareto point checked on the RTL (GHDL co-simulation of the
-// regression set, Verilator on KITTI frames). Reports: sweep_report.hpp.
+// regression set, Verilator on KITTI frames); per configuration also the correct stereo
+// matches of the landmark chain on a few Middlebury pairs (what a bit width costs downstream).
+// Reports: sweep_report.hpp.
 #pragma once
 
 #include <filesystem>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "eval/eval.hpp"
+#include "landmarks/landmarks.hpp"
 #include "sweep/cost.hpp"
 #include "sweep/overflow.hpp"
 #include "sweep/sweep_config.hpp"
@@ -41,6 +44,8 @@ struct PointResult {
     bool verify = false;               ///< RTL-checked: Pareto point, thesis, or a finding (sweep_report.hpp)
     double eval_seconds = 0, overflow_seconds = 0;
     TrustResult rtl, verilator;
+    bool has_landmarks = false;        ///< the landmark column was scored (SweepResult::landmark_pairs)
+    landmarks::Totals landmarks;       ///< correct stereo matches downstream (score_formats)
 };
 
 struct SweepOptions {
@@ -49,6 +54,7 @@ struct SweepOptions {
     std::filesystem::path cache;       ///< synthesis + trust cache
     std::filesystem::path kitti;       ///< KITTI root (holds sequences/NN)
     std::filesystem::path regression_set;   ///< golden/regression-set.txt: the GHDL checks' streams
+    std::filesystem::path middlebury;  ///< Middlebury 2006 half-size folder of the landmark column ("" = no column)
     std::string ghdl_backend = "gcc";  ///< GHDL back end of the RTL checks (cosim::run_ghdl)
     int threads = 0;                   ///< accuracy / overflow threads (0: all cores)
     int jobs = 2;                      ///< synthesis and GHDL processes at once (Verilator runs one at a time)
@@ -61,8 +67,9 @@ struct SweepResult {
     std::vector<PointResult> points;
     std::string stream;                ///< what the accuracy was measured on
     int scored_frames = 0;
+    std::string landmark_pairs;        ///< what the landmark column was scored on, or why it is absent
     double seconds_load = 0, seconds_reference = 0, seconds_cost = 0, seconds_accuracy = 0,
-           seconds_trust = 0, seconds_total = 0;
+           seconds_landmarks = 0, seconds_trust = 0, seconds_total = 0;
     int synthesised = 0, synth_cached = 0;
     double synth_seconds_sum = 0;      ///< sum of synthesis times of the runs made now
     std::string command;
@@ -73,6 +80,16 @@ void mark_pareto(std::vector<PointResult>& pts);
 /// The points whose RTL is checked: the Pareto front, the thesis configuration and the
 /// findings' points (findings() in sweep_report.hpp), which need not be Pareto-optimal.
 void mark_verify(SweepResult& r);
+
+/// The landmark column's stereo pairs: the scenes of `spec` under `middlebury` (a Middlebury
+/// 2006 half-size folder), with their ground truth. InputError naming a missing scene.
+landmarks::Dataset landmark_dataset(const std::filesystem::path& middlebury, const LandmarkSpec& spec);
+/// What landmark_dataset loaded, for the reports ("Middlebury 2006 half: Aloe, Rocks1; ...").
+std::string describe_landmark_pairs(const landmarks::Dataset& ds, const LandmarkSpec& spec);
+/// The landmark column of every point: landmarks::score_formats(ds, formats, spec model,
+/// {g, h}, thesis matching), configurations in parallel on `threads` (0: all cores).
+void score_landmarks(std::vector<PointResult>& pts, const landmarks::Dataset& ds, const LandmarkSpec& spec,
+                     int threads);
 
 /// The whole sweep (throws InputError on bad input, SimulatorError on a tool failure):
 /// evaluate_points() on every configuration, mark_pareto(), mark_verify(), check_points().
@@ -87,8 +104,10 @@ struct PointsRun {
     double seconds_load = 0, seconds_reference = 0, seconds_cost = 0, seconds_accuracy = 0;
     int synthesised = 0, synth_cached = 0;
     double synth_seconds_sum = 0;
+    std::string landmark_pairs;          ///< as SweepResult::landmark_pairs
+    double seconds_landmarks = 0;
 };
-/// Synthesis cost, overflow audit and accuracy of the configurations `which` (indices into
+/// Synthesis cost, overflow audit, accuracy and the landmark column of the configurations `which` (indices into
 /// spec.configs; InputError for one out of range). Each point depends on its configuration
 /// only, so any split of the indices gives the same points.
 PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& which, const SweepOptions& o);

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "landmarks/landmarks.hpp"
 #include "model/harris/formats_json.hpp"
 #include "util/util.hpp"
 
@@ -107,7 +108,7 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& what) {
         throw InputError(what + ": not valid JSON: " + e.what());
     }
     if (!j.is_object()) throw InputError(what + ": the sweep spec must be a JSON object");
-    check_keys(j, {"name", "base", "configs", "grid", "cost", "trust", "data", "comment"}, what, "top level");
+    check_keys(j, {"name", "base", "configs", "grid", "cost", "trust", "data", "landmarks", "comment"}, what, "top level");
     SweepSpec s;
     if (j.contains("name")) s.name = string_value(j["name"], what, "name");
     Formats base;
@@ -199,6 +200,29 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& what) {
         check_keys(d, {"sequence", "pairs"}, what, "data");
         if (d.contains("sequence")) s.sequence = string_value(d["sequence"], what, "data.sequence");
         if (d.contains("pairs")) s.pairs = string_value(d["pairs"], what, "data.pairs");
+    }
+    if (j.contains("landmarks")) {
+        const json& l = j["landmarks"];
+        if (l.is_boolean()) {
+            s.landmarks.enabled = l.get<bool>();
+        } else {
+            if (!l.is_object()) fail(what, "landmarks", "must be false or an object {\"scenes\": [...], \"g\": 16, \"h\": 3}");
+            check_keys(l, {"scenes", "g", "h"}, what, "landmarks");
+            if (l.contains("scenes")) {
+                const json& sc = l["scenes"];
+                if (!sc.is_array() || sc.empty()) fail(what, "landmarks.scenes", "must be a non-empty list of scene names");
+                s.landmarks.scenes.clear();
+                for (size_t i = 0; i < sc.size(); ++i)
+                    s.landmarks.scenes.push_back(string_value(sc[i], what, "landmarks.scenes[" + std::to_string(i) + "]"));
+            }
+            if (l.contains("g")) s.landmarks.g = int_value(l["g"], what, "landmarks.g");
+            if (l.contains("h")) s.landmarks.h = int_value(l["h"], what, "landmarks.h");
+            try {
+                landmarks::validate(landmarks::GridParams{s.landmarks.g, s.landmarks.h});
+            } catch (const landmarks::InputError& e) {
+                fail(what, "landmarks", e.what());
+            }
+        }
     }
     return s;
 }

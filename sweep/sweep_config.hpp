@@ -16,6 +16,7 @@
 //     "cost":    {"img_width": 640, "img_height": 360}      generics for synthesis
 //     "trust":   {"rtl": true, "verilator_pairs": "0:5", "verilator_gate": true}
 //     "data":    {"sequence": "01", "pairs": "0:51"}
+//     "landmarks": {"scenes": ["Aloe", "Rocks1"], "g": 16, "h": 3}   or false
 //   }
 // Unspecified Formats keys keep the thesis's values. The thesis configuration is always
 // part of the sweep (added as "thesis" when no entry equals it): it is the yardstick of
@@ -42,6 +43,15 @@ struct TrustOptions {
     bool verilator_gate = true;       ///< run verilate's three-way gate (else --no-gate)
 };
 
+/// The downstream column: correct stereo matches of the landmark chain (spec-model corners,
+/// grid descriptor (g, h), appendix F matching) on a few Middlebury 2006 half-size scenes,
+/// scored by landmarks::score_formats.
+struct LandmarkSpec {
+    bool enabled = true;
+    std::vector<std::string> scenes{"Aloe", "Rocks1"};   ///< folders under middlebury2006/half
+    int g = 16, h = 3;                                   ///< the thesis's Harris choice
+};
+
 struct SweepSpec {
     std::string name = "sweep";
     std::vector<Config> configs;      ///< in file order: configs, then grid points, then thesis
@@ -49,6 +59,7 @@ struct SweepSpec {
     TrustOptions trust;
     std::string sequence = "01";      ///< KITTI sequence
     std::string pairs;                ///< "a:b" stereo pairs ("" = all)
+    LandmarkSpec landmarks;
     std::vector<std::string> notes;   ///< merged duplicates etc., for the report
 };
 

@@ -56,7 +56,8 @@ std::string to_csv(const SweepResult& r) {
         "name,sobel_w,m_prod_w,m_drop,bf_sum_w,bf_drop,resp_w,ktr_w,k_shift1,k_shift2,thr_shift1,thr_shift2,"
         "recall,precision,f1,tp,fp,fn,luts,inv,ffs,dsps,carry4,muxf,srl,register_bits,wraps,"
         "wrap_sobel,wrap_m_resize,wrap_block_sum,wrap_k_term,wrap_response,pareto,"
-        "rtl_runs,rtl_failed,rtl_mismatches,verilator_runs,verilator_failed,verilator_mismatches,synth_seconds\n";
+        "rtl_runs,rtl_failed,rtl_mismatches,verilator_runs,verilator_failed,verilator_mismatches,synth_seconds,"
+        "landmark_keypoints,landmark_matches,landmark_correct,landmark_truth_known,landmark_truth_correct\n";
     for (const auto& p : r.points) {
         const Formats& f = p.config.formats;
         s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},", p.config.name, f.sobel_w, f.m_prod_w, f.m_drop, f.bf_sum_w,
@@ -69,7 +70,10 @@ std::string to_csv(const SweepResult& r) {
         s += fmt::format("{},", p.pareto ? 1 : 0);
         auto tr = [](const TrustResult& t) { return t.ran ? fmt::format("{},{},{},", t.runs, t.failed, t.mismatches) : std::string(",,,"); };
         s += tr(p.rtl) + tr(p.verilator);
-        s += fmt::format("{:.1f}\n", p.cost.seconds);
+        s += fmt::format("{:.1f},", p.cost.seconds);
+        const landmarks::Totals& l = p.landmarks;
+        s += p.has_landmarks ? fmt::format("{},{},{},{},{}\n", l.keypoints, l.all, l.correct, l.truth_known, l.truth_correct)
+                             : std::string(",,,,\n");
     }
     return s;
 }
@@ -91,11 +95,15 @@ std::string to_markdown(const SweepResult& r) {
                            r.spec.trust.verilator_pairs,
                            r.spec.trust.verilator_gate ? "after verilate's three-way gate"
                                                        : "without verilate's three-way gate: the netlist is checked against the model, not against GHDL");
-    s += "| configuration | recall | precision | F1 | LUT | FF | DSP | CARRY4 | reg. bits | wraps | P | GHDL | Verilator |\n";
-    s += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|:-:|---|---|\n";
+    s += fmt::format("Stereo matches downstream (columns *stereo correct*: pass the cross-check, ratio and epipolar tests; "
+                     "*GT-correct*: of those, within 1 px of the ground-truth disparity): {}.\n\n", r.landmark_pairs);
+    s += "| configuration | recall | precision | F1 | stereo correct | GT-correct | LUT | FF | DSP | CARRY4 | reg. bits | wraps | P | GHDL | Verilator |\n";
+    s += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|:-:|---|---|\n";
     for (const auto& p : r.points) {
-        s += fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", p.config.name,
-                         p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(), p.cost.luts, p.cost.ffs, p.cost.dsps,
+        const std::string lc = p.has_landmarks ? std::to_string(p.landmarks.correct) : "-";
+        const std::string lt = p.has_landmarks ? std::to_string(p.landmarks.truth_correct) : "-";
+        s += fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", p.config.name,
+                         p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(), lc, lt, p.cost.luts, p.cost.ffs, p.cost.dsps,
                          p.cost.carry4, p.register_bits, p.wraps ? "**" + p.overflow.summary() + "**" : std::string("none"),
                          p.pareto ? "**P**" : "", trust_cell(p.rtl), trust_cell(p.verilator));
     }
@@ -128,10 +136,10 @@ std::string to_markdown(const SweepResult& r) {
     }
     s += "Timing: ";
     s += fmt::format("frames {:.1f} s, OpenCV reference {:.1f} s, cost {:.1f} s ({} synthesised, {} from the cache; "
-                     "{:.0f} s of synthesis wall time summed), accuracy + overflow audit {:.1f} s, RTL checks {:.1f} s; "
-                     "total {:.1f} s.\n",
+                     "{:.0f} s of synthesis wall time summed), accuracy + overflow audit {:.1f} s, stereo matches {:.1f} s, "
+                     "RTL checks {:.1f} s; total {:.1f} s.\n",
                      r.seconds_load, r.seconds_reference, r.seconds_cost, r.synthesised, r.synth_cached, r.synth_seconds_sum,
-                     r.seconds_accuracy, r.seconds_trust, r.seconds_total);
+                     r.seconds_accuracy, r.seconds_landmarks, r.seconds_trust, r.seconds_total);
     for (const auto& n : r.spec.notes) s += "\nNote: " + n + ".\n";
     return s;
 }
@@ -160,13 +168,20 @@ std::string to_json(const SweepResult& r) {
                   {"pareto", p.pareto}, {"rtl", trust(p.rtl)}, {"verilator", trust(p.verilator)},
                   {"eval_seconds", p.eval_seconds}, {"overflow_seconds", p.overflow_seconds}};
         if (p.has_cost_ghdl) j["cost_ghdl_verilog"] = cost(p.cost_ghdl);
+        const landmarks::Totals& l = p.landmarks;
+        j["landmarks"] = p.has_landmarks ? json{{"keypoints", l.keypoints}, {"matches", l.all}, {"correct", l.correct},
+                                                {"truth_known", l.truth_known}, {"truth_correct", l.truth_correct},
+                                                {"pairs", l.pairs}}
+                                         : json(nullptr);
         pts.push_back(j);
     }
     json j = {{"name", r.spec.name}, {"command", r.command}, {"stream", r.stream}, {"scored_frames", r.scored_frames},
+              {"landmark_pairs", r.landmark_pairs},
               {"cost_geometry", {{"width", r.spec.cost_geometry.width}, {"height", r.spec.cost_geometry.height}}},
               {"points", pts}, {"notes", r.spec.notes},
               {"seconds", {{"load", r.seconds_load}, {"reference", r.seconds_reference}, {"cost", r.seconds_cost},
-                           {"accuracy", r.seconds_accuracy}, {"trust", r.seconds_trust}, {"total", r.seconds_total}}},
+                           {"accuracy", r.seconds_accuracy}, {"landmarks", r.seconds_landmarks}, {"trust", r.seconds_trust},
+                           {"total", r.seconds_total}}},
               {"synthesised", r.synthesised}, {"synth_cached", r.synth_cached}, {"synth_seconds_sum", r.synth_seconds_sum}};
     return j.dump(2) + "\n";
 }

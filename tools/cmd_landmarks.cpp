@@ -27,7 +27,8 @@ namespace {
 
 struct LandmarksOptions {
     std::string corners = "opencv", descriptor = "grid", norm = "auto", config, out = "landmarks-report";
-    std::string dataset = "middlebury", middlebury, kitti, sequence = "01", frames = "0:10", data;
+    std::string dataset = "middlebury", middlebury, kitti, sequence = "01", frames = "0:10", data, calib;
+    std::vector<std::string> left, right;
     int g = 16, h = 3, overlays = 2, threads = 0;
     double ratio = 0, sigma = 0.5;
     bool drop_ties = false, compare = false, study = false, corrected = false, landmark_files = true, no_truth = false;
@@ -65,6 +66,12 @@ std::string safe(const std::string& s) {
 
 /// The dataset of the flags; `root` receives its folder.
 landmarks::Dataset load_dataset(const LandmarksOptions& o, fs::path& root) {
+    if (!o.calib.empty()) {
+        if (o.left.empty() || o.right.empty()) throw InputError("--calib needs the rig's images: --left and --right");
+        return landmarks::rig_dataset(calib::expand_image_list(o.left, "--left"), calib::expand_image_list(o.right, "--right"),
+                                      landmarks::read_rig_calibration(o.calib));
+    }
+    if (!o.left.empty() || !o.right.empty()) throw InputError("--left and --right are the images of a rig: give its --calib");
     const auto data = frames::data_dir(o.data);
     if (o.dataset == "middlebury") {
         root = o.middlebury;
@@ -111,9 +118,10 @@ void run_landmarks(const LandmarksOptions& o) {
         if (o.sigma <= 0) throw InputError("--sigma must be positive");
         co.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
         co.corners.progress = true;
+        co.threads = o.threads;
         co.progress = [](const std::string& line) { std::fprintf(stderr, "landmarks: %s\n", line.c_str()); };
 
-        std::fprintf(stderr, "landmarks: loading %s...\n", o.dataset.c_str());
+        std::fprintf(stderr, "landmarks: loading %s...\n", o.calib.empty() ? o.dataset.c_str() : o.calib.c_str());
         fs::path root;
         const landmarks::Dataset ds = load_dataset(o, root);
         std::fprintf(stderr, "landmarks: %s, %zu pairs\n", ds.name.c_str(), ds.pairs.size());
@@ -123,6 +131,7 @@ void run_landmarks(const LandmarksOptions& o) {
         std::vector<landmarks::ComparisonRow> rows;
         if (o.sharded) {
             if (o.study) throw InputError("--study runs in one process: leave out --runner and --shards");
+            if (!o.calib.empty()) throw InputError("--calib (a rig's pairs) runs in one process: leave out --runner and --shards");
             jobs::LandmarksShards p;
             p.dataset = o.dataset;
             p.root = root;
@@ -217,6 +226,11 @@ void run_landmarks(const LandmarksOptions& o) {
                           "(ground truth)* counts, of those with a known disparity, the ones with |x_l - x_r - d| <= 1 px. "
                           "Time: extraction of both images + matching, one thread.\n\n",
                           ds.pairs.size(), o.ratio > 0 ? o.ratio : 1.0, o.drop_ties ? ", ties dropped" : " as printed");
+        if (ds.rig)
+            md << "A rig's unrectified pairs (`--calib " << o.calib
+               << "`): keypoints undistorted and rectified by cv::undistortPoints with the calibration's intrinsics, "
+                  "distortion, rectifying rotations and projections (no image warped); the epipolar test, the triangulation "
+                  "(its rectified projections) and the overlays use the rectified positions.\n\n";
         md << fmt::format("Co-processor formats (spec, cycle, rtl corners): {}.\n\n",
                           o.config.empty() ? "the thesis's" : "--config " + o.config);
         md << landmarks::comparison_markdown(rows) << "\n";
@@ -261,12 +275,19 @@ void add_landmarks_command(CLI::App& app) {
     cmd->add_option("--kitti", o->kitti, "KITTI odometry root holding sequences/ (default: <data>/kitti)");
     cmd->add_option("--sequence", o->sequence, "KITTI sequence")->capture_default_str();
     cmd->add_option("--frames", o->frames, "KITTI stereo pair range a:b (b excluded)")->capture_default_str();
+    cmd->add_option("--calib", o->calib,
+                    "a rig's calibration (harris-cosim calibrate's calib.yml/.json, or a calib.txt of rectified images): "
+                    "run on its unrectified pairs --left/--right, keypoints undistorted and rectified (cv::undistortPoints)");
+    cmd->add_option("--left", o->left, "with --calib: the rig's left images (files or glob patterns, sorted)");
+    cmd->add_option("--right", o->right, "with --calib: the rig's right images, in the order of --left");
     cmd->add_option("--data", o->data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");
     cmd->add_option("--config", o->config, "formats JSON of the co-processor (spec, cycle, rtl corners)");
     cmd->add_option("--sigma", o->sigma, "pixel noise (px, each coordinate) of the landmark covariance")->capture_default_str();
     cmd->add_option("--overlays", o->overlays, "match overlay PNGs per row (first N pairs)")->capture_default_str();
     cmd->add_flag("!--no-landmark-files", o->landmark_files, "skip the per-pair landmark CSV/PLY files");
-    cmd->add_option("--threads", o->threads, "worker threads of the study (0: all cores)");
+    cmd->add_option("--threads", o->threads,
+                    "worker threads of the comparison and the study (0: all cores); each pair's extraction and matching "
+                    "runs on one thread either way");
     cmd->add_option("--out", o->out, "output directory")->capture_default_str();
     add_runner_flags(cmd, o->runner);
     cmd->callback([o, cmd] {

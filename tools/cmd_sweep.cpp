@@ -26,7 +26,7 @@ namespace hc::tools {
 namespace {
 
 struct SweepCli {
-    std::string config, out = "sweep-report", cache, kitti, data, backend;
+    std::string config, out = "sweep-report", cache, kitti, data, backend, middlebury;
     int threads = 0;
     bool no_rtl = false, quiet = false;
     RunnerFlags runner;   ///< runner.jobs: also the synthesis / GHDL processes at once
@@ -49,6 +49,12 @@ void run(const SweepCli& c) {
     } else {
         throw InputError("no KITTI data: give --kitti DIR (holding sequences/NN) or --data DIR (holding kitti/)");
     }
+    if (!c.middlebury.empty()) {
+        if (!fs::is_directory(c.middlebury)) throw InputError("--middlebury '" + c.middlebury + "' is not a directory");
+        o.middlebury = c.middlebury;
+    } else if (auto d = frames::data_dir(c.data); d && fs::is_directory(*d / "middlebury2006" / "half")) {
+        o.middlebury = *d / "middlebury2006" / "half";
+    }   // else: no landmark column (the report says why)
     o.regression_set = fs::path(HC_SOURCE_DIR) / "golden" / "regression-set.txt";
     const auto backends = cosim::ghdl_backends();
     o.ghdl_backend = !c.backend.empty() ? c.backend : backends.empty() ? "gcc" : backends.front();
@@ -64,6 +70,7 @@ void run(const SweepCli& c) {
         p.spec_text = util::read_file(o.spec_file, "--config");
         p.spec_name = c.config;
         p.kitti = o.kitti;
+        p.middlebury = o.middlebury;
         p.cache = o.cache;
         p.threads = c.threads;
         p.jobs = 1;
@@ -95,8 +102,9 @@ void add_sweep_command(CLI::App& app) {
     auto* s = app.add_subcommand(
         "sweep",
         "Bit-width exploration: per configuration of a JSON sweep spec, recall/precision against OpenCV on KITTI\n"
-        "(spec model), overflow audit, yosys synth_xilinx cost (cached); Pareto front, each Pareto point verified on\n"
-        "the RTL (GHDL co-simulation + Verilator). Exit status: 0 done, 1 an RTL check failed, 2 bad input, 3 tool failure.\n"
+        "(spec model), correct stereo matches of the landmark chain on Middlebury pairs, overflow audit, yosys\n"
+        "synth_xilinx cost (cached); Pareto front, each Pareto point verified on the RTL (GHDL co-simulation +\n"
+        "Verilator). Exit status: 0 done, 1 an RTL check failed, 2 bad input, 3 tool failure.\n"
         "--jobs: shards at once, and the synthesis / GHDL processes at once of a single-process run and of the RTL checks.\n"
         "With --runner or --shards the configurations run in shards (run directory --run-dir, default <out>/run); the RTL\n"
         "checks of the merged Pareto front run after the merge, here.");
@@ -105,6 +113,8 @@ void add_sweep_command(CLI::App& app) {
     s->add_option("--cache", c->cache, "synthesis/RTL-check cache (else $HARRIS_COSIM_SWEEP_CACHE or <build>/sweep-cache)");
     s->add_option("--kitti", c->kitti, "KITTI odometry root (holds sequences/NN); default <data>/kitti");
     s->add_option("--data", c->data, "data directory (default $HARRIS_COSIM_DATA, else ../shared/data)");
+    s->add_option("--middlebury", c->middlebury,
+                  "Middlebury 2006 half-size folder of the stereo-match column (default <data>/middlebury2006/half)");
     s->add_option("--threads", c->threads, "threads for the accuracy runs (0: all cores)")->check(CLI::NonNegativeNumber);
     s->add_option("--backend", c->backend, "GHDL back end of the RTL checks (default: the first built: gcc, llvm, mcode)");
     s->add_flag("--no-rtl", c->no_rtl, "skip the RTL checks of the Pareto points");

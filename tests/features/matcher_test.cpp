@@ -186,6 +186,43 @@ TEST_CASE("knn2 agrees with cv::BFMatcher::knnMatch, ties included", "[landmarks
     }
 }
 
+TEST_CASE("Hamming matching both ways equals cv::BFMatcher for every width from 1 to 160 bytes", "[landmarks][matcher]") {
+    // sparse random descriptors (many equal distances: ties), row counts that are no multiple
+    // of the matcher's blocks; the symmetry test reads both directions' best, the drop-ties
+    // ratio test both directions' second best
+    std::mt19937 rng(11);
+    for (int bytes_per_row = 1; bytes_per_row <= 160; bytes_per_row += (bytes_per_row < 24 ? 1 : 17)) {
+        INFO("bytes " << bytes_per_row);
+        const int nl = 37 + bytes_per_row % 13, nr = 29 + bytes_per_row % 7;
+        cv::Mat dl(nl, bytes_per_row, CV_8U), dr(nr, bytes_per_row, CV_8U);
+        for (cv::Mat* m : {&dl, &dr})
+            for (int r = 0; r < m->rows; ++r)
+                for (int c = 0; c < m->cols; ++c) m->at<uchar>(r, c) = uchar(rng() & rng() & rng());
+        std::vector<std::vector<cv::DMatch>> lr, rl;
+        cv::BFMatcher(cv::NORM_HAMMING).knnMatch(dl, dr, lr, 2);
+        cv::BFMatcher(cv::NORM_HAMMING).knnMatch(dr, dl, rl, 2);
+        const auto passes = [](const std::vector<cv::DMatch>& v) { return v.size() < 2 || v[0].distance < v[1].distance; };
+        std::vector<std::pair<int, int>> expected;
+        for (int i = 0; i < nl; ++i) {
+            const int j = lr[static_cast<size_t>(i)][0].trainIdx;
+            if (passes(lr[static_cast<size_t>(i)]) && passes(rl[static_cast<size_t>(j)]) &&
+                rl[static_cast<size_t>(j)][0].trainIdx == i)
+                expected.emplace_back(i, j);
+        }
+        MatchOptions o;
+        o.ratio = RatioTest::drop_ties;
+        o.epipolar = false;
+        std::vector<cv::KeyPoint> kl(static_cast<size_t>(nl)), kr(static_cast<size_t>(nr));
+        CHECK(pairs(match_stereo(dl, kl, dr, kr, o)) == expected);
+        const auto ours = knn2(dl, dr, cv::NORM_HAMMING);
+        for (int i = 0; i < nl; ++i)
+            for (size_t k = 0; k < 2; ++k) {
+                CHECK(ours[static_cast<size_t>(i)][k].trainIdx == lr[static_cast<size_t>(i)][k].trainIdx);
+                CHECK(ours[static_cast<size_t>(i)][k].distance == lr[static_cast<size_t>(i)][k].distance);
+            }
+    }
+}
+
 TEST_CASE("descriptor and norm pairs that cannot work are input errors", "[landmarks][matcher]") {
     CHECK(descriptor_norm_valid(CV_8U, cv::NORM_HAMMING));
     CHECK(descriptor_norm_valid(CV_32F, cv::NORM_L2));

@@ -1,0 +1,37 @@
+// stereo.hpp: triangulation through a rectified stereo pair, the one implementation the
+// landmark pipeline (hc_landmarks, OpenCV types) and the EKF-SLAM front end (hc_slam, Eigen
+// types) both call. Plain doubles, no dependency, so neither library pulls in the other's.
+//
+// Model (thesis 4.3, Eq. 4.6 generalised to two projection matrices): the rectified left and
+// right cameras project with
+//   P0 = [fx 0 cx0 tx0; 0 fy cy ty; 0 0 1 0],   P1 = [fx 0 cx1 tx1; 0 fy cy ty; 0 0 1 0]
+// (KITTI calib.txt P0, P1; OpenCV stereoRectify's P1, P2), so a point (X, Y, Z) of the left
+// rectified camera's frame (x right, y down, z forward) is seen at
+//   u_l = (fx X + cx0 Z + tx0) / Z,   u_r = (fx X + cx1 Z + tx1) / Z,   v = (fy Y + cy Z + ty) / Z.
+// With the effective disparity D = u_l - u_r - (cx0 - cx1) and B = tx0 - tx1 (= fx * baseline):
+//   Z = B / D,   X = ((u_l - cx0) Z - tx0) / fx,   Y = ((v - cy) Z - ty) / fy,   v = (v_l + v_r) / 2.
+#pragma once
+
+namespace hc::stereo {
+
+/// The entries of a rectified pair's projection matrices that the triangulation reads.
+struct RectifiedRig {
+    double fx = 1, fy = 1;     ///< focal lengths (px), shared by both cameras
+    double cx0 = 0, cx1 = 0;   ///< principal points' columns, left and right (px)
+    double cy = 0;             ///< principal point's row (px), shared
+    double tx0 = 0, tx1 = 0;   ///< P0[0][3], P1[0][3]: fx times each camera's x offset
+    double ty = 0;             ///< P0[1][3] = P1[1][3]
+};
+
+/// A triangulated point and its Jacobian with respect to the four measured coordinates.
+struct Point3 {
+    double p[3] = {0, 0, 0};    ///< X, Y, Z in the left rectified camera's frame
+    double J[3][4] = {};        ///< d(X, Y, Z) / d(u_l, v_l, u_r, v_r)
+    bool valid = false;         ///< D > 0: in front of both cameras (else p and J are zero)
+};
+
+/// The point seen at (u_l, v_l) in the left image and (u_r, v_r) in the right one (rectified
+/// pixels). Invalid when the effective disparity D is not positive (at or beyond infinity).
+Point3 triangulate(const RectifiedRig& rig, double u_l, double v_l, double u_r, double v_r);
+
+}  // namespace hc::stereo
