@@ -4,10 +4,12 @@
 // symmetry test on what remains (a list emptied by the ratio test fails it), epipolar test.
 #include "features/features.hpp"
 
+#include <cstdlib>
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -174,8 +176,14 @@ void hamming_avx512_dispatch(const Packed& a, const Packed& b, std::vector<Best2
     }
 }
 
+/// The AVX-512 path is taken when the CPU has it, unless $HC_MATCHER_NO_AVX512 is set (not
+/// empty, not "0"): the tests run the word-wise path that way on any CPU.
 bool has_avx512_popcount() {
-    static const bool yes = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vpopcntdq");
+    static const bool yes = [] {
+        const char* off = std::getenv("HC_MATCHER_NO_AVX512");
+        if (off && *off && std::string(off) != "0") return false;
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vpopcntdq");
+    }();
     return yes;
 }
 #endif
