@@ -4,7 +4,6 @@
 // symmetry test on what remains (a list emptied by the ratio test fails it), epipolar test.
 #include "features/features.hpp"
 
-#include <cstdlib>
 #include <algorithm>
 #include <bit>
 #include <cmath>
