@@ -78,8 +78,8 @@ void add_sweep_command(CLI::App& app) {
     s->add_option("--cache", c->cache, "synthesis/RTL-check cache (else $HARRIS_COSIM_SWEEP_CACHE or <build>/sweep-cache)");
     s->add_option("--kitti", c->kitti, "KITTI odometry root (holds sequences/NN); default <data>/kitti");
     s->add_option("--data", c->data, "data directory (default $HARRIS_COSIM_DATA, else ../shared/data)");
-    s->add_option("--threads", c->threads, "threads for the accuracy runs (0: all cores)")->check(CLI::NonNegativeNumber);
-    s->add_option("--jobs", c->jobs, "synthesis / GHDL processes at once")->check(CLI::PositiveNumber)->capture_default_str();
+    s->add_option("--threads", c->threads, "threads for the accuracy runs (0: all cores)")->check(whole_number(0));
+    s->add_option("--jobs", c->jobs, "synthesis / GHDL processes at once")->check(whole_number(1))->capture_default_str();
     s->add_option("--backend", c->backend, "GHDL back end of the RTL checks (default: the first built: gcc, llvm, mcode)");
     s->add_flag("--no-rtl", c->no_rtl, "skip the RTL checks of the Pareto points");
     s->add_flag("--quiet", c->quiet, "no progress lines");
