@@ -330,13 +330,11 @@ void prepare_run(const fs::path& dir, const Manifest& m) {
 Manifest read_manifest(const fs::path& dir) {
     const fs::path p = manifest_path(dir);
     if (!fs::exists(p)) throw ClusterInputError("'" + dir.string() + "' holds no manifest.json");
-    json j;
     try {
-        j = json::parse(slurp(p));
-    } catch (const json::parse_error& e) {
-        throw ClusterInputError("'" + p.string() + "' is not valid JSON: " + e.what());
+        return Manifest::from_json(json::parse(slurp(p)), p.string());
+    } catch (const json::exception& e) {   // a syntax error, a number out of range (1e400), a key of another type
+        throw ClusterInputError("'" + p.string() + "' is not a valid manifest: " + e.what());
     }
-    return Manifest::from_json(j, p.string());
 }
 
 void write_result(const fs::path& dir, const ShardResult& r) {
@@ -348,20 +346,19 @@ void write_result(const fs::path& dir, const ShardResult& r) {
 std::optional<ShardResult> read_result(const fs::path& dir, const Manifest& m, std::size_t index) {
     const fs::path p = result_path(dir, index);
     if (!fs::exists(p)) return std::nullopt;
-    json j;
+    ShardResult r;
     try {
-        j = json::parse(slurp(p));
-    } catch (const json::parse_error& e) {
+        const json j = json::parse(slurp(p));
+        if (!j.is_object() || j.value("schema", "") != "harris-cosim.shard/1" || !j.contains("data"))
+            throw ClusterInputError("'" + p.string() + "' is not a shard result");
+        r.job = j.value("job", "");
+        r.index = j.value("index", std::size_t{0});
+        r.manifest_hash = j.value("manifest", "");
+        r.provenance = j.value("provenance", json::object());
+        r.data = j["data"];
+    } catch (const json::exception& e) {   // a syntax error, a number out of range, a key of another type
         throw ClusterInputError("'" + p.string() + "' is not a shard result: " + e.what());
     }
-    if (!j.is_object() || j.value("schema", "") != "harris-cosim.shard/1" || !j.contains("data"))
-        throw ClusterInputError("'" + p.string() + "' is not a shard result");
-    ShardResult r;
-    r.job = j.value("job", "");
-    r.index = j.value("index", std::size_t{0});
-    r.manifest_hash = j.value("manifest", "");
-    r.provenance = j.value("provenance", json::object());
-    r.data = j["data"];
     if (r.job != m.job || r.index != index || r.manifest_hash != m.hash())
         throw ClusterInputError("'" + p.string() + "' belongs to another run (job '" + r.job +
                                 "', manifest " + r.manifest_hash + ")");

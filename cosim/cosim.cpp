@@ -66,6 +66,9 @@ bool analyse_mcode(const fs::path& rtl, const fs::path& sim_dir, const fs::path&
     ana.push_back((fs::path(HC_SIM_DIR) / "hc_bridge_pkg.vhd").string());
     ana.push_back(kTestbench.string());
     if (util::run_process(ana, {.log = log}) != 0) return false;
+    // the analysis's date, as the build's mcode library has: run_ghdl refuses it once an
+    // RTL file of the source tree is newer
+    util::write_file_atomic(sim_dir / "ghdl-mcode" / "analysed.stamp", "analysed from " + rtl.string() + "\n");
     const fs::path lib = sim_dir / "libhc_bridge.so";
     if (!fs::exists(lib)) fs::create_symlink(fs::path(HC_SIM_DIR) / "libhc_bridge.so", lib);
     return true;
@@ -106,7 +109,7 @@ GhdlResult run_ghdl(const GhdlRun& r) {
     std::vector<std::string> argv;
     if (r.backend == "mcode") {
         const fs::path work = sim_dir / "ghdl-mcode";
-        if (r.sim_dir.empty()) check_fresh(work / "analysed.stamp", r.backend);
+        check_fresh(work / "analysed.stamp", r.backend);   // the build's or analyse_mcode()'s
         argv = {HC_GHDL_MCODE, "-r", "--std=08", "--workdir=" + work.string(), "harris_top_tb"};
     } else {
         const fs::path exe = sim_dir / ("harris_top_tb_" + r.backend);

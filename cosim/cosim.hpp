@@ -59,7 +59,9 @@ std::filesystem::path rtl_dir();
 
 /// Analyses the VHDL of `rtl_dir` (rtl_sources order) with the bridge package and the
 /// testbench for GHDL's mcode back end into `sim_dir`, which then serves as
-/// GhdlRun::sim_dir with backend "mcode". Returns false when the analysis fails (its
+/// GhdlRun::sim_dir with backend "mcode"; its analysis stamp (sim_dir/ghdl-mcode/
+/// analysed.stamp) dates it, so run_ghdl refuses it, as it refuses the build's, once a
+/// file of the source tree's rtl/ is newer. Returns false when the analysis fails (its
 /// messages go to `log`). Throws SimulatorError when ghdl-mcode is not installed.
 bool analyse_mcode(const std::filesystem::path& rtl_dir, const std::filesystem::path& sim_dir,
                    const std::filesystem::path& log);

@@ -100,7 +100,11 @@ StereoCalib load_kitti_calib(const fs::path& calib_txt) {
     StereoCalib c;
     c.P0 = cv::Matx34d(k.P1);
     c.P1 = cv::Matx34d(k.P2);
-    c.validate();
+    try {
+        c.validate();
+    } catch (const InputError& e) {
+        throw InputError("'" + calib_txt.string() + "': " + e.what());
+    }
     return c;
 }
 

@@ -4,7 +4,8 @@
 //   3. accuracy and overflow audit per configuration (frames in parallel, TBB); correct stereo
 //      matches of the landmark chain per configuration (configurations in parallel, TBB)
 //   4. Pareto front; RTL checks of its points, `jobs` simulator processes at a time
-//      (results cached like the synthesis: an unchanged point is not simulated again)
+//      (results cached like the synthesis: an unchanged point is not simulated again):
+//      GHDL on the regression set, verilate's three-way gate, Verilator on KITTI pairs
 #include "sweep/sweep.hpp"
 
 #include <atomic>
@@ -172,6 +173,11 @@ PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& whic
     const util::Range pairs = spec.pairs.empty() ? util::Range{0, 1 << 30} : util::parse_range(spec.pairs, "data.pairs");
     const eval::Stream stream = frames::load_kitti_stream(o.kitti, spec.sequence, pairs,
                                                           "sweep spec data.pairs '" + spec.pairs + "'", o.threads, 2);
+    // the Verilator pairs are loaded after the cost phase: a range past the data is bad input now
+    if (o.trust && !spec.trust.verilator_pairs.empty())
+        (void)frames::stereo_stream(frames::open_kitti(o.kitti, spec.sequence),
+                                    util::parse_range(spec.trust.verilator_pairs, "trust.verilator_pairs"),
+                                    "sweep spec trust.verilator_pairs '" + spec.trust.verilator_pairs + "'");
     res.stream = stream.description;
     res.seconds_load = since(t);
     progress(o.progress, stream.description);
@@ -298,7 +304,7 @@ void check_points(SweepResult& res, const SweepOptions& o) {
     std::mutex m;
     auto t = Clock::now();
     // ---- 4. RTL checks of the points marked verify ------------------------------------
-    if (o.trust && (spec.trust.rtl || !spec.trust.verilator_pairs.empty())) {
+    if (o.trust && (spec.trust.rtl || !spec.trust.verilator_pairs.empty() || spec.trust.verilator_gate)) {
         CostOptions co;
         co.rtl_sources = cosim::rtl_sources();
         co.cache_dir = o.cache / "synth";
@@ -308,7 +314,7 @@ void check_points(SweepResult& res, const SweepOptions& o) {
         fs::create_directories(trust_cache);
         const auto rset = util::read_regression_set(o.regression_set);
         // the RTL checks depend on the RTL, the tool versions and the formats: same key basis
-        struct TJob { size_t point; int stream; };   // stream -1: Verilator
+        struct TJob { size_t point; int stream; };   // stream -1: Verilator, -2: the gate
         std::vector<TJob> tj;
         std::vector<std::string> keys(n);
         for (size_t i = 0; i < n; ++i) {
@@ -327,6 +333,8 @@ void check_points(SweepResult& res, const SweepOptions& o) {
                     if (fs::exists(c)) add_run(p.rtl, trust_from_json(json::parse(util::read_file(c))));
                     else tj.push_back({i, st});
                 }
+            // the gate keeps its own record (vl::run_gate_cached: formats, sources, tools)
+            if (spec.trust.verilator_gate) tj.push_back({i, -2});
             if (!spec.trust.verilator_pairs.empty()) {
                 const fs::path c = trust_cache / (keys[i] + "-verilator.json");
                 if (fs::exists(c)) add_run(p.verilator, trust_from_json(json::parse(util::read_file(c))));
@@ -340,8 +348,8 @@ void check_points(SweepResult& res, const SweepOptions& o) {
                                                   util::parse_range(spec.trust.verilator_pairs, "trust.verilator_pairs"),
                                                   "sweep spec trust.verilator_pairs '" + spec.trust.verilator_pairs + "'",
                                                   o.threads);
-        // Verilator runs first: they are the longest (netlist builds, gate)
-        std::stable_sort(tj.begin(), tj.end(), [](const TJob& a, const TJob& b) { return (a.stream < 0) > (b.stream < 0); });
+        // gates, then Verilator runs first: they are the longest (netlist builds)
+        std::stable_sort(tj.begin(), tj.end(), [](const TJob& a, const TJob& b) { return std::min(a.stream, 0) < std::min(b.stream, 0); });
         std::atomic<int> tdone{0};
         std::mutex verilator_m;   // one verilated design at a time (Verilator's runtime is process-global)
         run_pool(tj.size(), o.jobs, [&](size_t k) {
@@ -356,7 +364,31 @@ void check_points(SweepResult& res, const SweepOptions& o) {
             one.runs = 1;
             std::string status;
             fs::path log;
-            if (j.stream >= 0) {
+            bool gate_cached = false;
+            if (j.stream == -2) {
+                log = dir / "gate.log";
+                std::ofstream glog(log);
+                std::string why;
+                if (!vl::toolchain_available(&why)) {
+                    status = "no gate: " + why;
+                } else {
+                    try {
+                        std::lock_guard<std::mutex> l(verilator_m);
+                        const vl::GateResult g =
+                            vl::run_gate_cached(p.config.formats, {}, vl::default_cache_dir(), glog, &gate_cached);
+                        one.reads = g.reads;
+                        one.cached = gate_cached;
+                        status = g.verdict == vl::GateVerdict::pass ? "pass" : std::string(vl::verdict_name(g.verdict)) + ": " + g.first;
+                        one.detail = g.verdict == vl::GateVerdict::pass
+                                         ? fmt::format("pass: {} writes, {} reads agree three ways ({:.0f} s{})", g.writes,
+                                                       g.reads, g.seconds, gate_cached ? ", recorded" : "")
+                                         : std::string();
+                        one.seconds = g.seconds;
+                    } catch (const SimulatorError& e) {
+                        status = e.what();
+                    }
+                }
+            } else if (j.stream >= 0) {
                 const util::RegressionStream& s = rset[j.stream];
                 const std::string tag = fmt::format("rtl-{}-{}-{}", s.pattern, s.size(), s.idle_every);
                 log = dir / (tag + ".log");
@@ -390,7 +422,7 @@ void check_points(SweepResult& res, const SweepOptions& o) {
                 run.frames = vl_stream.frames;
                 run.frame_names = vl_stream.names;
                 run.formats = p.config.formats;
-                run.gate = spec.trust.verilator_gate;
+                run.gate = false;   // the gate is its own check (stream -2)
                 run.keep_going = true;
                 std::ofstream vlog(log);
                 try {
@@ -405,31 +437,39 @@ void check_points(SweepResult& res, const SweepOptions& o) {
                     status = e.what();
                 }
             }
-            one.seconds = since(ts);
+            if (j.stream != -2) one.seconds = since(ts);
             if (status != "pass") {
                 one.failed = 1;
-                one.detail = fmt::format("{}: {} (log {})", j.stream >= 0 ? rset[j.stream].pattern + " " + rset[j.stream].size() : "verilate",
+                one.detail = fmt::format("{}: {} (log {})", j.stream >= 0 ? rset[j.stream].pattern + " " + rset[j.stream].size()
+                                                          : j.stream == -1 ? "verilate" : "gate",
                                          status, log.string());
-            } else {
+            } else if (j.stream != -2) {
                 const std::string entry = j.stream >= 0 ? fmt::format("{}-rtl-{}.json", keys[j.point], j.stream)
                                                         : keys[j.point] + "-verilator.json";
                 util::write_file_atomic(trust_cache / entry, trust_json(one).dump(2));
             }
             {
                 std::lock_guard<std::mutex> l(m);
-                add_run(j.stream >= 0 ? p.rtl : p.verilator, one);
+                add_run(j.stream >= 0 ? p.rtl : j.stream == -1 ? p.verilator : p.gate, one);
+                if (j.stream == -2) {
+                    if (gate_cached) ++res.gates_cached;
+                    else {
+                        ++res.gates_run;
+                        res.gate_seconds_sum += one.seconds;
+                    }
+                }
             }
-            progress(o.progress, fmt::format("[rtl {}/{}] {} {}: {} ({:.0f} s)", ++tdone, tj.size(), name,
-                                             j.stream >= 0 ? "ghdl " + rset[j.stream].pattern + " " + rset[j.stream].size() : "verilator " + spec.trust.verilator_pairs,
-                                             status, one.seconds));
+            progress(o.progress, fmt::format("[rtl {}/{}] {} {}: {} ({:.0f} s{})", ++tdone, tj.size(), name,
+                                             j.stream >= 0 ? "ghdl " + rset[j.stream].pattern + " " + rset[j.stream].size()
+                                             : j.stream == -1 ? "verilator " + spec.trust.verilator_pairs : "three-way gate",
+                                             status, one.seconds, gate_cached ? ", verdict recorded earlier" : ""));
         });
         for (auto& p : res.points) {
             if (!p.verify) continue;
             if (p.rtl.ran && p.rtl.detail.empty())
                 p.rtl.detail = fmt::format("{}/{} streams pass", p.rtl.runs - p.rtl.failed, p.rtl.runs);
             if (p.verilator.ran && p.verilator.detail.empty())
-                p.verilator.detail = fmt::format("pairs {} pass{}", spec.trust.verilator_pairs,
-                                                 spec.trust.verilator_gate ? " (gate passed)" : " (no gate: Verilator not cross-checked against GHDL)");
+                p.verilator.detail = fmt::format("pairs {} pass", spec.trust.verilator_pairs);
         }
     }
     res.seconds_trust = since(t);

@@ -1,9 +1,9 @@
 // sweep.hpp: the bit-width sweep: per configuration the overflow audit, the accuracy
 // against OpenCV (spec model, thesis protocol), the synthesis cost; the Pareto front of
 // cost against accuracy; every Pareto point checked on the RTL (GHDL co-simulation of the
-// regression set, Verilator on KITTI frames); per configuration also the correct stereo
-// matches of the landmark chain on a few Middlebury pairs (what a bit width costs downstream).
-// Reports: sweep_report.hpp.
+// regression set, verilate's three-way gate, Verilator on KITTI frames); per configuration also
+// the correct stereo matches of the landmark chain on a few Middlebury pairs (what a bit width
+// costs downstream). Reports: sweep_report.hpp.
 #pragma once
 
 #include <filesystem>
@@ -46,6 +46,10 @@ struct PointResult {
     TrustResult rtl, verilator;
     bool has_landmarks = false;        ///< the landmark column was scored (SweepResult::landmark_pairs)
     landmarks::Totals landmarks;       ///< correct stereo matches downstream (score_formats)
+    /// verilate's three-way gate (GHDL / Verilator / model on small frames) for these formats:
+    /// runs 1, failed 1 on a translation or RTL fault; seconds: the gate's own run (also
+    /// when the verdict comes from the cache); detail: the verdict
+    TrustResult gate;
 };
 
 struct SweepOptions {
@@ -71,6 +75,8 @@ struct SweepResult {
     double seconds_load = 0, seconds_reference = 0, seconds_cost = 0, seconds_accuracy = 0,
            seconds_landmarks = 0, seconds_trust = 0, seconds_total = 0;
     int synthesised = 0, synth_cached = 0;
+    int gates_run = 0, gates_cached = 0;
+    double gate_seconds_sum = 0;       ///< wall time of the gates run now (cached ones: 0)
     double synth_seconds_sum = 0;      ///< sum of synthesis times of the runs made now
     std::string command;
 };

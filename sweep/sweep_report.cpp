@@ -23,6 +23,12 @@ std::string trust_cell(const TrustResult& t) {
     return fmt::format("**{} FAILED**, {} mism.", t.failed, t.mismatches);
 }
 
+std::string gate_cell(const TrustResult& t) {
+    if (!t.ran) return "-";
+    if (t.failed == 0) return fmt::format("pass ({:.0f} s{})", t.seconds, t.cached ? ", recorded" : "");
+    return "**" + t.detail.substr(0, t.detail.find(':', t.detail.find(':') + 1)) + "**";
+}
+
 double pct(double a, double b) { return b ? 100.0 * (a - b) / b : 0.0; }
 
 }  // namespace
@@ -57,7 +63,8 @@ std::string to_csv(const SweepResult& r) {
         "recall,precision,f1,tp,fp,fn,luts,inv,ffs,dsps,carry4,muxf,srl,register_bits,wraps,"
         "wrap_sobel,wrap_m_resize,wrap_block_sum,wrap_k_term,wrap_response,pareto,"
         "rtl_runs,rtl_failed,rtl_mismatches,verilator_runs,verilator_failed,verilator_mismatches,synth_seconds,"
-        "landmark_keypoints,landmark_matches,landmark_correct,landmark_truth_known,landmark_truth_correct\n";
+        "landmark_keypoints,landmark_matches,landmark_correct,landmark_truth_known,landmark_truth_correct,"
+        "gate_passed,gate_seconds\n";
     for (const auto& p : r.points) {
         const Formats& f = p.config.formats;
         s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},", p.config.name, f.sobel_w, f.m_prod_w, f.m_drop, f.bf_sum_w,
@@ -72,8 +79,9 @@ std::string to_csv(const SweepResult& r) {
         s += tr(p.rtl) + tr(p.verilator);
         s += fmt::format("{:.1f},", p.cost.seconds);
         const landmarks::Totals& l = p.landmarks;
-        s += p.has_landmarks ? fmt::format("{},{},{},{},{}\n", l.keypoints, l.all, l.correct, l.truth_known, l.truth_correct)
-                             : std::string(",,,,\n");
+        s += p.has_landmarks ? fmt::format("{},{},{},{},{},", l.keypoints, l.all, l.correct, l.truth_known, l.truth_correct)
+                             : std::string(",,,,,");
+        s += p.gate.ran ? fmt::format("{},{:.1f}\n", p.gate.failed == 0 ? 1 : 0, p.gate.seconds) : std::string(",\n");
     }
     return s;
 }
@@ -90,22 +98,26 @@ std::string to_markdown(const SweepResult& r) {
          "RTL checks (the Pareto points, the thesis and the findings below): GHDL co-simulation of "
          "golden/regression-set.txt (mismatching cycles, every inter-stage register compared after every cycle) and ";
     s += r.spec.trust.verilator_pairs.empty()
-             ? std::string("no Verilator run.\n\n")
-             : fmt::format("Verilator on KITTI {} pairs {} (mismatching writes; reads compared; {}).\n\n", r.spec.sequence,
-                           r.spec.trust.verilator_pairs,
-                           r.spec.trust.verilator_gate ? "after verilate's three-way gate"
-                                                       : "without verilate's three-way gate: the netlist is checked against the model, not against GHDL");
+             ? std::string("no Verilator run")
+             : fmt::format("Verilator on KITTI {} pairs {} (mismatching writes; reads compared)", r.spec.sequence,
+                           r.spec.trust.verilator_pairs);
+    s += r.spec.trust.verilator_gate
+             ? "; the Gate column is verilate's three-way gate (GHDL simulation of the VHDL, Verilator on GHDL's "
+               "netlist, the cycle model on small frames; docs/verilator.md) with its wall time (\"recorded\": the "
+               "verdict of an earlier run for the same formats, sources and tools).\n\n"
+             : "; no three-way gate (trust.verilator_gate false): the netlist is checked against the model, not "
+               "against GHDL.\n\n";
     s += fmt::format("Stereo matches downstream (columns *stereo correct*: pass the cross-check, ratio and epipolar tests; "
                      "*GT-correct*: of those, within 1 px of the ground-truth disparity): {}.\n\n", r.landmark_pairs);
-    s += "| configuration | recall | precision | F1 | stereo correct | GT-correct | LUT | FF | DSP | CARRY4 | reg. bits | wraps | P | GHDL | Verilator |\n";
-    s += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|:-:|---|---|\n";
+    s += "| configuration | recall | precision | F1 | stereo correct | GT-correct | LUT | FF | DSP | CARRY4 | reg. bits | wraps | P | GHDL | Gate | Verilator |\n";
+    s += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|:-:|---|---|---|\n";
     for (const auto& p : r.points) {
         const std::string lc = p.has_landmarks ? std::to_string(p.landmarks.correct) : "-";
         const std::string lt = p.has_landmarks ? std::to_string(p.landmarks.truth_correct) : "-";
-        s += fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", p.config.name,
+        s += fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", p.config.name,
                          p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(), lc, lt, p.cost.luts, p.cost.ffs, p.cost.dsps,
                          p.cost.carry4, p.register_bits, p.wraps ? "**" + p.overflow.summary() + "**" : std::string("none"),
-                         p.pareto ? "**P**" : "", trust_cell(p.rtl), trust_cell(p.verilator));
+                         p.pareto ? "**P**" : "", trust_cell(p.rtl), gate_cell(p.gate), trust_cell(p.verilator));
     }
     const Findings f = findings(r);
     if (f.thesis >= 0) {
@@ -137,9 +149,11 @@ std::string to_markdown(const SweepResult& r) {
     s += "Timing: ";
     s += fmt::format("frames {:.1f} s, OpenCV reference {:.1f} s, cost {:.1f} s ({} synthesised, {} from the cache; "
                      "{:.0f} s of synthesis wall time summed), accuracy + overflow audit {:.1f} s, stereo matches {:.1f} s, "
-                     "RTL checks {:.1f} s; total {:.1f} s.\n",
+                     "RTL checks {:.1f} s (three-way gates: {} run, {:.0f} s of wall time summed, {} verdicts recorded earlier); "
+                     "total {:.1f} s.\n",
                      r.seconds_load, r.seconds_reference, r.seconds_cost, r.synthesised, r.synth_cached, r.synth_seconds_sum,
-                     r.seconds_accuracy, r.seconds_landmarks, r.seconds_trust, r.seconds_total);
+                     r.seconds_accuracy, r.seconds_landmarks, r.seconds_trust, r.gates_run, r.gate_seconds_sum, r.gates_cached,
+                     r.seconds_total);
     for (const auto& n : r.spec.notes) s += "\nNote: " + n + ".\n";
     return s;
 }
@@ -165,7 +179,7 @@ std::string to_json(const SweepResult& r) {
                   {"recall", p.accuracy.recall()}, {"precision", p.accuracy.precision()}, {"f1", p.accuracy.f1()},
                   {"confusion", {{"tp", p.accuracy.tp}, {"tn", p.accuracy.tn}, {"fp", p.accuracy.fp}, {"fn", p.accuracy.fn}}},
                   {"cost", cost(p.cost)}, {"register_bits", p.register_bits}, {"wraps", p.wraps}, {"overflow", ovf},
-                  {"pareto", p.pareto}, {"rtl", trust(p.rtl)}, {"verilator", trust(p.verilator)},
+                  {"pareto", p.pareto}, {"rtl", trust(p.rtl)}, {"gate", trust(p.gate)}, {"verilator", trust(p.verilator)},
                   {"eval_seconds", p.eval_seconds}, {"overflow_seconds", p.overflow_seconds}};
         if (p.has_cost_ghdl) j["cost_ghdl_verilog"] = cost(p.cost_ghdl);
         const landmarks::Totals& l = p.landmarks;
@@ -182,7 +196,8 @@ std::string to_json(const SweepResult& r) {
               {"seconds", {{"load", r.seconds_load}, {"reference", r.seconds_reference}, {"cost", r.seconds_cost},
                            {"accuracy", r.seconds_accuracy}, {"landmarks", r.seconds_landmarks}, {"trust", r.seconds_trust},
                            {"total", r.seconds_total}}},
-              {"synthesised", r.synthesised}, {"synth_cached", r.synth_cached}, {"synth_seconds_sum", r.synth_seconds_sum}};
+              {"synthesised", r.synthesised}, {"synth_cached", r.synth_cached}, {"synth_seconds_sum", r.synth_seconds_sum},
+              {"gates_run", r.gates_run}, {"gates_cached", r.gates_cached}, {"gate_seconds_sum", r.gate_seconds_sum}};
     return j.dump(2) + "\n";
 }
 

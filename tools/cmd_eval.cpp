@@ -132,7 +132,7 @@ void add_eval_command(CLI::App& app) {
     cmd->add_option("--out", o->out, "output directory")->capture_default_str();
     cmd->add_option("--frames", o->frames, "stereo pair range a:b (b excluded)");
     cmd->add_option("--overlay", o->overlay, "stream frames to draw, e.g. 2,3");
-    cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")->check(whole_number(0));
     cmd->add_option("--data", o->data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");
     cmd->add_flag("!--no-ablation", o->ablation, "skip the ablation table");
     add_runner_flags(cmd, o->runner);

@@ -205,8 +205,8 @@ void add_rtl_command(CLI::App& app) {
     cmd->add_option("--reads", o->reads_out, "write every read as CSV: write,frame,x,y,value");
     cmd->add_option("--expect-reads", o->expect_reads, "fail unless the RTL's reads equal this golden CSV");
     cmd->add_option("--idle-every", o->idle_every, "insert an idle cycle (write='0') after every N writes")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--max-writes", o->max_writes, "stop after N writes")->check(CLI::NonNegativeNumber);
+        ->check(whole_number(0));
+    cmd->add_option("--max-writes", o->max_writes, "stop after N writes")->check(whole_number(0));
     cmd->add_flag("--quiet", o->quiet, "no progress lines");
     cmd->callback([o]() { run_rtl(*o); });
 }

@@ -115,7 +115,7 @@ void add_sweep_command(CLI::App& app) {
     s->add_option("--data", c->data, "data directory (default $HARRIS_COSIM_DATA, else ../shared/data)");
     s->add_option("--middlebury", c->middlebury,
                   "Middlebury 2006 half-size folder of the stereo-match column (default <data>/middlebury2006/half)");
-    s->add_option("--threads", c->threads, "threads for the accuracy runs (0: all cores)")->check(CLI::NonNegativeNumber);
+    s->add_option("--threads", c->threads, "threads for the accuracy runs (0: all cores)")->check(whole_number(0));
     s->add_option("--backend", c->backend, "GHDL back end of the RTL checks (default: the first built: gcc, llvm, mcode)");
     s->add_flag("--no-rtl", c->no_rtl, "skip the RTL checks of the Pareto points");
     s->add_flag("--quiet", c->quiet, "no progress lines");

@@ -7,7 +7,29 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace hc::tools {
+
+/// A flag check for whole numbers >= `min` whose message is short ("--frames: '-1' is not a
+/// whole number >= 0"); CLI11's NonNegativeNumber and PositiveNumber print their bound as a
+/// 300-digit double.
+inline CLI::Validator whole_number(long min) {
+    return CLI::Validator(
+        [min](std::string& s) -> std::string {
+            std::size_t used = 0;
+            long v = 0;
+            try {
+                v = std::stol(s, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (s.empty() || used != s.size() || v < min)
+                return "'" + s + "' is not a whole number >= " + std::to_string(min);
+            return {};
+        },
+        "N >= " + std::to_string(min));
+}
 
 void add_rtl_command(CLI::App& app);        // GHDL co-simulation (cmd_rtl.cpp)
 void add_model_command(CLI::App& app);      // cycle model alone (cmd_rtl.cpp)

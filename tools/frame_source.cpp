@@ -1,6 +1,8 @@
 // frame_source.cpp: see frame_source.hpp.
 #include "tools/frame_source.hpp"
 
+#include "tools/commands.hpp"
+
 namespace hc::tools {
 
 void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o) {
@@ -8,7 +10,7 @@ void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o) {
     cmd->add_option("--pattern", o.pattern, "synthetic frames: flat, checkerboard, random, extremes, blocks");
     cmd->add_option("--size", o.size, "WxH: size of synthetic frames, or a centred crop of images/KITTI frames");
     cmd->add_option("--frames", o.frames, "number of chained frames (patterns: default 3; images/KITTI: the first N)")
-        ->check(CLI::PositiveNumber);
+        ->check(whole_number(1));
     cmd->add_option("--kitti", o.kitti, "KITTI odometry root (holds sequences/NN); default <data>/kitti");
     cmd->add_option("--sequence", o.sequence, "KITTI sequence (with --kitti or --pairs)")->capture_default_str();
     cmd->add_option("--pairs", o.pairs, "a:b stereo pairs of the KITTI sequence (b excluded), streamed L R L R ...");

@@ -8,7 +8,7 @@ PKGS=(cmake g++ make pkg-config
       ghdl ghdl-gcc ghdl-llvm ghdl-mcode verilator yosys
       catch2 librapidcheck-dev libbenchmark-dev
       libopencv-dev opencv-doc libcli11-dev nlohmann-json3-dev libfmt-dev libtbb-dev libeigen3-dev
-      gnuplot-nox graphviz slurm-wlm munge gcovr jq)
+      gnuplot-nox graphviz slurm-wlm munge gcovr jq clang libclang-rt-14-dev)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -3,11 +3,14 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <fstream>
 #include <optional>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+
+#include <nlohmann/json.hpp>
 
 #include "model/driver/host_driver.hpp"
 #include "model/harris/harris_top.hpp"
@@ -87,14 +90,22 @@ std::optional<std::uint64_t> ghdl_value(const std::string& obs, const ObsSlot& s
 }  // namespace
 
 std::vector<GateCase> gate_cases() {
+    using P = Pattern;
     return {
-        {"10x10_random (smallest chainable size)", {10, 10}, Pattern::random, 3},
-        {"11x11_extremes (odd size)", {11, 11}, Pattern::extremes, 3},
-        {"16x12_checkerboard", {16, 12}, Pattern::checkerboard, 3},
-        {"32x16_random", {32, 16}, Pattern::random, 3},
-        {"37x21_blocks (odd, several window rows)", {37, 21}, Pattern::blocks, 3},
+        {"10x10 random,extremes,checkerboard,blocks (smallest chainable size)", {10, 10},
+         {P::random, P::extremes, P::checkerboard, P::blocks}},
+        {"37x21 blocks,random,extremes,checkerboard (odd, several window rows)", {37, 21},
+         {P::blocks, P::random, P::extremes, P::checkerboard}},
     };
 }
+
+namespace {
+NetlistConfig gate_netlist(const GateCase& gc, const Formats& f, const std::vector<fs::path>& variants) {
+    NetlistConfig nc{gc.g, f, true, variants};
+    nc.optimise = false;
+    return nc;
+}
+}  // namespace
 
 const char* verdict_name(GateVerdict v) {
     switch (v) {
@@ -107,6 +118,7 @@ const char* verdict_name(GateVerdict v) {
 
 GateResult run_gate(const Formats& f, const std::vector<fs::path>& variants, const fs::path& cache_dir,
                     std::ostream& log) {
+    const auto t0 = std::chrono::steady_clock::now();
     GateResult res;
     std::string first_rtl;
     const auto layout = obs_layout(f);
@@ -116,7 +128,8 @@ GateResult run_gate(const Formats& f, const std::vector<fs::path>& variants, con
     for (const GateCase& gc : gate_cases()) {
         // -- the stream, once, shared by the three sides
         std::vector<Image> imgs;
-        for (int k = 0; k < gc.frames; ++k) imgs.push_back(make_pattern(gc.pattern, gc.g.width, gc.g.height, k, 7));
+        for (std::size_t k = 0; k < gc.patterns.size(); ++k)
+            imgs.push_back(make_pattern(gc.patterns[k], gc.g.width, gc.g.height, static_cast<int>(k), 7));
         std::vector<const Image*> ptrs;
         for (const auto& im : imgs) ptrs.push_back(&im);
         HostDriver drv(gc.g, ptrs);
@@ -160,7 +173,7 @@ GateResult run_gate(const Formats& f, const std::vector<fs::path>& variants, con
                                      " writes, expected " + std::to_string(events.size()));
 
         // -- Verilator: the netlist this geometry and these formats synthesise to
-        NetlistConfig nc{gc.g, f, true, variants};
+        const NetlistConfig nc = gate_netlist(gc, f, variants);
         VerilatedDesign dut(build_netlist(nc, cache_dir, log), config_key(nc));
         const int nbits = dut.obs_bits();
         const auto slots = obs_slots(f, nbits);
@@ -226,27 +239,44 @@ GateResult run_gate(const Formats& f, const std::vector<fs::path>& variants, con
         if (res.verdict != GateVerdict::pass) break;
     }
     if (res.verdict == GateVerdict::rtl_fault) res.first = first_rtl;
+    res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return res;
+}
+
+std::string gate_key(const Formats& f, const std::vector<fs::path>& variants) {
+    std::string keys = util::read_file(HCVL_REPLAY_TB);
+    for (const GateCase& gc : gate_cases()) {
+        keys += gc.name + '|' + std::to_string(gc.g.width) + 'x' + std::to_string(gc.g.height);
+        for (Pattern p : gc.patterns) keys += ',' + pattern_name(p);
+        keys += '|' + config_key(gate_netlist(gc, f, variants)) + '\n';
+    }
+    return util::hex64(util::fnv1a(keys));
 }
 
 GateResult run_gate_cached(const Formats& f, const std::vector<fs::path>& variants, const fs::path& cache_dir,
                            std::ostream& log, bool* from_cache) {
-    // key: every netlist key of the regression set (sources, formats, harness, tools)
-    std::string keys;
-    for (const GateCase& gc : gate_cases()) keys += config_key(NetlistConfig{gc.g, f, true, variants}) + "\n";
-    const fs::path marker = cache_dir / ("gate_pass_" + util::hex64(util::fnv1a(keys)));
+    const fs::path marker = cache_dir / ("gate_pass_" + gate_key(f, variants) + ".json");
     if (from_cache) *from_cache = false;
     if (fs::exists(marker)) {
-        if (from_cache) *from_cache = true;
-        GateResult r;
-        std::ifstream in(marker);
-        for (std::string line; std::getline(in, line);) r.per_case.push_back(line);
-        return r;
+        try {
+            const auto j = nlohmann::json::parse(util::read_file(marker));
+            GateResult r;
+            r.writes = j.at("writes");
+            r.reads = j.at("reads");
+            r.obs_compared = j.at("obs_compared");
+            r.seconds = j.at("seconds");
+            r.per_case = j.at("cases").get<std::vector<std::string>>();
+            if (from_cache) *from_cache = true;
+            return r;
+        } catch (const std::exception&) {
+            // an unreadable record is no verdict: gate again
+        }
     }
     GateResult r = run_gate(f, variants, cache_dir, log);
     if (r.verdict == GateVerdict::pass) {
-        std::ofstream out(marker);
-        for (const auto& l : r.per_case) out << l << '\n';
+        const nlohmann::json j = {{"verdict", verdict_name(r.verdict)}, {"writes", r.writes}, {"reads", r.reads},
+                                  {"obs_compared", r.obs_compared}, {"seconds", r.seconds}, {"cases", r.per_case}};
+        util::write_file_atomic(marker, j.dump(2) + "\n");
     }
     return r;
 }

@@ -23,15 +23,16 @@
 
 namespace hc::vl {
 
-/// One regression case: `frames` chained frames of a synthetic pattern at a small size.
+/// One regression case: one frame size (one netlist), one frame per pattern, chained.
 struct GateCase {
     std::string name;
     Geometry g;
-    Pattern pattern;
-    int frames;
+    std::vector<Pattern> patterns;   ///< frame k is make_pattern(patterns[k], ..., k, 7)
 };
-/// The regression set: the smallest size the host driver can chain (two window rows),
-/// odd sizes, and larger sizes, each over 3 chained frames (so find-max publishes a real maximum).
+/// The regression set: the smallest size the host driver can chain (two window rows) and an
+/// odd size with several window rows, each over four chained frames of the four textured
+/// patterns (so find-max publishes real maxima and the threshold is exercised). Two sizes
+/// mean two netlists per configuration; the patterns share each one.
 std::vector<GateCase> gate_cases();
 
 enum class GateVerdict { pass, translation_fault, rtl_fault };
@@ -43,15 +44,26 @@ struct GateResult {
     long obs_compared = 0;             ///< writes whose obs port was compared
     std::string first;                 ///< the first disagreement, in words
     std::vector<std::string> per_case; ///< one line per case
+    double seconds = 0;                ///< wall time of the run that gave the verdict (a cached one's)
 };
 
 /// Runs the gate for formats `f` and VHDL `variants`: the cases in order, up to the first
-/// case that shows a fault. GHDL's analysis and each netlist go to `cache_dir`.
+/// case that shows a fault. GHDL's analysis (one per set of sources, shared by every
+/// configuration: the formats are generics given at elaboration) and each netlist (built
+/// unoptimised: the gate's streams are a few thousand writes, so compile time dominates)
+/// go to `cache_dir`.
 GateResult run_gate(const Formats& f, const std::vector<std::filesystem::path>& variants,
                     const std::filesystem::path& cache_dir, std::ostream& log);
 
-/// run_gate, remembered: a passing gate is recorded in cache_dir under a key over the
-/// sources, formats and harness, so later runs of the same design skip it.
+/// run_gate, remembered: a passing gate is recorded in cache_dir under gate_key(), so later
+/// runs of the same design skip it. Only a pass is recorded; a verdict is reused only when
+/// the formats, every VHDL source, the harness, the cases and the tool versions are the
+/// same, so an edited RTL file is gated again, never passed from the cache.
+/// The key of a recorded verdict: a hash over every netlist key of the cases (formats hash,
+/// sources' contents, Verilator harness, tool versions), the GHDL replay testbench and the
+/// cases themselves.
+std::string gate_key(const Formats& f, const std::vector<std::filesystem::path>& variants);
+
 GateResult run_gate_cached(const Formats& f, const std::vector<std::filesystem::path>& variants,
                            const std::filesystem::path& cache_dir, std::ostream& log, bool* from_cache);
 

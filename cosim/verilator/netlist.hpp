@@ -30,13 +30,16 @@ struct NetlistConfig {
     /// VHDL files that replace the rtl/ file declaring the same entity (test-only variants
     /// such as tests/rtl/m_products_sra.vhd).
     std::vector<fs::path> variants;
+    /// Compile the verilated C++ with optimisation (-O2). Off for short streams such as
+    /// the gate's, where the compile time is most of the cost; part of the key.
+    bool optimise = true;
 };
 
 /// The VHDL files of the design in analysis order, with variants substituted. Throws
 /// InputError when a variant does not exist or its entity is not one of the design's.
 std::vector<fs::path> vhdl_sources(const NetlistConfig& c);
 
-/// Cache key: "<W>x<H>_f<formats_hash>_<obs|noobs>_<hash>": the formats hash covers every
+/// Cache key: "<W>x<H>_f<formats_hash>_<obs|noobs>[_O0]_<hash>": the formats hash covers every
 /// field of format_fields(); the last hash covers the sources' contents,
 /// the harness and the tool versions compiled in.
 std::string config_key(const NetlistConfig& c);

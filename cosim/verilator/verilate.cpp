@@ -33,14 +33,15 @@ VerilateResult run_verilate(const VerilateRun& r, std::ostream& log) {
     }
     if (r.gate_only || r.frames.empty()) return res;
     const Geometry g{r.frames[0].width, r.frames[0].height};
-    const NetlistConfig nc{g, r.formats, r.observe, variants};
+    std::vector<const Image*> ptrs;
+    for (const auto& im : r.frames) ptrs.push_back(&im);
+    res.writes_in_stream = HostDriver(g, ptrs).total_writes();
+    NetlistConfig nc{g, r.formats, r.observe, variants};
+    nc.optimise = res.writes_in_stream > kUnoptimisedWrites;
     res.netlist = build_netlist(nc, cache, log);
     res.netlist_key = config_key(nc);
     if (r.build_only) return res;
     VerilatedDesign dut(res.netlist, res.netlist_key);
-    std::vector<const Image*> ptrs;
-    for (const auto& im : r.frames) ptrs.push_back(&im);
-    res.writes_in_stream = HostDriver(g, ptrs).total_writes();
     RunOptions opt;
     opt.compare_obs = r.observe;
     opt.keep_going = r.keep_going;

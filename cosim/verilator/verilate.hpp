@@ -44,6 +44,11 @@ struct VerilateResult {
     std::string status() const;
 };
 
+/// Streams of at most this many writes run on a netlist compiled without optimisation
+/// (NetlistConfig::optimise): its build is several times quicker and the run takes well
+/// under a second either way; the gate's small frames use the same builds.
+inline constexpr long kUnoptimisedWrites = 100000;
+
 /// The flow; progress lines go to `log`.
 VerilateResult run_verilate(const VerilateRun& r, std::ostream& log);
 

@@ -7,6 +7,7 @@
 #include "sweep/pareto.hpp"
 #include "sweep/sweep.hpp"
 #include "sweep/sweep_config.hpp"
+#include "sweep/sweep_report.hpp"
 
 using namespace hc;
 using namespace hc::sweep;
@@ -160,4 +161,31 @@ TEST_CASE("the analytic register count follows every datapath width", "[model][s
     f = t;
     f.bf_drop = 5;
     CHECK(datapath_register_bits(f, g) - base == -(27 + 9 * 4));   // block sums, a*c and b*b
+}
+
+TEST_CASE("the sweep report shows each checked point's three-way gate in its Gate column", "[model][sweep]") {
+    sweep::SweepResult r;
+    r.spec.name = "gate-column";
+    r.spec.trust.verilator_gate = true;
+    sweep::PointResult pass, fault, unchecked;
+    pass.config.name = "passes";
+    pass.pareto = pass.verify = true;
+    pass.gate = {.ran = true, .runs = 1, .seconds = 81, .detail = "pass: 4564 writes, 432 reads agree three ways (81 s)"};
+    fault.config.name = "faults";
+    fault.config.formats.m_drop = 4;
+    fault.pareto = fault.verify = true;
+    fault.gate = {.ran = true, .runs = 1, .failed = 1,
+                  .detail = "gate: translation fault: translation fault: 10x10 ..., write 5: mbm(1,1) (log g.log)"};
+    unchecked.config.name = "unchecked";
+    unchecked.config.formats.m_drop = 6;
+    r.points = {pass, fault, unchecked};
+    const std::string md = sweep::to_markdown(r);
+    CHECK_THAT(md, Catch::Contains("| GHDL | Gate | Verilator |"));
+    CHECK_THAT(md, Catch::Contains("| **P** | - | pass (81 s) | - |"));
+    CHECK_THAT(md, Catch::Contains("| **P** | - | **gate: translation fault** | - |"));
+    CHECK_THAT(md, Catch::Contains("|  | - | - | - |"));
+    const std::string csv = sweep::to_csv(r);
+    CHECK_THAT(csv, Catch::Contains("gate_passed,gate_seconds\n"));
+    CHECK_THAT(csv, Catch::Contains(",1,81.0\n"));
+    CHECK_THAT(csv, Catch::Contains(",0,0.0\n"));
 }

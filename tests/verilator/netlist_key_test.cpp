@@ -4,8 +4,12 @@
 
 #include <set>
 
+#include "cosim/cosim.hpp"
+#include "cosim/verilator/gate.hpp"
 #include "cosim/verilator/netlist.hpp"
+#include "util/util.hpp"
 
+namespace fs = std::filesystem;
 using namespace hc;
 
 TEST_CASE("changing any one field of the formats changes the netlist cache key", "[model][verilator]") {
@@ -28,4 +32,28 @@ TEST_CASE("the netlist cache key names the size and the observation variant", "[
     CHECK(k.starts_with("1241x376_f"));
     CHECK(k.find("_noobs_") != std::string::npos);
     CHECK(vl::config_key({Geometry{1241, 376}, Formats{}, true, {}}).find("_obs_") != std::string::npos);
+}
+
+TEST_CASE("the gate's verdict key changes when an RTL source's contents change, never only its path", "[model][verilator]") {
+    // a scratch copy of m_products.vhd substituted for rtl/'s (netlist.hpp: variants)
+    util::ScratchDir scratch("hc-gate-key");
+    const fs::path copy = scratch.path() / "m_products.vhd";
+    const std::string text = util::read_file(cosim::rtl_dir() / "m_products.vhd");
+    util::write_file_atomic(copy, text);
+    const std::string original = vl::gate_key(Formats{}, {copy});
+    CHECK(original == vl::gate_key(Formats{}, {copy}));
+    util::write_file_atomic(copy, text + "-- one more line\n");
+    CHECK(vl::gate_key(Formats{}, {copy}) != original);
+    Formats f;
+    f.m_drop += 1;
+    util::write_file_atomic(copy, text);
+    CHECK(vl::gate_key(f, {copy}) != original);
+}
+
+TEST_CASE("the gate's netlists are built unoptimised and keyed apart from the optimised ones", "[model][verilator]") {
+    vl::NetlistConfig c{Geometry{10, 10}, Formats{}, true, {}};
+    const std::string optimised = vl::config_key(c);
+    c.optimise = false;
+    CHECK(vl::config_key(c).find("_obs_O0_") != std::string::npos);
+    CHECK(optimised.find("_O0") == std::string::npos);
 }
