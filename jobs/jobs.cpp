@@ -10,6 +10,7 @@ namespace hc::jobs {
 const cluster::JobRegistry& registry() {
     static const cluster::JobRegistry reg = [] {
         cluster::JobRegistry r;
+        add_mutants_job(r);
         return r;
     }();
     return reg;
