@@ -455,7 +455,7 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
         md << fmt::format("**PARTIAL: {} of the {} generated mutants have a verdict.** The others did not run.\n\n",
                           all.mutants, info.generated);
     md << "The generator (`mutation/vhdl_mutants.hpp`, a tokenizer over `rtl/`) makes " << info.generated
-       << " single-point mutants of 10 classes, each named `file:line:column class `original` -> `replacement``.\n"
+       << " single-point mutants of 10 classes, each named ``file:line:column class `original` -> `replacement` ``.\n"
           "Each is applied to a scratch copy of `rtl/`, analysed with GHDL (mcode) and co-simulated against the\n"
           "unmutated cycle model (`cosim::run_ghdl`, every register compared after every cycle), stimulus after\n"
           "stimulus, stopping at the first failure:\n\n";
@@ -465,7 +465,9 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
           "fails (a mismatch, a metavalue, or the simulator stops). A mutant that passes every stimulus is\n"
           "handed to a solver: GHDL synthesises the entity holding the mutation (a package mutant: `harris_top`)\n"
           "from the original and the mutated `rtl/` to Verilog (`ghdl --synth --out=verilog`, the geometry\n"
-          "generics at their minimum), and yosys proves the two equal: first `equiv_make` + `equiv_simple -seq 5`\n"
+          "generics at their minimum; a mutant of `harris_top.vhd` itself: its instances, the same on both sides,\n"
+          "cut out by `expose -evert` so that their inputs are compared as outputs and their outputs are shared\n"
+          "inputs; every other mutant: flattened), and yosys proves the two equal: first `equiv_make` + `equiv_simple -seq 5`\n"
           "+ `equiv_induct -seq 5` + `equiv_status -assert`; if that fails, a miter (`miter -equiv -flatten`) and\n"
           "`sat -tempinduct -prove trigger 0` from the reset state (registers zero, `rst` low in step 1, outputs\n"
           "compared from step 2 on, induction up to 40 steps). *Proven equivalent* is that solver's verdict and\n"
