@@ -289,10 +289,9 @@ Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s) {
     const std::string load = load_script(p.entity, m.file == p.entity + ".vhd" && p.entity == "harris_top");
     const std::string equiv = load + "equiv_make gold gate equiv\nhierarchy -top equiv\nequiv_simple -seq 5\n"
                                      "equiv_induct -seq 5\nequiv_status -assert\n";
-    const bool has_rst = util::read_file(work / "gold.v").find("input rst") != std::string::npos;
+    // registers start at zero on both sides; every input (the reset too) is free in every step
     const std::string miter = load + "miter -equiv -flatten gold gate miter\nhierarchy -top miter\n"
-                                     "sat -verify -tempinduct -prove trigger 0 -set-init-zero " +
-                              std::string(has_rst ? "-set-at 1 in_rst 0 " : "") + "-seq 1 -maxsteps 40 miter\n";
+                                     "sat -verify -tempinduct -prove trigger 0 -set-init-zero -seq 1 -maxsteps 40 miter\n";
     for (const auto& [method, script] : {std::pair{std::string("equiv"), equiv}, std::pair{std::string("miter"), miter}}) {
         const fs::path ys = work / (method + ".ys");
         const fs::path log = work / (method + ".log");
@@ -469,8 +468,8 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
           "cut out by `expose -evert` so that their inputs are compared as outputs and their outputs are shared\n"
           "inputs; every other mutant: flattened), and yosys proves the two equal: first `equiv_make` + `equiv_simple -seq 5`\n"
           "+ `equiv_induct -seq 5` + `equiv_status -assert`; if that fails, a miter (`miter -equiv -flatten`) and\n"
-          "`sat -tempinduct -prove trigger 0` from the reset state (registers zero, `rst` low in step 1, outputs\n"
-          "compared from step 2 on, induction up to 40 steps). *Proven equivalent* is that solver's verdict and\n"
+          "`sat -tempinduct -prove trigger 0` (registers zero in step 1, every input, the reset too, free in every\n"
+          "step, outputs compared from step 2 on, induction up to 40 steps). *Proven equivalent* is that solver's verdict and\n"
           "nothing else; a mutant whose proofs fail is *surviving*, listed below with the proof's output.\n"
           "GHDL 2.0's Verilog output can mistranslate signed right shifts; gold and gate go through the same\n"
           "translation, so a proof is about the two netlists as GHDL writes them.\n\n"

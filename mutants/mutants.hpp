@@ -8,7 +8,7 @@
 //               GHDL synthesises the entity holding the mutation (the package's mutants:
 //               harris_top) at small geometry generics to Verilog, both sides, and yosys
 //               proves them equal (equiv_make/equiv_simple/equiv_induct, else a miter and
-//               sat -tempinduct from the reset state)
+//               sat -tempinduct from all registers zero, every input free)
 //   surviving   every stimulus passes and no proof succeeds (the proof's output is kept)
 // The stimuli run in order and stop at the first kill: a quick stream first, then the
 // longer ones (streams of the synthetic regression set, more chained frames, idle cycles,
