@@ -451,7 +451,9 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
        << "Made by `" << info.command << "`" << (info.runner.empty() ? "" : " (" + info.runner + ")")
        << "; every figure below comes from that run.\n\n";
     if (all.mutants < info.generated)
-        md << fmt::format("**PARTIAL: {} of the {} generated mutants have a verdict.** The others did not run.\n\n",
+        md << fmt::format("**PARTIAL: {} of the {} generated mutants have a verdict.** The others were not run (a "
+                          "selection) or had not finished when this report was rendered; every count below is over "
+                          "those with a verdict.\n\n",
                           all.mutants, info.generated);
     md << "The generator (`mutation/vhdl_mutants.hpp`, a tokenizer over `rtl/`) makes " << info.generated
        << " single-point mutants of 10 classes, each named ``file:line:column class `original` -> `replacement` ``.\n"
@@ -475,14 +477,14 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
           "translation, so a proof is about the two netlists as GHDL writes them.\n\n"
           "Mutation score = killed / (mutants - stillborn - proven equivalent).\n\n";
     md << fmt::format("**Score: {:.1f} %** ({} killed of {}; {} stillborn, {} proven equivalent, {} surviving). "
-                      "Time per mutant: {:.1f} s mean ({:.1f} s analysis, {:.1f} s co-simulation, "
+                      "Time per mutant (wall time inside its shard, shards running side by side): {:.1f} s mean ({:.1f} s analysis, {:.1f} s co-simulation, "
                       "{:.2f} co-simulations per mutant; proofs in the rest)",
                       100.0 * all.score(), all.killed, all.mutants - all.stillborn - all.equivalent, all.stillborn,
                       all.equivalent, all.surviving, all.mutants ? all.seconds / all.mutants : 0.0,
                       all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.analyse_seconds; return s / all.mutants; }() : 0.0,
                       all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.sim_seconds; return s / all.mutants; }() : 0.0,
                       all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.runs; return s / all.mutants; }() : 0.0);
-    if (info.wall_seconds > 0) md << fmt::format("; the whole run took {:.0f} s of wall time", info.wall_seconds);
+    if (info.wall_seconds > 0) md << fmt::format("; the run took {:.0f} s of wall time", info.wall_seconds);
     md << ".\n\n";
 
     const std::string head = "| mutants | stillborn | killed | proven equivalent | surviving | score | s per mutant |\n";

@@ -1,6 +1,7 @@
 // cmd_mutants.cpp: `harris-cosim mutate --generate`: see cmd_mutants.hpp.
 #include "tools/cmd_mutants.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -103,8 +104,10 @@ void write_report(const GeneratedFlags& f, const std::vector<mutants::Result>& r
 }
 
 /// The results of the finished shards of the run in `dir`, in order, and the stimuli of its manifest.
+/// `wall`: seconds from the manifest's writing to the last finished shard's result.
 std::vector<mutants::Result> finished_results(const fs::path& dir, mutants::Stimulus& quick,
-                                             std::vector<mutants::Stimulus>& longer, std::size_t& shards) {
+                                             std::vector<mutants::Stimulus>& longer, std::size_t& shards,
+                                             double& wall) {
     const cluster::Manifest m = cluster::read_manifest(dir);
     if (m.job != "mutants") throw InputError("run directory " + dir.string() + " holds a '" + m.job + "' run, not 'mutants'");
     quick = mutants::stimulus_from_json(m.common.at("quick"));
@@ -112,8 +115,14 @@ std::vector<mutants::Result> finished_results(const fs::path& dir, mutants::Stim
     for (const auto& s : m.common.at("longer")) longer.push_back(mutants::stimulus_from_json(s));
     shards = m.shards.size();
     std::vector<nlohmann::json> data;
+    const auto start = fs::last_write_time(cluster::manifest_path(dir));
+    auto last = start;
     for (std::size_t i = 0; i < m.shards.size(); ++i)
-        if (const auto r = cluster::read_result(dir, m, i)) data.push_back(r->data);
+        if (const auto r = cluster::read_result(dir, m, i)) {
+            data.push_back(r->data);
+            last = std::max(last, fs::last_write_time(cluster::result_path(dir, i)));
+        }
+    wall = std::chrono::duration<double>(last - start).count();
     return jobs::mutants_results(jobs::registry().at("mutants").merge(m.common, data));
 }
 
@@ -132,8 +141,9 @@ void run_generated(const GeneratedFlags& f) {
         mutants::Stimulus quick;
         std::vector<mutants::Stimulus> longer;
         std::size_t shards = 0;
-        const auto rs = finished_results(f.runner.run_dir, quick, longer, shards);
-        write_report(f, rs, quick, longer, static_cast<int>(all.size()), shards, 0);
+        double wall = 0;
+        const auto rs = finished_results(f.runner.run_dir, quick, longer, shards, wall);
+        write_report(f, rs, quick, longer, static_cast<int>(all.size()), shards, wall);
         const mutants::Tally t = mutants::tally(rs);
         std::printf("harris-cosim mutate --generate --render: %d of %zu mutants have a verdict: %d stillborn, %d killed, "
                     "%d proven equivalent, %d surviving; score %.1f %%\n", t.mutants, all.size(), t.stillborn, t.killed,
