@@ -18,6 +18,7 @@ const cluster::JobRegistry& registry() {
         r.add(detail::mutate_job());
         r.add(detail::landmarks_job());
         r.add(detail::slam_job());
+        add_mutants_job(r);
         return r;
     }();
     return reg;

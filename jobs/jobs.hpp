@@ -13,6 +13,7 @@
 #include "eval/report.hpp"
 #include "landmarks/landmarks.hpp"
 #include "model/harris/harris_pkg.hpp"
+#include "mutants/mutants.hpp"
 #include "mutate/mutate.hpp"
 #include "slam/slam.hpp"
 #include "sweep/sweep.hpp"
@@ -28,6 +29,24 @@ const cluster::JobRegistry& registry();
 /// Each kind's registration (registry() calls them).
 void add_eval_job(cluster::JobRegistry& r);
 void add_verilate_job(cluster::JobRegistry& r);
+
+/// The generated-mutants campaign (kind "mutants", jobs/mutants_job.cpp): the named mutants of
+/// mutants::generate_all(), `per_shard` to a shard, each judged by mutants::run_mutant; the
+/// merge lists every result in the mutants' order ({"results": [...]}). The manifest carries
+/// a hash of rtl/, so a run is never resumed or merged against other RTL.
+struct MutantsJob {
+    std::vector<std::string> names;      ///< mutant names, in generate_all() order
+    mutants::Stimulus quick = mutants::quick_stimulus();
+    std::vector<mutants::Stimulus> longer;
+    bool prove = true;
+    int proof_timeout_s = 120;
+    int per_shard = 8;                   ///< mutants per shard (ignored when shards > 0)
+    int shards = 0;                      ///< number of shards (0: from per_shard)
+};
+cluster::Manifest mutants_manifest(const MutantsJob& p);
+/// The merged data's results, in order.
+std::vector<mutants::Result> mutants_results(const json& merged);
+void add_mutants_job(cluster::JobRegistry& r);
 
 /// The file a merge writes its folded data to: DIR/merged.json.
 fs::path merged_path(const fs::path& dir);

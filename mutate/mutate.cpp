@@ -147,8 +147,8 @@ CampaignResult run_campaign(const Campaign& c, const std::string& only,
 
 std::string markdown(const Campaign& c, const CampaignResult& r, const std::string& list) {
     std::ostringstream md;
-    md << "# Mutation campaign\n\n"
-       << "Made by `harris-cosim mutate --report docs/mutation-campaign.md` (mutations: `" << list << "`).\n"
+    md << "# Mutation campaign: the hand-written smoke set\n\n"
+       << "Made by `harris-cosim mutate --report docs/mutation-smoke.md` (mutations: `" << list << "`).\n"
        << "Each mutant is one edit of a scratch copy of `rtl/`, co-simulated with GHDL (mcode) against the\n"
        << "unmutated cycle model on the stream `" << stream_flags(c.stream)
        << "`. *Caught* means the run failed; *localised* means the first mismatching stage\n"

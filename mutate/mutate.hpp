@@ -68,7 +68,7 @@ CampaignResult tally(const Outcome& baseline, std::vector<Verdict> verdicts);
 CampaignResult run_campaign(const Campaign& c, const std::string& only,
                             const std::function<void(const std::string&)>& progress);
 
-/// The Markdown report (docs/mutation-campaign.md); `list` names the list file in it.
+/// The Markdown report (docs/mutation-smoke.md); `list` names the list file in it.
 std::string markdown(const Campaign& c, const CampaignResult& r, const std::string& list);
 
 }  // namespace hc::mutate

@@ -1,9 +1,10 @@
 // cmd_mutate.cpp: `harris-cosim mutate`: the mutation campaign (mutate/mutate.hpp); prints
-// or writes its Markdown table (docs/mutation-campaign.md).
+// or writes its Markdown table (docs/mutation-smoke.md).
 #include <cstdio>
 
 #include "jobs/jobs.hpp"
 #include "mutate/mutate.hpp"
+#include "tools/cmd_mutants.hpp"
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
 
@@ -13,8 +14,8 @@ void add_mutate_command(CLI::App& app) {
     struct Opts {
         std::string list = std::string(HC_SOURCE_DIR) + "/mutate/mutations.json";
         std::string report;
-        std::string only;
-        RunnerFlags runner;
+        std::vector<std::string> only;
+        GeneratedFlags gen;   ///< gen.runner: the sharding flags of both campaigns
     };
     auto o = std::make_shared<Opts>();
     CLI::App* cmd = app.add_subcommand(
@@ -22,20 +23,33 @@ void add_mutate_command(CLI::App& app) {
         "Mutation campaign: apply each single-point RTL mutation to a scratch copy, co-simulate it (GHDL mcode)\n"
         "against the cycle model, and check the co-simulation catches it and names the mutated stage first.\n"
         "Exit status 0 when every mutant is caught and localised (equivalent ones pass), 1 otherwise.\n"
-        "With --runner or --shards the mutants run in shards (run directory --run-dir, default ./mutate-run).");
+        "With --runner or --shards the mutants run in shards (run directory --run-dir, default ./mutate-run).\n"
+        "With --generate: every generated mutant of rtl/ is killed by co-simulation or proven equivalent\n"
+        "with yosys; exit status 1 when one survives.");
     cmd->add_option("--mutations", o->list, "mutation list (JSON)")->capture_default_str();
-    cmd->add_option("--report", o->report, "write the Markdown table here (e.g. docs/mutation-campaign.md)");
-    cmd->add_option("--only", o->only, "run only the mutant with this id");
-    add_runner_flags(cmd, o->runner);
+    cmd->add_option("--report", o->report, "write the Markdown table here (e.g. docs/mutation-smoke.md)");
+    cmd->add_option("--only", o->only, "run only the mutant with this id (with --generate: names or name prefixes, "
+                                       "e.g. 'sobel_x.vhd:30:', repeatable)");
+    add_generated_flags(cmd, o->gen);
     cmd->callback([o, cmd]() {
+        if (o->gen.generate) {
+            GeneratedFlags g = o->gen;
+            g.only = o->only;
+            g.report = o->report;
+            run_generated(g);
+            return;
+        }
+        if (o->only.size() > 1) throw InputError("--only takes one mutant id of the hand-written list");
+        const std::string only = o->only.empty() ? "" : o->only.front();
         const mutate::Campaign c = mutate::load_campaign(o->list);
         mutate::CampaignResult r;
+        const RunnerFlags& rf = o->gen.runner;
         if (cmd->count("--runner") + cmd->count("--shards") > 0) {
-            const cluster::Manifest m = jobs::mutate_manifest({o->list, o->only, o->runner.shards});
-            const std::filesystem::path dir = o->runner.run_dir.empty() ? std::filesystem::path("mutate-run") : std::filesystem::path(o->runner.run_dir);
-            r = jobs::mutate_result(m, jobs::run_and_merge(dir, m, run_options(o->runner, dir)));
+            const cluster::Manifest m = jobs::mutate_manifest({o->list, only, rf.shards});
+            const std::filesystem::path dir = rf.run_dir.empty() ? std::filesystem::path("mutate-run") : std::filesystem::path(rf.run_dir);
+            r = jobs::mutate_result(m, jobs::run_and_merge(dir, m, run_options(rf, dir)));
         } else {
-            r = mutate::run_campaign(c, o->only, [](const std::string& s) { std::fprintf(stderr, "[mutate] %s\n", s.c_str()); });
+            r = mutate::run_campaign(c, only, [](const std::string& s) { std::fprintf(stderr, "[mutate] %s\n", s.c_str()); });
         }
         const std::string md = mutate::markdown(c, r, "mutate/mutations.json");
         if (!o->report.empty()) util::write_file_atomic(o->report, md);

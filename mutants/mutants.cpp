@@ -1,0 +1,574 @@
+// mutants.cpp: see mutants.hpp.
+#include "mutants/mutants.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "cosim/cosim.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "util/util.hpp"
+
+namespace hc::mutants {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string stem(const std::string& file) { return fs::path(file).stem().string(); }
+
+void say(const Options& o, const std::string& s) {
+    if (o.progress) o.progress(s);
+}
+
+/// A copy of rtl/ in `dir` with `m` applied.
+fs::path mutated_copy(const mutation::Mutant& m, const fs::path& dir) {
+    const fs::path rtl = dir / "rtl";
+    fs::create_directories(rtl);
+    for (const auto& p : cosim::rtl_sources()) fs::copy_file(p, rtl / p.filename(), fs::copy_options::overwrite_existing);
+    const fs::path f = rtl / m.file;
+    util::write_file_atomic(f, m.apply(util::read_file(f, "rtl/" + m.file)));
+    return rtl;
+}
+
+/// The first line of a log that GHDL marks as an error (or the log's tail).
+std::string first_error(const fs::path& log) {
+    std::istringstream in(util::log_tail(log, 4000));
+    std::string line;
+    while (std::getline(in, line))
+        if (line.find("error") != std::string::npos || line.find("failure") != std::string::npos) return line;
+    return util::log_tail(log, 200);
+}
+
+/// GHDL stopped in elaboration (a bound or length check on the design's constants failing
+/// while the hierarchy is built): the design never ran a cycle.
+bool failed_in_elaboration(const fs::path& log) {
+    const std::string t = util::log_tail(log, 8000);
+    return t.find("error during elaboration") != std::string::npos || t.find("from: Elaboration of design") != std::string::npos;
+}
+
+const frames::LoadedFrames& frames_of(const Stimulus& s) {
+    static std::map<std::string, frames::LoadedFrames> cache;
+    const std::string key = to_json(s).dump();
+    auto it = cache.find(key);
+    if (it == cache.end()) it = cache.emplace(key, frames::load_frames(s.source)).first;
+    return it->second;
+}
+
+/// The generics a proof gives the entity in `file`: the smallest geometry, where it has one.
+std::vector<std::string> proof_generics(const fs::path& file) {
+    const std::string t = util::read_file(file);
+    const size_t port = t.find("port");
+    const std::string head = t.substr(0, port);
+    std::vector<std::string> g;
+    if (head.find("IMG_WIDTH") != std::string::npos) g.push_back(fmt::format("-gIMG_WIDTH={}", Geometry::min_width));
+    if (head.find("IMG_HEIGHT") != std::string::npos) g.push_back(fmt::format("-gIMG_HEIGHT={}", Geometry::min_height));
+    return g;
+}
+
+/// Reads gold.v and gate.v as modules `gold` and `gate`. Flattened; or, with `evert` (a
+/// mutant of the top entity's own file, whose instances are the same on both sides), each
+/// instance of another entity is cut out and its ports become the module's (its inputs
+/// outputs compared like the others, its outputs inputs shared by both sides).
+std::string load_script(const std::string& entity, bool evert) {
+    std::string s;
+    for (const char* side : {"gold", "gate"})
+        s += fmt::format("read_verilog {0}.v\nhierarchy -top {1}\nproc\n{2}opt_clean\nrename {1} {0}\ndesign -stash {0}\n",
+                         side, entity,
+                         evert ? fmt::format("expose -evert {0}/c:*\ndelete {0} %n\n", entity) : std::string("flatten\n"));
+    s += "design -copy-from gold -as gold gold\ndesign -copy-from gate -as gate gate\nasync2sync\n";
+    return s;
+}
+
+}  // namespace
+
+std::vector<mutation::Mutant> generate_all(const fs::path& rtl_dir) {
+    std::vector<mutation::Mutant> all;
+    for (const auto& p : cosim::rtl_sources(rtl_dir)) {
+        auto v = mutation::generate_mutants(p.filename().string(), util::read_file(p));
+        all.insert(all.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+    }
+    return all;
+}
+
+std::vector<mutation::Mutant> select(const std::vector<mutation::Mutant>& all, const Selection& s) {
+    for (const auto& c : s.classes) {
+        bool known = false;
+        for (auto k : mutation::all_classes()) known = known || c == mutation::class_name(k);
+        if (!known) throw InputError("unknown mutant class '" + c + "' (arith, rel, logic, negate, literal, slice, resize, shift, stuck, enable)");
+    }
+    for (const auto& f : s.files)
+        if (std::none_of(all.begin(), all.end(), [&](const auto& m) { return m.file == f; }))
+            throw InputError("no generated mutant in file '" + f + "' (a file of rtl/, e.g. sobel_x.vhd)");
+    for (const auto& n : s.only)
+        if (std::none_of(all.begin(), all.end(), [&](const auto& m) { return m.name().rfind(n, 0) == 0; }))
+            throw InputError("no generated mutant is named '" + n + "' (see mutate --generate --list)");
+    std::vector<mutation::Mutant> out;
+    for (const auto& m : all) {
+        const bool cls = s.classes.empty() ||
+                         std::find(s.classes.begin(), s.classes.end(), mutation::class_name(m.cls)) != s.classes.end();
+        const bool file = s.files.empty() || std::find(s.files.begin(), s.files.end(), m.file) != s.files.end();
+        const bool name = s.only.empty() ||
+                          std::any_of(s.only.begin(), s.only.end(), [&](const auto& n) { return m.name().rfind(n, 0) == 0; });
+        if (cls && file && name) out.push_back(m);
+    }
+    return out;
+}
+
+std::string proof_entity(const std::string& file) {
+    const std::string e = stem(file);
+    return e == "harris_pkg" ? "harris_top" : e;
+}
+
+json to_json(const Stimulus& s) {
+    return {{"name", s.name},       {"images", s.source.images}, {"pattern", s.source.pattern},
+            {"size", s.source.size}, {"frames", s.source.frames}, {"kitti", s.source.kitti},
+            {"sequence", s.source.sequence}, {"pairs", s.source.pairs}, {"seed", s.source.seed},
+            {"idle_every", s.idle_every}};
+}
+
+Stimulus stimulus_from_json(const json& j) {
+    try {
+        Stimulus s;
+        s.name = j.at("name").get<std::string>();
+        s.source.images = j.at("images").get<std::vector<std::string>>();
+        s.source.pattern = j.at("pattern").get<std::string>();
+        s.source.size = j.at("size").get<std::string>();
+        s.source.frames = j.at("frames").get<int>();
+        s.source.kitti = j.at("kitti").get<std::string>();
+        s.source.sequence = j.at("sequence").get<std::string>();
+        s.source.pairs = j.at("pairs").get<std::string>();
+        s.source.seed = j.at("seed").get<std::uint32_t>();
+        s.idle_every = j.at("idle_every").get<int>();
+        return s;
+    } catch (const json::exception& e) {
+        throw InputError(std::string("bad stimulus in a mutant run's parameters: ") + e.what());
+    }
+}
+
+Stimulus quick_stimulus() {
+    Stimulus s;
+    s.name = "quick_blocks_24x16x2";
+    s.source.pattern = "blocks";
+    s.source.size = "24x16";
+    s.source.frames = 2;
+    return s;
+}
+
+std::vector<Stimulus> long_stimuli(const fs::path& data_dir) {
+    std::vector<Stimulus> v;
+    // more chained frames of noise, an idle cycle every 3 writes (registers must hold)
+    Stimulus chained;
+    chained.name = "random_24x16x4_idle3_seed7";
+    chained.source.pattern = "random";
+    chained.source.size = "24x16";
+    chained.source.frames = 4;
+    chained.source.seed = 7;
+    chained.idle_every = 3;
+    v.push_back(chained);
+    // the regression set's full-scale stream: extremes on an odd width, idle cycles
+    for (const auto& r : util::read_regression_set(cosim::rtl_dir().parent_path() / "golden" / "regression-set.txt")) {
+        if (r.stem() != "extremes_33x21") continue;
+        Stimulus s;
+        s.name = r.stem() + "x" + std::to_string(r.frames) + (r.idle_every ? "_idle" + std::to_string(r.idle_every) : "");
+        s.source.pattern = r.pattern;
+        s.source.size = r.size();
+        s.source.frames = r.frames;
+        s.idle_every = r.idle_every;
+        v.push_back(s);
+    }
+    if (!data_dir.empty()) {
+        Stimulus k;
+        k.name = "kitti01_L0R0_32x24";
+        k.source.kitti = (data_dir / "kitti").string();
+        k.source.sequence = "01";
+        k.source.pairs = "0:1";
+        k.source.size = "32x24";
+        v.push_back(k);
+    }
+    return v;
+}
+
+json to_json(const Result& r) {
+    return {{"name", r.name},
+            {"file", r.file},
+            {"entity", r.entity},
+            {"class", r.cls},
+            {"line", r.line},
+            {"column", r.column},
+            {"fate", r.fate},
+            {"detail", r.detail},
+            {"killed_by", r.killed_by},
+            {"stage", r.stage},
+            {"signal", r.signal},
+            {"write", r.write},
+            {"runs", r.runs},
+            {"analyse_seconds", r.analyse_seconds},
+            {"sim_seconds", r.sim_seconds},
+            {"seconds", r.seconds},
+            {"proof",
+             {{"equivalent", r.proof.equivalent},
+              {"method", r.proof.method},
+              {"entity", r.proof.entity},
+              {"script", r.proof.script},
+              {"synth", r.proof.synth},
+              {"output", r.proof.output},
+              {"seconds", r.proof.seconds}}}};
+}
+
+Result result_from_json(const json& j) {
+    try {
+        Result r;
+        r.name = j.at("name").get<std::string>();
+        r.file = j.at("file").get<std::string>();
+        r.entity = j.at("entity").get<std::string>();
+        r.cls = j.at("class").get<std::string>();
+        r.line = j.at("line").get<int>();
+        r.column = j.at("column").get<int>();
+        r.fate = j.at("fate").get<std::string>();
+        r.detail = j.at("detail").get<std::string>();
+        r.killed_by = j.at("killed_by").get<std::string>();
+        r.stage = j.at("stage").get<std::string>();
+        r.signal = j.at("signal").get<std::string>();
+        r.write = j.at("write").get<long>();
+        r.runs = j.at("runs").get<int>();
+        r.analyse_seconds = j.at("analyse_seconds").get<double>();
+        r.sim_seconds = j.at("sim_seconds").get<double>();
+        r.seconds = j.at("seconds").get<double>();
+        const json& p = j.at("proof");
+        r.proof.equivalent = p.at("equivalent").get<bool>();
+        r.proof.method = p.at("method").get<std::string>();
+        r.proof.entity = p.at("entity").get<std::string>();
+        r.proof.script = p.at("script").get<std::string>();
+        r.proof.synth = p.at("synth").get<std::string>();
+        r.proof.output = p.at("output").get<std::string>();
+        r.proof.seconds = p.at("seconds").get<double>();
+        return r;
+    } catch (const json::exception& e) {
+        throw InputError(std::string("bad mutant result: ") + e.what());
+    }
+}
+
+Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s) {
+    const auto t0 = Clock::now();
+    Proof p;
+    p.entity = proof_entity(m.file);
+    fs::create_directories(work);
+    const fs::path gate_rtl = mutated_copy(m, work);
+    const std::vector<std::string> gens = proof_generics(cosim::rtl_dir() / (p.entity + ".vhd"));
+    for (const char* side : {"gold", "gate"}) {
+        std::vector<std::string> argv = {"ghdl", "--synth", "--std=08", "--workdir=" + (work / side).string()};
+        fs::create_directories(work / side);
+        argv.insert(argv.end(), gens.begin(), gens.end());
+        argv.push_back("--out=verilog");
+        const bool gold = std::string(side) == "gold";
+        for (const auto& f : cosim::rtl_sources(gold ? fs::path{} : gate_rtl)) argv.push_back(f.string());
+        argv.insert(argv.end(), {"-e", p.entity});
+        std::string shown;
+        for (const auto& a : argv) {
+            std::string s = a;
+            if (s.rfind(cosim::rtl_dir().string(), 0) == 0) s = "rtl/" + fs::path(s).filename().string();
+            if (s.rfind(gate_rtl.string(), 0) == 0) s = "mutant-rtl/" + fs::path(s).filename().string();
+            if (s.rfind("--workdir=", 0) == 0) s = std::string("--workdir=") + side;
+            shown += (shown.empty() ? "" : " ") + s;
+        }
+        p.synth += shown + " > " + side + ".v\n";
+        const fs::path log = work / (std::string(side) + "-synth.log");
+        if (util::run_process(argv, {.log = log, .stdout_file = work / (std::string(side) + ".v")}) != 0) {
+            p.output = std::string("ghdl --synth of the ") + side + " failed: " + util::log_tail(log, 1500);
+            p.seconds = since(t0);
+            return p;
+        }
+    }
+    const std::string load = load_script(p.entity, m.file == p.entity + ".vhd" && p.entity == "harris_top");
+    const std::string equiv = load + "equiv_make gold gate equiv\nhierarchy -top equiv\nequiv_simple -seq 5\n"
+                                     "equiv_induct -seq 5\nequiv_status -assert\n";
+    // registers start at zero on both sides; every input (the reset too) is free in every step
+    const std::string miter = load + "miter -equiv -flatten gold gate miter\nhierarchy -top miter\n"
+                                     "sat -verify -tempinduct -prove trigger 0 -set-init-zero -seq 1 -maxsteps 40 miter\n";
+    for (const auto& [method, script] : {std::pair{std::string("equiv"), equiv}, std::pair{std::string("miter"), miter}}) {
+        const fs::path ys = work / (method + ".ys");
+        const fs::path log = work / (method + ".log");
+        util::write_file_atomic(ys, script);
+        fs::remove(log);
+        const int rc = util::run_process({"timeout", std::to_string(timeout_s), "yosys", "-q", "-s", ys.filename().string()},
+                                         {.cwd = work, .log = log});
+        p.method = method;
+        p.script = script;
+        p.output = util::log_tail(log, 2500);
+        if (rc == 124) p.output += fmt::format("\n(yosys stopped after the {} s limit)", timeout_s);
+        if (rc == 0) {
+            p.equivalent = true;
+            break;
+        }
+    }
+    p.seconds = since(t0);
+    return p;
+}
+
+Result run_mutant(const mutation::Mutant& m, const Options& o) {
+    const auto t0 = Clock::now();
+    Result r;
+    r.name = m.name();
+    r.file = m.file;
+    r.entity = stem(m.file);
+    r.cls = mutation::class_name(m.cls);
+    r.line = m.line;
+    r.column = m.column;
+    util::ScratchDir scratch("harris-mutant");
+    const fs::path work = scratch.path();
+    const fs::path rtl = mutated_copy(m, work);
+    const fs::path alog = work / "analyse.log";
+    const auto ta = Clock::now();
+    const bool analysed = cosim::analyse_mcode(rtl, work, alog);
+    r.analyse_seconds = since(ta);
+    if (!analysed) {
+        r.fate = "stillborn";
+        r.detail = "does not analyse: " + first_error(alog);
+        r.seconds = since(t0);
+        return r;
+    }
+    std::vector<const Stimulus*> stimuli = {&o.quick};
+    for (const auto& s : o.longer) stimuli.push_back(&s);
+    for (const Stimulus* s : stimuli) {
+        const frames::LoadedFrames& lf = frames_of(*s);
+        cosim::GhdlRun run;
+        run.frames = lf.frames;
+        run.frame_names = lf.names;
+        run.backend = "mcode";
+        run.sim_dir = work;
+        run.progress = false;
+        run.idle_every = s->idle_every;
+        run.log = work / "sim.log";
+        fs::remove(run.log);
+        const auto ts = Clock::now();
+        ++r.runs;
+        std::string verdict;
+        try {
+            const cosim::GhdlResult g = cosim::run_ghdl(run);
+            if (!g.summary.pass() || !g.summary.complete) {
+                verdict = g.summary.metavalue_elements > 0 ? "metavalue" : "mismatch";
+                if (g.summary.first_mismatch) {
+                    r.stage = g.summary.first_mismatch->stage;
+                    r.signal = g.summary.first_mismatch->signal;
+                    r.write = g.summary.first_mismatch->write;
+                }
+            }
+        } catch (const SimulatorError& e) {
+            if (failed_in_elaboration(run.log)) {
+                r.sim_seconds += since(ts);
+                r.fate = "stillborn";
+                r.detail = "does not elaborate: " + first_error(run.log);
+                r.seconds = since(t0);
+                return r;
+            }
+            verdict = "simulator failed: " + first_error(run.log);
+        }
+        r.sim_seconds += since(ts);
+        if (!verdict.empty()) {
+            r.fate = "killed";
+            r.detail = verdict;
+            r.killed_by = s->name;
+            r.seconds = since(t0);
+            return r;
+        }
+        say(o, r.name + ": passes " + s->name);
+    }
+    r.fate = "surviving";
+    if (o.prove) {
+        say(o, r.name + ": survives every stimulus, proving ...");
+        r.proof = prove(m, work / "proof", o.proof_timeout_s);
+        if (r.proof.equivalent) r.fate = "equivalent";
+    }
+    r.seconds = since(t0);
+    return r;
+}
+
+double Tally::score() const {
+    const int left = mutants - stillborn - equivalent;
+    return left > 0 ? static_cast<double>(killed) / left : 1.0;
+}
+
+Tally tally(const std::vector<Result>& rs) {
+    Tally t;
+    for (const auto& r : rs) {
+        ++t.mutants;
+        t.stillborn += r.fate == "stillborn";
+        t.killed += r.fate == "killed";
+        t.equivalent += r.fate == "equivalent";
+        t.surviving += r.fate == "surviving";
+        t.seconds += r.seconds;
+    }
+    return t;
+}
+
+std::string proof_file_name(const Result& r) {
+    std::string s = fmt::format("{}_{}_{}_{}", stem(r.file), r.line, r.column, r.cls);
+    // two mutants of one place and class differ by their edit: a short hash of the name
+    return s + "_" + util::hex64(util::fnv1a(r.name)).substr(0, 6) + ".ys";
+}
+
+namespace {
+
+std::string md_cell(std::string s) {
+    for (auto& c : s)
+        if (c == '|' || c == '\n') c = c == '|' ? '/' : ' ';
+    return s;
+}
+
+std::string name_cell(const std::string& name) {
+    // file:line:column class `a` -> `b`: the edit already in backticks
+    return md_cell(name);
+}
+
+void tally_row(std::ostringstream& md, const std::string& label, const Tally& t) {
+    md << fmt::format("| {} | {} | {} | {} | {} | {} | {:.1f} % | {:.1f} |\n", label, t.mutants, t.stillborn, t.killed,
+                      t.equivalent, t.surviving, 100.0 * t.score(), t.mutants ? t.seconds / t.mutants : 0.0);
+}
+
+std::string stimulus_text(const Stimulus& s) {
+    std::string f;
+    if (!s.source.pattern.empty()) f = fmt::format("`{}` {} x {} frame(s)", s.source.pattern, s.source.size, s.source.frames);
+    else if (!s.source.pairs.empty())
+        f = fmt::format("KITTI {} pairs {} (L R L R ...) cropped to {}", s.source.sequence, s.source.pairs, s.source.size);
+    if (s.source.seed != 1) f += fmt::format(", seed {}", s.source.seed);
+    if (s.idle_every) f += fmt::format(", an idle cycle every {} writes", s.idle_every);
+    return f;
+}
+
+}  // namespace
+
+std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
+    std::ostringstream md;
+    const Tally all = tally(rs);
+    md << "# Mutation campaign: generated mutants\n\n"
+       << "Made by `" << info.command << "`" << (info.runner.empty() ? "" : " (" + info.runner + ")")
+       << "; every figure below comes from that run.\n\n";
+    if (all.mutants < info.generated)
+        md << fmt::format("**PARTIAL: {} of the {} generated mutants have a verdict.** The others were not run (a "
+                          "selection) or had not finished when this report was rendered; every count below is over "
+                          "those with a verdict.\n\n",
+                          all.mutants, info.generated);
+    md << "The generator (`mutation/vhdl_mutants.hpp`, a tokenizer over `rtl/`) makes " << info.generated
+       << " single-point mutants of 10 classes, each named ``file:line:column class `original` -> `replacement` ``.\n"
+          "Each is applied to a scratch copy of `rtl/`, analysed with GHDL (mcode) and co-simulated against the\n"
+          "unmutated cycle model (`cosim::run_ghdl`, every register compared after every cycle), stimulus after\n"
+          "stimulus, stopping at the first failure:\n\n";
+    md << "1. quick: " << stimulus_text(info.quick) << "\n";
+    for (size_t k = 0; k < info.longer.size(); ++k) md << k + 2 << ". " << stimulus_text(info.longer[k]) << "\n";
+    md << "\n*Stillborn*: the mutant does not analyse or elaborate (not counted as killed). *Killed*: a stimulus\n"
+          "fails (a mismatch, a metavalue, or the simulator stops). A mutant that passes every stimulus is\n"
+          "handed to a solver: GHDL synthesises the entity holding the mutation (a package mutant: `harris_top`)\n"
+          "from the original and the mutated `rtl/` to Verilog (`ghdl --synth --out=verilog`, the geometry\n"
+          "generics at their minimum; a mutant of `harris_top.vhd` itself: its instances, the same on both sides,\n"
+          "cut out by `expose -evert` so that their inputs are compared as outputs and their outputs are shared\n"
+          "inputs; every other mutant: flattened), and yosys proves the two equal: first `equiv_make` + `equiv_simple -seq 5`\n"
+          "+ `equiv_induct -seq 5` + `equiv_status -assert`; if that fails, a miter (`miter -equiv -flatten`) and\n"
+          "`sat -tempinduct -prove trigger 0` (registers zero in step 1, every input, the reset too, free in every\n"
+          "step, outputs compared from step 2 on, induction up to 40 steps). *Proven equivalent* is that solver's verdict and\n"
+          "nothing else; a mutant whose proofs fail is *surviving*, listed below with the proof's output.\n"
+          "GHDL 2.0's Verilog output can mistranslate signed right shifts; gold and gate go through the same\n"
+          "translation, so a proof is about the two netlists as GHDL writes them.\n\n"
+          "Mutation score = killed / (mutants - stillborn - proven equivalent).\n\n";
+    md << fmt::format("**Score: {:.1f} %** ({} killed of {}; {} stillborn, {} proven equivalent, {} surviving). "
+                      "Time per mutant (wall time inside its shard, shards running side by side): {:.1f} s mean ({:.1f} s analysis, {:.1f} s co-simulation, "
+                      "{:.2f} co-simulations per mutant; proofs in the rest)",
+                      100.0 * all.score(), all.killed, all.mutants - all.stillborn - all.equivalent, all.stillborn,
+                      all.equivalent, all.surviving, all.mutants ? all.seconds / all.mutants : 0.0,
+                      all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.analyse_seconds; return s / all.mutants; }() : 0.0,
+                      all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.sim_seconds; return s / all.mutants; }() : 0.0,
+                      all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.runs; return s / all.mutants; }() : 0.0);
+    if (info.wall_seconds > 0) md << fmt::format("; the run took {:.0f} s of wall time", info.wall_seconds);
+    md << ".\n\n";
+
+    const std::string head = "| mutants | stillborn | killed | proven equivalent | surviving | score | s per mutant |\n";
+    md << "## Per class\n\n| class " << head << "|---|---|---|---|---|---|---|---|\n";
+    for (auto c : mutation::all_classes()) {
+        std::vector<Result> g;
+        for (const auto& r : rs)
+            if (r.cls == mutation::class_name(c)) g.push_back(r);
+        if (!g.empty()) tally_row(md, mutation::class_name(c), tally(g));
+    }
+    tally_row(md, "**all**", all);
+    md << "\n## Per entity\n\n| entity (file) " << head << "|---|---|---|---|---|---|---|---|\n";
+    std::vector<std::string> order;
+    for (const auto& r : rs)
+        if (std::find(order.begin(), order.end(), r.file) == order.end()) order.push_back(r.file);
+    for (const auto& f : order) {
+        std::vector<Result> g;
+        for (const auto& r : rs)
+            if (r.file == f) g.push_back(r);
+        tally_row(md, stem(f) + " (`" + f + "`)", tally(g));
+    }
+    tally_row(md, "**all**", all);
+
+    md << "\n## Killed by\n\n| stimulus | mutants killed |\n|---|---|\n";
+    std::vector<std::string> names = {info.quick.name};
+    for (const auto& s : info.longer) names.push_back(s.name);
+    for (const auto& n : names) {
+        const auto k = std::count_if(rs.begin(), rs.end(), [&](const Result& r) { return r.killed_by == n; });
+        md << "| " << n << " | " << k << " |\n";
+    }
+
+    md << "\n## Surviving mutants\n\n";
+    bool any = false;
+    for (const auto& r : rs) {
+        if (r.fate != "surviving") continue;
+        any = true;
+        md << "### " << name_cell(r.name) << "\n\nPasses every stimulus. Proof of `" << r.proof.entity << "` ("
+           << (r.proof.method.empty() ? "no proof ran" : r.proof.method) << ") fails:\n\n```\n"
+           << r.proof.synth << r.proof.script << "```\n\n```\n" << r.proof.output << "\n```\n\n";
+    }
+    if (!any) md << "None.\n\n";
+
+    md << "## Proven equivalent\n\nEach script is in `" << info.proofs_dir
+       << "/`, with the GHDL commands that make its `gold.v` and `gate.v` as comments.\n\n";
+    any = false;
+    for (const auto& r : rs) {
+        if (r.fate != "equivalent") continue;
+        if (!any) md << "| mutant | entity proven | method | script |\n|---|---|---|---|\n";
+        any = true;
+        md << "| " << name_cell(r.name) << " | " << r.proof.entity << " | " << r.proof.method << " | `"
+           << proof_file_name(r) << "` |\n";
+    }
+    if (!any) md << "None.\n";
+
+    md << "\n## Stillborn mutants\n\n";
+    any = false;
+    for (const auto& r : rs) {
+        if (r.fate != "stillborn") continue;
+        if (!any) md << "| mutant | why |\n|---|---|\n";
+        any = true;
+        md << "| " << name_cell(r.name) << " | " << md_cell(r.detail) << " |\n";
+    }
+    if (!any) md << "None.\n";
+    md << "\nEvery mutant's verdict is in `docs/mutation-campaign.csv`. The hand-written mutants, the fast smoke\n"
+          "set CI runs, are in `docs/mutation-smoke.md`.\n";
+    return md.str();
+}
+
+std::string csv(const std::vector<Result>& rs) {
+    auto q = [](std::string s) {
+        std::string o = "\"";
+        for (char c : s) {
+            if (c == '"') o += '"';
+            o += c == '\n' ? ' ' : c;
+        }
+        return o + "\"";
+    };
+    std::ostringstream out;
+    out << "name,file,line,column,class,entity,fate,detail,killed_by,stage,signal,write,runs,seconds,proof_method\n";
+    for (const auto& r : rs)
+        out << q(r.name) << ',' << r.file << ',' << r.line << ',' << r.column << ',' << r.cls << ',' << r.entity << ','
+            << r.fate << ',' << q(r.detail) << ',' << r.killed_by << ',' << r.stage << ',' << q(r.signal) << ','
+            << r.write << ',' << r.runs << ',' << fmt::format("{:.2f}", r.seconds) << ',' << r.proof.method << '\n';
+    return out.str();
+}
+
+}  // namespace hc::mutants

@@ -1,0 +1,136 @@
+// mutants.hpp: the generated mutation campaign. Every mutant hc::mutation generates from
+// rtl/ is applied to a scratch copy of rtl/ and judged:
+//   stillborn   the mutated RTL does not analyse (GHDL mcode) or does not elaborate (GHDL
+//               reports an error during elaboration, e.g. a static index out of bounds)
+//   killed      a co-simulation against the unmutated cycle model fails: a mismatch, a
+//               metavalue, or a simulator that stops early (the regression would fail)
+//   equivalent  every stimulus passes and a solver proves mutant and original equal:
+//               GHDL synthesises the entity holding the mutation (the package's mutants:
+//               harris_top) at small geometry generics to Verilog, both sides, and yosys
+//               proves them equal (equiv_make/equiv_simple/equiv_induct, else a miter and
+//               sat -tempinduct from all registers zero, every input free)
+//   surviving   every stimulus passes and no proof succeeds (the proof's output is kept)
+// The stimuli run in order and stop at the first kill: a quick stream first, then the
+// longer ones (streams of the synthetic regression set, more chained frames, idle cycles,
+// a KITTI crop when the data is present).
+//
+// Errors: InputError (an unknown mutant name, class or file in a selection, a bad stimulus),
+// SimulatorError (GHDL or yosys cannot be started).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "frames/frames.hpp"
+#include "mutation/vhdl_mutants.hpp"
+
+namespace hc::mutants {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+/// A selection of the generated set (all empty: every mutant).
+struct Selection {
+    std::vector<std::string> only;      ///< mutant names, or name prefixes ("sobel_x.vhd:30:")
+    std::vector<std::string> classes;   ///< class names (mutation::class_name)
+    std::vector<std::string> files;     ///< rtl file names ("sobel_x.vhd")
+};
+
+/// Every mutant of the RTL files in `rtl_dir` (empty: the source tree's rtl/), in analysis
+/// order of the files, each file's mutants in the generator's order.
+std::vector<mutation::Mutant> generate_all(const fs::path& rtl_dir = {});
+/// The mutants of `all` that `s` selects, in order. InputError for a name, class or file
+/// that selects nothing.
+std::vector<mutation::Mutant> select(const std::vector<mutation::Mutant>& all, const Selection& s);
+
+/// The entity a proof synthesises for a mutant of `file` (its entity; the package's: harris_top).
+std::string proof_entity(const std::string& file);
+
+/// One stimulus: frames and the idle-cycle rate.
+struct Stimulus {
+    std::string name;                   ///< "quick", "random_40x30", "kitti01_64x48", ...
+    frames::FrameSource source;
+    int idle_every = 0;
+};
+json to_json(const Stimulus& s);
+Stimulus stimulus_from_json(const json& j);
+
+/// The quick stream: two chained 24x16 `blocks` frames.
+Stimulus quick_stimulus();
+/// The longer streams: four chained random 24x16 frames (seed 7) with an idle cycle every 3
+/// writes; the regression set's (golden/regression-set.txt) extremes 33x21 stream; and, when
+/// `data_dir` is not empty, KITTI 01's first stereo pair cropped to 32x24.
+std::vector<Stimulus> long_stimuli(const fs::path& data_dir);
+
+/// The proof attempt of a survivor.
+struct Proof {
+    bool equivalent = false;
+    std::string method;      ///< "equiv" (equiv_simple + equiv_induct), "miter" (sat -tempinduct), or ""
+    std::string entity;
+    std::string script;      ///< the yosys script that gave the verdict (the last one tried)
+    std::string synth;       ///< the GHDL commands that made gold.v and gate.v
+    std::string output;      ///< the tail of the last attempt's yosys (or GHDL) output
+    double seconds = 0;
+};
+
+/// A mutant's verdict.
+struct Result {
+    std::string name, file, entity, cls;
+    int line = 0, column = 0;
+    std::string fate;        ///< "stillborn", "killed", "equivalent", "surviving"
+    std::string detail;      ///< stillborn: why; killed: "mismatch", "metavalue" or "simulator failed"
+    std::string killed_by;   ///< the stimulus that killed it
+    std::string stage, signal;
+    long write = 0;
+    int runs = 0;            ///< co-simulations run
+    double analyse_seconds = 0, sim_seconds = 0, seconds = 0;
+    Proof proof;
+};
+json to_json(const Result& r);
+Result result_from_json(const json& j);
+
+struct Options {
+    Stimulus quick = quick_stimulus();
+    std::vector<Stimulus> longer;        ///< run on the quick stream's survivors
+    bool prove = true;                   ///< prove the survivors of every stimulus
+    int proof_timeout_s = 120;           ///< per yosys run
+    std::function<void(const std::string&)> progress;   ///< a line per step (may be empty)
+};
+
+/// Judges one mutant in a scratch directory of its own.
+Result run_mutant(const mutation::Mutant& m, const Options& o);
+/// The proof of a mutant alone (`work`: a directory for the netlists and scripts).
+Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s);
+
+/// Counts of a group of results.
+struct Tally {
+    int mutants = 0, stillborn = 0, killed = 0, equivalent = 0, surviving = 0;
+    double seconds = 0;
+    /// killed / (mutants - stillborn - equivalent); 1 when nothing is left to kill.
+    double score() const;
+};
+Tally tally(const std::vector<Result>& rs);
+
+/// What the report says about how it was made.
+struct ReportInfo {
+    std::string command;            ///< the command that made it
+    Stimulus quick;
+    std::vector<Stimulus> longer;
+    int generated = 0;              ///< mutants the generator makes of rtl/ (the run may be a subset)
+    std::string runner;             ///< "local, 2 jobs, 74 shards"
+    double wall_seconds = 0;
+    std::string proofs_dir;         ///< where the proven mutants' scripts are written (relative)
+};
+/// The Markdown report: per class and per entity, the score, time per mutant, the survivors
+/// with their proof output, the proven ones with their script's file.
+std::string markdown(const std::vector<Result>& rs, const ReportInfo& info);
+/// One line per mutant: name,file,line,column,class,entity,fate,detail,killed_by,stage,signal,write,seconds.
+std::string csv(const std::vector<Result>& rs);
+/// The file name of a proven mutant's script in ReportInfo::proofs_dir.
+std::string proof_file_name(const Result& r);
+
+}  // namespace hc::mutants

@@ -1,0 +1,196 @@
+// cmd_mutants.cpp: `harris-cosim mutate --generate`: see cmd_mutants.hpp.
+#include "tools/cmd_mutants.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "frames/frames.hpp"
+#include "jobs/jobs.hpp"
+#include "mutants/mutants.hpp"
+#include "util/util.hpp"
+
+namespace hc::tools {
+
+namespace fs = std::filesystem;
+
+void add_generated_flags(CLI::App* cmd, GeneratedFlags& f) {
+    const std::string g = "Generated mutants";
+    cmd->add_flag("--generate", f.generate,
+                  "run the generated mutants of rtl/ (mutation/vhdl_mutants.hpp) instead of the hand-written list:\n"
+                  "kill each by co-simulation or prove it equivalent with yosys")->group(g);
+    cmd->add_flag("--list", f.list, "with --generate: list the selected mutants' names and stop")->group(g);
+    cmd->add_option("--class", f.classes, "with --generate: only these classes (arith, rel, logic, negate, literal, "
+                                          "slice, resize, shift, stuck, enable)")->delimiter(',')->group(g);
+    cmd->add_option("--file", f.files, "with --generate: only the mutants of these rtl/ files (e.g. sobel_x.vhd)")
+        ->delimiter(',')->group(g);
+    cmd->add_option("--data", f.data, "data directory for the KITTI crop stimulus (else $HARRIS_COSIM_DATA, ../shared/data)")->group(g);
+    cmd->add_flag("--quick-only", f.quick_only, "with --generate: only the quick stimulus, no longer ones, no proofs")->group(g);
+    cmd->add_flag("--no-prove", f.no_prove, "with --generate: report the survivors without proof attempts")->group(g);
+    cmd->add_option("--proof-timeout", f.proof_timeout, "seconds per yosys proof attempt")
+        ->check(CLI::Range(1, 86400))->capture_default_str()->group(g);
+    cmd->add_option("--per-shard", f.per_shard, "mutants per shard (when --shards is not given)")
+        ->check(CLI::Range(1, 100000))->capture_default_str()->group(g);
+    cmd->add_flag("--render", f.render, "with --generate and --run-dir: render the report from the shards of that run "
+                                        "that have finished, without running any (marked partial when shards are missing)")->group(g);
+    add_runner_flags(cmd, f.runner);
+}
+
+namespace {
+
+std::string command_line(const GeneratedFlags& f) {
+    std::string c = "harris-cosim mutate --generate";
+    if (!f.classes.empty()) {
+        c += " --class ";
+        for (size_t i = 0; i < f.classes.size(); ++i) c += (i ? "," : "") + f.classes[i];
+    }
+    if (!f.files.empty()) {
+        c += " --file ";
+        for (size_t i = 0; i < f.files.size(); ++i) c += (i ? "," : "") + f.files[i];
+    }
+    for (const auto& o : f.only) c += " --only '" + o + "'";
+    if (f.quick_only) c += " --quick-only";
+    if (f.no_prove) c += " --no-prove";
+    if (f.proof_timeout != 120) c += " --proof-timeout " + std::to_string(f.proof_timeout);
+    c += " --runner " + f.runner.runner;
+    if (f.runner.runner == "local") c += " --jobs " + std::to_string(f.runner.jobs);
+    if (!f.report.empty()) c += " --report " + f.report;
+    if (f.render) c += " --run-dir RUN --render";
+    return c;
+}
+
+/// The proven mutants' scripts, runnable from a folder holding the gold.v and gate.v the
+/// commands in their first lines write.
+void write_proofs(const std::vector<mutants::Result>& rs, const fs::path& dir) {
+    for (const auto& r : rs) {
+        if (r.fate != "equivalent") continue;
+        std::string s = "# " + r.name + ": proven equivalent by yosys (" + r.proof.method + ")\n"
+                        "# gold.v and gate.v (mutant-rtl/: rtl/ with the mutant applied):\n";
+        std::string line;
+        for (char c : r.proof.synth) {
+            if (c == '\n') {
+                s += "#   " + line + "\n";
+                line.clear();
+            } else {
+                line += c;
+            }
+        }
+        util::write_file_atomic(dir / mutants::proof_file_name(r), s + r.proof.script);
+    }
+}
+
+/// Writes (or prints) the report, its CSV and the proven mutants' scripts.
+void write_report(const GeneratedFlags& f, const std::vector<mutants::Result>& rs, const mutants::Stimulus& quick,
+                  const std::vector<mutants::Stimulus>& longer, int generated, std::size_t shards, double wall) {
+    mutants::ReportInfo info;
+    info.command = command_line(f);
+    info.quick = quick;
+    info.longer = longer;
+    info.generated = generated;
+    info.runner = f.runner.runner == "local"
+                      ? "local runner, " + std::to_string(f.runner.jobs) + " jobs, " + std::to_string(shards) + " shards"
+                      : "Slurm job array, " + std::to_string(shards) + " shards";
+    info.wall_seconds = wall;
+    info.proofs_dir = "mutation-proofs";
+    if (!f.report.empty()) {
+        const fs::path md = f.report;
+        info.proofs_dir = (md.parent_path().filename() / "mutation-proofs").string();
+        write_proofs(rs, md.parent_path() / "mutation-proofs");
+        util::write_file_atomic(fs::path(md).replace_extension(".csv"), mutants::csv(rs));
+        util::write_file_atomic(md, mutants::markdown(rs, info));
+    } else {
+        std::printf("%s", mutants::markdown(rs, info).c_str());
+    }
+}
+
+/// The results of the finished shards of the run in `dir`, in order, and the stimuli of its manifest.
+/// `wall`: seconds from the manifest's writing to the last finished shard's result.
+std::vector<mutants::Result> finished_results(const fs::path& dir, mutants::Stimulus& quick,
+                                             std::vector<mutants::Stimulus>& longer, std::size_t& shards,
+                                             double& wall) {
+    const cluster::Manifest m = cluster::read_manifest(dir);
+    if (m.job != "mutants") throw InputError("run directory " + dir.string() + " holds a '" + m.job + "' run, not 'mutants'");
+    quick = mutants::stimulus_from_json(m.common.at("quick"));
+    longer.clear();
+    for (const auto& s : m.common.at("longer")) longer.push_back(mutants::stimulus_from_json(s));
+    shards = m.shards.size();
+    std::vector<nlohmann::json> data;
+    const auto start = fs::last_write_time(cluster::manifest_path(dir));
+    auto last = start;
+    for (std::size_t i = 0; i < m.shards.size(); ++i)
+        if (const auto r = cluster::read_result(dir, m, i)) {
+            data.push_back(r->data);
+            last = std::max(last, fs::last_write_time(cluster::result_path(dir, i)));
+        }
+    wall = std::chrono::duration<double>(last - start).count();
+    return jobs::mutants_results(jobs::registry().at("mutants").merge(m.common, data));
+}
+
+}  // namespace
+
+void run_generated(const GeneratedFlags& f) {
+    const auto all = mutants::generate_all();
+    const auto sel = mutants::select(all, {f.only, f.classes, f.files});
+    if (f.list) {
+        for (const auto& m : sel) std::printf("%s\n", m.name().c_str());
+        std::printf("harris-cosim mutate --generate --list: %zu of %zu generated mutants\n", sel.size(), all.size());
+        return;
+    }
+    if (f.render) {
+        if (f.runner.run_dir.empty()) throw InputError("--render needs --run-dir (the run to render)");
+        mutants::Stimulus quick;
+        std::vector<mutants::Stimulus> longer;
+        std::size_t shards = 0;
+        double wall = 0;
+        const auto rs = finished_results(f.runner.run_dir, quick, longer, shards, wall);
+        write_report(f, rs, quick, longer, static_cast<int>(all.size()), shards, wall);
+        const mutants::Tally t = mutants::tally(rs);
+        std::printf("harris-cosim mutate --generate --render: %d of %zu mutants have a verdict: %d stillborn, %d killed, "
+                    "%d proven equivalent, %d surviving; score %.1f %%\n", t.mutants, all.size(), t.stillborn, t.killed,
+                    t.equivalent, t.surviving, 100.0 * t.score());
+        return;
+    }
+    jobs::MutantsJob job;
+    for (const auto& m : sel) job.names.push_back(m.name());
+    if (!f.quick_only) {
+        const auto data = frames::data_dir(f.data);
+        if (!data) std::fprintf(stderr, "[mutate] no data directory: the KITTI crop stimulus is left out\n");
+        job.longer = mutants::long_stimuli(data ? *data : fs::path{});
+    }
+    job.prove = !f.quick_only && !f.no_prove;
+    job.proof_timeout_s = f.proof_timeout;
+    job.per_shard = f.per_shard;
+    job.shards = f.runner.shards;
+    const cluster::Manifest m = jobs::mutants_manifest(job);
+
+    std::optional<util::ScratchDir> scratch;
+    fs::path dir = f.runner.run_dir;
+    if (dir.empty()) {
+        if (f.runner.runner == "slurm") throw InputError("--runner slurm needs --run-dir (a directory every node sees)");
+        scratch.emplace("harris-mutants");
+        dir = scratch->path() / "run";
+    }
+    std::fprintf(stderr, "[mutate] %zu generated mutants in %zu shards, run directory %s\n", sel.size(),
+                 m.shards.size(), dir.c_str());
+    const auto t0 = std::chrono::steady_clock::now();
+    cluster::RunOptions ro = run_options(f.runner, dir);
+    if (f.runner.runner == "slurm" && f.runner.no_wait) {
+        cluster::prepare_run(dir, m);
+        cluster::run(dir, ro);
+        std::printf("harris-cosim mutate: submitted; `harris-cosim mutate --generate ... --run-dir %s --resume` "
+                    "renders the report when the shards are done\n", dir.c_str());
+        return;
+    }
+    const nlohmann::json merged = jobs::run_and_merge(dir, m, ro);
+    const auto rs = jobs::mutants_results(merged);
+
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    write_report(f, rs, job.quick, job.longer, static_cast<int>(all.size()), m.shards.size(), wall);
+    const mutants::Tally t = mutants::tally(rs);
+    std::printf("harris-cosim mutate --generate: %d mutants: %d stillborn, %d killed, %d proven equivalent, "
+                "%d surviving; score %.1f %%\n", t.mutants, t.stillborn, t.killed, t.equivalent, t.surviving,
+                100.0 * t.score());
+    if (t.surviving) throw MismatchError(std::to_string(t.surviving) + " generated mutant(s) survive");
+}
+
+}  // namespace hc::tools
