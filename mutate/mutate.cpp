@@ -102,18 +102,22 @@ Campaign load_campaign(const fs::path& p) {
         throw InputError(what + ": not valid JSON: " + e.what());
     }
     Campaign c;
-    if (!j.contains("stream") || !j["stream"].is_object()) throw InputError(what + ": 'stream' must be an object");
-    const json& s = j["stream"];
-    c.stream.pattern = s.value("pattern", "");
-    c.stream.size = s.value("size", "");
-    c.stream.frames = s.value("frames", 0);
-    c.stream.seed = s.value("seed", 1u);
-    if (!j.contains("mutants") || !j["mutants"].is_array()) throw InputError(what + ": 'mutants' must be a list");
-    for (size_t i = 0; i < j["mutants"].size(); ++i) {
-        const json& m = j["mutants"][i];
-        const std::string where = what + ": mutants[" + std::to_string(i) + "]";
-        c.mutants.push_back({str(m, "id", where), str(m, "kind", where), str(m, "file", where), str(m, "stage", where),
-                             str(m, "find", where), str(m, "replace", where), m.value("equivalent", false)});
+    try {   // a value of the wrong type ("equivalent": "yes") is bad input, not a fault
+        if (!j.contains("stream") || !j["stream"].is_object()) throw InputError(what + ": 'stream' must be an object");
+        const json& s = j["stream"];
+        c.stream.pattern = s.value("pattern", "");
+        c.stream.size = s.value("size", "");
+        c.stream.frames = s.value("frames", 0);
+        c.stream.seed = s.value("seed", 1u);
+        if (!j.contains("mutants") || !j["mutants"].is_array()) throw InputError(what + ": 'mutants' must be a list");
+        for (size_t i = 0; i < j["mutants"].size(); ++i) {
+            const json& m = j["mutants"][i];
+            const std::string where = what + ": mutants[" + std::to_string(i) + "]";
+            c.mutants.push_back({str(m, "id", where), str(m, "kind", where), str(m, "file", where), str(m, "stage", where),
+                                 str(m, "find", where), str(m, "replace", where), m.value("equivalent", false)});
+        }
+    } catch (const json::exception& e) {
+        throw InputError(what + ": " + e.what());
     }
     return c;
 }

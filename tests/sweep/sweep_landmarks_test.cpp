@@ -64,7 +64,7 @@ TEST_CASE("the sweep's stereo-match column is score_formats of each configuratio
         CHECK(p.landmarks.all == direct.all);
         CHECK(p.landmarks.keypoints == direct.keypoints);
         CHECK(direct.correct > 1000);   // Aloe: ~2,000 correct matches on the co-processor's corners
-        CHECK(csv.find(fmt::format(",{},{},{},{},{}\n", direct.keypoints, direct.all, direct.correct, direct.truth_known,
+        CHECK(csv.find(fmt::format(",{},{},{},{},{},", direct.keypoints, direct.all, direct.correct, direct.truth_known,
                                    direct.truth_correct)) != std::string::npos);
         CHECK(md.find(fmt::format("| {} | {} |", direct.correct, direct.truth_correct)) != std::string::npos);
         CHECK(js["points"][i]["landmarks"]["correct"] == direct.correct);
