@@ -312,7 +312,10 @@ Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s) {
     return p;
 }
 
-Result run_mutant(const mutation::Mutant& m, const Options& o) {
+namespace {
+
+/// run_mutant in the scratch directory `work`.
+Result run_mutant_in(const mutation::Mutant& m, const Options& o, const fs::path& work) {
     const auto t0 = Clock::now();
     Result r;
     r.name = m.name();
@@ -321,8 +324,6 @@ Result run_mutant(const mutation::Mutant& m, const Options& o) {
     r.cls = mutation::class_name(m.cls);
     r.line = m.line;
     r.column = m.column;
-    util::ScratchDir scratch("harris-mutant");
-    const fs::path work = scratch.path();
     const fs::path rtl = mutated_copy(m, work);
     const fs::path alog = work / "analyse.log";
     const auto ta = Clock::now();
@@ -387,6 +388,25 @@ Result run_mutant(const mutation::Mutant& m, const Options& o) {
         if (r.proof.equivalent) r.fate = "equivalent";
     }
     r.seconds = since(t0);
+    return r;
+}
+
+/// `text` with every occurrence of `dir` replaced by `name`.
+std::string replace_path(std::string text, const std::string& dir, const std::string& name) {
+    for (std::size_t at = text.find(dir); at != std::string::npos; at = text.find(dir, at + name.size()))
+        text.replace(at, dir.size(), name);
+    return text;
+}
+
+}  // namespace
+
+Result run_mutant(const mutation::Mutant& m, const Options& o) {
+    util::ScratchDir scratch("harris-mutant");
+    Result r = run_mutant_in(m, o, scratch.path());
+    // the tools' messages name files in the scratch directory, which is gone afterwards and
+    // differs on every run: the results (and the reports made from them) call it <scratch>
+    r.detail = replace_path(r.detail, scratch.path().string(), "<scratch>");
+    r.proof.output = replace_path(r.proof.output, scratch.path().string(), "<scratch>");
     return r;
 }
 
