@@ -83,6 +83,19 @@ extern "C" int32_t hc_observe(const uint8_t* obs) {
     return 1;
 }
 
+extern "C" int32_t hc_observe_held(const uint8_t* obs, int32_t after_reset) {
+    if (!g_session) return 1;
+    try {
+        return g_session->observe_held(obs, after_reset != 0) ? 1 : 0;
+    } catch (const std::exception& e) {
+        fail("hc_observe_held", e.what());
+    } catch (...) {
+        fail("hc_observe_held", "unknown exception");
+    }
+    g_session.reset();
+    return 1;
+}
+
 extern "C" int32_t hc_close(void) {
     if (!g_session) return g_status;
     try {

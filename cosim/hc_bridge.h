@@ -35,6 +35,12 @@ int32_t hc_next(void);
 int32_t hc_data(void);
 /* The design's observation port after the cycle's clock edge. Returns 0 to go on, 1 to stop. */
 int32_t hc_observe(const uint8_t* obs);
+/* The observation port while the clock is low: after reset before the first edge
+ * (after_reset = 1), or half-way between two edges when the port differs from what
+ * hc_observe saw after the last edge (after_reset = 0). Registers change only on a rising
+ * edge, so either must equal the model's state after the last write. Returns 0 to go on,
+ * 1 to stop. */
+int32_t hc_observe_held(const uint8_t* obs, int32_t after_reset);
 /* Ends the session, writes the summary; returns the exit status: 0 pass, 1 mismatch, 2 error. */
 int32_t hc_close(void);
 

@@ -80,6 +80,7 @@ void Session::record_read(const std::uint8_t* codes) {
 bool Session::observe(const std::uint8_t* codes) {
     ++cycles_;
     if (idle_now_) ++idles_;
+    phase_ = Phase::after_edge;
     scratch_.clear();
     FlatObservation flat;
     if (cfg_.compare_all) {
@@ -96,7 +97,21 @@ bool Session::observe(const std::uint8_t* codes) {
             std::erase_if(scratch_, [&](const Mismatch& m) { return cmp_.layout()[m.field].name != "corner"; });
         }
     }
+    return record(codes, flat);
+}
 
+bool Session::observe_held(const std::uint8_t* codes, bool after_reset) {
+    // every register, in either comparison mode: the testbench calls this after reset and,
+    // between edges, only when the port changed without an edge
+    phase_ = after_reset ? Phase::after_reset : Phase::clock_low;
+    scratch_.clear();
+    FlatObservation flat = flatten(model_->observe(), cfg_.formats);
+    cmp_.compare(codes, flat, model_->writes(), scratch_);
+    if (scratch_.empty()) return stop_;
+    return record(codes, flat);
+}
+
+bool Session::record(const std::uint8_t* codes, FlatObservation& flat) {
     if (!cfg_.compare_all && first_report_.empty() && scratch_.empty()) {
         progress(false);   // reads-only mode keeps no history until something differs
         return stop_;
@@ -169,6 +184,10 @@ std::string Session::describe(const std::vector<Mismatch>& ms, long write, std::
     std::ostringstream o;
     o << "\n=== RTL/model MISMATCH ===\n";
     o << "  write      : " << write << (idle_now_ ? " (after an idle cycle)" : "") << "\n";
+    if (phase_ == Phase::after_reset)
+        o << "  when       : after reset, before the first clock edge (a reset value differs)\n";
+    else if (phase_ == Phase::clock_low)
+        o << "  when       : while the clock was low after this write (a register changed without a rising edge)\n";
     if (wp)
         o << "  bus cycle  : frame " << wp->frame << (wp->tail ? " (preload of the next frame)" : "")
           << ", window row i=" << wp->i << ", column j=" << wp->j << ", k=" << wp->k << "\n";

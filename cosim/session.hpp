@@ -36,8 +36,13 @@ public:
 
     Command next();
     std::uint32_t data() const { return ev_.data; }
-    /// Returns true to stop the simulation.
+    /// The observation port after the cycle's rising edge. Returns true to stop the simulation.
     bool observe(const std::uint8_t* codes);
+    /// The observation port while the clock is low (after reset before the first edge, or
+    /// between two edges): registers change only on a rising edge, so the port must hold
+    /// the model's state after the last write; a difference is a mismatch reported with
+    /// when it was seen. Returns true to stop the simulation.
+    bool observe_held(const std::uint8_t* codes, bool after_reset);
     /// Writes the VCD (if any mismatch) and the summary; returns 0 pass, 1 mismatch.
     int close();
 
@@ -45,7 +50,11 @@ public:
     const std::string& first_report() const { return first_report_; }
 
 private:
+    /// When the port was observed.
+    enum class Phase { after_edge, after_reset, clock_low };
     std::string describe(const std::vector<Mismatch>& ms, long write, std::string& signal) const;
+    /// Records the mismatches in scratch_ of an observation `codes` of the model's `flat`.
+    bool record(const std::uint8_t* codes, FlatObservation& flat);
     void progress(bool final);
     void record_read(const std::uint8_t* codes);
 
@@ -56,6 +65,7 @@ private:
     ObsComparator cmp_;
     BusEvent ev_;
     bool idle_now_ = false;
+    Phase phase_ = Phase::after_edge;
     int since_idle_ = 0;
     long cycles_ = 0;
     long idles_ = 0;
