@@ -62,14 +62,16 @@ Stimulus stimulus_from_json(const json& j);
 /// The quick stream: two chained 24x16 `blocks` frames.
 Stimulus quick_stimulus();
 /// The longer streams: four chained random 24x16 frames (seed 7) with an idle cycle every 3
-/// writes; the regression set's (golden/regression-set.txt) extremes 33x21 stream; and, when
-/// `data_dir` is not empty, KITTI 01's first stereo pair cropped to 32x24.
+/// writes; the regression set's (golden/regression-set.txt) extremes 33x21 and twins 40x30
+/// streams, in its order; and, when `data_dir` is not empty, KITTI 01's first stereo pair
+/// cropped to 32x24.
 std::vector<Stimulus> long_stimuli(const fs::path& data_dir);
 
 /// The proof attempt of a survivor.
 struct Proof {
     bool equivalent = false;
-    std::string method;      ///< "equiv" (equiv_simple + equiv_induct), "miter" (sat -tempinduct), or ""
+    std::string method;      ///< "equiv" (equiv_simple + equiv_induct), "equiv-named" (the same, GHDL's net names
+                             ///< hidden), "miter" (sat -tempinduct), or ""
     std::string entity;
     std::string script;      ///< the yosys script that gave the verdict (the last one tried)
     std::string synth;       ///< the GHDL commands that made gold.v and gate.v

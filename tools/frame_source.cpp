@@ -7,7 +7,7 @@ namespace hc::tools {
 
 void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o) {
     cmd->add_option("images", o.images, "8-bit image files streamed as chained frames, in order");
-    cmd->add_option("--pattern", o.pattern, "synthetic frames: flat, checkerboard, random, extremes, blocks");
+    cmd->add_option("--pattern", o.pattern, "synthetic frames: " + pattern_names());
     cmd->add_option("--size", o.size, "WxH: size of synthetic frames, or a centred crop of images/KITTI frames");
     cmd->add_option("--frames", o.frames, "number of chained frames (patterns: default 3; images/KITTI: the first N)")
         ->check(whole_number(1));

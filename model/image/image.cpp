@@ -6,14 +6,15 @@
 
 namespace hc {
 
+namespace {
+constexpr Pattern kPatterns[] = {Pattern::flat, Pattern::checkerboard, Pattern::random,
+                                 Pattern::extremes, Pattern::blocks, Pattern::twins};
+}  // namespace
+
 Pattern parse_pattern(const std::string& name) {
-    if (name == "flat") return Pattern::flat;
-    if (name == "checkerboard") return Pattern::checkerboard;
-    if (name == "random") return Pattern::random;
-    if (name == "extremes") return Pattern::extremes;
-    if (name == "blocks") return Pattern::blocks;
-    throw InputError("unknown pattern '" + name +
-                                "' (flat, checkerboard, random, extremes, blocks)");
+    for (Pattern p : kPatterns)
+        if (pattern_name(p) == name) return p;
+    throw InputError("unknown pattern '" + name + "' (" + pattern_names() + ")");
 }
 
 std::string pattern_name(Pattern p) {
@@ -23,8 +24,15 @@ std::string pattern_name(Pattern p) {
         case Pattern::random: return "random";
         case Pattern::extremes: return "extremes";
         case Pattern::blocks: return "blocks";
+        case Pattern::twins: return "twins";
     }
     return "?";
+}
+
+std::string pattern_names() {
+    std::string s;
+    for (Pattern p : kPatterns) s += (s.empty() ? "" : ", ") + pattern_name(p);
+    return s;
 }
 
 Image make_pattern(Pattern p, int width, int height, int index, std::uint32_t seed) {
@@ -63,6 +71,27 @@ Image make_pattern(Pattern p, int width, int height, int index, std::uint32_t se
                 for (int r = y0; r < y1; ++r)
                     for (int c = x0; c < x1; ++c) img.at(r, c) = static_cast<std::uint8_t>(v);
             }
+            break;
+        }
+        case Pattern::twins: {   // half-turn symmetric blobs on grey, one every 10 pixels
+            for (auto& px : img.pixels) px = 128;
+            constexpr int kAxes[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
+            std::uniform_int_distribution<int> off(-2, 2), dv(0, 255), dn(1, 4);
+            int blob = index;
+            for (int by = 5; by + 5 < height; by += 10)
+                for (int bx = 5; bx + 5 < width; bx += 10, ++blob) {
+                    // twins (bx, by) and (bx + dx, by + dy); (x, y) turns to (2bx + dx - x, 2by + dy - y)
+                    const int dx = kAxes[blob % 4][0], dy = kAxes[blob % 4][1];
+                    const auto twin = static_cast<std::uint8_t>(dv(rng) < 128 ? 0 : 255);
+                    img.at(by, bx) = twin;   // the twins themselves black or white: the blob's peak
+                    img.at(by + dy, bx + dx) = twin;
+                    for (int k = dn(rng); k > 0; --k) {   // and a few more pixels, each with its image
+                        const int x = bx + off(rng), y = by + off(rng);
+                        const auto v = static_cast<std::uint8_t>(dv(rng));
+                        img.at(y, x) = v;
+                        img.at(2 * by + dy - y, 2 * bx + dx - x) = v;
+                    }
+                }
             break;
         }
     }

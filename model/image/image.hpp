@@ -25,9 +25,15 @@ struct Image {
 };
 
 /// Synthetic test frames. `seed` makes random ones reproducible.
-enum class Pattern { flat, checkerboard, random, extremes, blocks };
+/// `twins`: blobs each symmetric under a half turn about the midpoint of two neighbouring
+/// pixels (horizontal, vertical and both diagonal neighbours in turn), so that the two hold
+/// exactly equal responses (the half turn negates both gradients, which leaves every
+/// product, sum and truncation unchanged): ties at the local-maximum test.
+enum class Pattern { flat, checkerboard, random, extremes, blocks, twins };
 Pattern parse_pattern(const std::string& name);   ///< throws hc::InputError naming the pattern
 std::string pattern_name(Pattern p);
+/// Every pattern's name, comma-separated, in declaration order.
+std::string pattern_names();
 /// Frame `index` of a synthetic sequence: patterns move by a few pixels per frame so that
 /// chained frames differ.
 Image make_pattern(Pattern p, int width, int height, int index, std::uint32_t seed = 1);

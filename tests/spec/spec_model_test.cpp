@@ -146,3 +146,38 @@ TEST_CASE("the spec model's responses equal the stage functions in Word at every
         CHECK(r.max == mx);
     }
 }
+
+TEST_CASE("the twins regression stream ties local maxima with their neighbours along every axis", "[model][spec]") {
+    // each blob is symmetric under a half turn about the midpoint of its two twin pixels, so
+    // the twins' responses are equal; the blobs take the four axes in turn. The stream of
+    // golden/regression-set.txt: four 40x30 frames.
+    const spec::SpecModel m;
+    const int axes[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
+    int tied[4] = {0, 0, 0, 0};   // twin pairs above the threshold and above their other neighbours
+    for (int frame = 0; frame < 4; ++frame) {
+        const Image img = make_pattern(Pattern::twins, 40, 30, frame);
+        spec::Response r;
+        m.response(img, r);
+        const std::int64_t thr = m.threshold_for(r.max);
+        for (int y = r.y0 + 1; y + 1 < r.y1; ++y)
+            for (int x = r.x0 + 1; x + 1 < r.x1; ++x) {
+                const std::int64_t c = r.at(y, x);
+                if (c <= 0 || c < thr) continue;
+                for (int a = 0; a < 4; ++a) {
+                    const int tx = x + axes[a][0], ty = y + axes[a][1];
+                    if (r.at(ty, tx) != c) continue;
+                    bool peak = true;   // above every other neighbour of both twins
+                    for (int dy = -1; dy <= 1; ++dy)
+                        for (int dx = -1; dx <= 1; ++dx) {
+                            if ((dx || dy) && !(x + dx == tx && y + dy == ty)) peak = peak && r.at(y + dy, x + dx) < c;
+                            if ((dx || dy) && !(tx + dx == x && ty + dy == y)) peak = peak && r.at(ty + dy, tx + dx) < c;
+                        }
+                    if (peak) ++tied[a];
+                }
+            }
+    }
+    for (int a = 0; a < 4; ++a) {
+        INFO("axis (" << axes[a][0] << ", " << axes[a][1] << ")");
+        CHECK(tied[a] >= 2);
+    }
+}
