@@ -152,38 +152,40 @@ Stimulus stimulus_from_json(const json& j) {
     }
 }
 
-Stimulus quick_stimulus() {
+namespace {
+/// A stream of a synthetic pattern, named <pattern>_<size>x<frames>[_idle<n>][_seed<s>].
+Stimulus pattern_stimulus(const std::string& pattern, const std::string& size, int frames, int idle_every,
+                          std::uint32_t seed) {
     Stimulus s;
-    s.name = "quick_blocks_24x16x2";
-    s.source.pattern = "blocks";
-    s.source.size = "24x16";
-    s.source.frames = 2;
+    s.name = pattern + "_" + size + "x" + std::to_string(frames) +
+             (idle_every ? "_idle" + std::to_string(idle_every) : "") + (seed != 1 ? "_seed" + std::to_string(seed) : "");
+    s.source.pattern = pattern;
+    s.source.size = size;
+    s.source.frames = frames;
+    s.source.seed = seed;
+    s.idle_every = idle_every;
+    return s;
+}
+}  // namespace
+
+Stimulus quick_stimulus() {
+    Stimulus s = pattern_stimulus("blocks", "24x16", 2, 0, 1);
+    s.name = "quick_" + s.name;
     return s;
 }
 
 std::vector<Stimulus> long_stimuli(const fs::path& data_dir) {
-    std::vector<Stimulus> v;
     // more chained frames of noise, an idle cycle every 3 writes (registers must hold)
-    Stimulus chained;
-    chained.name = "random_24x16x4_idle3_seed7";
-    chained.source.pattern = "random";
-    chained.source.size = "24x16";
-    chained.source.frames = 4;
-    chained.source.seed = 7;
-    chained.idle_every = 3;
-    v.push_back(chained);
-    // the regression set's extremes on an odd width with idle cycles (the widest values), and
-    // its half-turn symmetric blobs (equal neighbours at the local-maximum test)
-    for (const auto& r : util::read_regression_set(cosim::rtl_dir().parent_path() / "golden" / "regression-set.txt")) {
-        if (r.stem() != "extremes_33x21" && r.stem() != "twins_40x30") continue;
-        Stimulus s;
-        s.name = r.stem() + "x" + std::to_string(r.frames) + (r.idle_every ? "_idle" + std::to_string(r.idle_every) : "");
-        s.source.pattern = r.pattern;
-        s.source.size = r.size();
-        s.source.frames = r.frames;
-        s.idle_every = r.idle_every;
-        v.push_back(s);
-    }
+    std::vector<Stimulus> v = {pattern_stimulus("random", "24x16", 4, 3, 7)};
+    // from the regression set, in its order: random 40x30 with idle cycles (a period maximum
+    // where find-max's period ends), half-turn symmetric blobs (equal neighbours at the
+    // local-maximum test), and extremes on an odd width with idle cycles (the widest values)
+    for (const auto& r : util::read_regression_set(cosim::rtl_dir().parent_path() / "golden" / "regression-set.txt"))
+        if (r.stem() == "random_40x30" || r.stem() == "twins_40x30" || r.stem() == "extremes_33x21")
+            v.push_back(pattern_stimulus(r.pattern, r.size(), r.frames, r.idle_every, 1));
+    // a response equal to its threshold: in frame 2 of this stream one response holds exactly
+    // the threshold then in force (found with the cycle model; a test checks it)
+    v.push_back(pattern_stimulus("blocks", "33x21", 3, 0, 18));
     if (!data_dir.empty()) {
         Stimulus k;
         k.name = "kitti01_L0R0_32x24";

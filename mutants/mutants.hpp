@@ -62,9 +62,10 @@ Stimulus stimulus_from_json(const json& j);
 /// The quick stream: two chained 24x16 `blocks` frames.
 Stimulus quick_stimulus();
 /// The longer streams: four chained random 24x16 frames (seed 7) with an idle cycle every 3
-/// writes; the regression set's (golden/regression-set.txt) extremes 33x21 and twins 40x30
-/// streams, in its order; and, when `data_dir` is not empty, KITTI 01's first stereo pair
-/// cropped to 32x24.
+/// writes; the regression set's (golden/regression-set.txt) random 40x30, twins 40x30 and
+/// extremes 33x21 streams, in its order; three `blocks` 33x21 frames of seed 18, where a response equals
+/// its threshold; and, when `data_dir` is not empty, KITTI 01's first stereo pair cropped to
+/// 32x24.
 std::vector<Stimulus> long_stimuli(const fs::path& data_dir);
 
 /// The proof attempt of a survivor.

@@ -6,7 +6,11 @@
 
 #include <algorithm>
 
+#include "frames/frames.hpp"
 #include "jobs/jobs.hpp"
+#include "model/driver/host_driver.hpp"
+#include "model/harris/find_max.hpp"
+#include "model/harris/harris_top.hpp"
 #include "mutants/mutants.hpp"
 
 using namespace hc;
@@ -97,4 +101,56 @@ TEST_CASE("the mutants job splits the named mutants into shards in order", "[mut
     CHECK(m.shards[2]["names"].back() == "m9");
     const auto kinds = jobs::registry().names();
     CHECK(std::find(kinds.begin(), kinds.end(), "mutants") != kinds.end());
+}
+
+/// The frames of the longer stimulus `name` (without the data directory's streams).
+frames::LoadedFrames longer_stream(const std::string& name) {
+    const auto longer = mutants::long_stimuli({});
+    const auto it = std::find_if(longer.begin(), longer.end(), [&](const mutants::Stimulus& s) { return s.name == name; });
+    if (it == longer.end()) FAIL("no longer stimulus named " << name);
+    return frames::load_frames(it->source);
+}
+
+TEST_CASE("a longer stimulus holds a response exactly at the threshold then in force", "[mutants]") {
+    // threshold.vhd keeps a response r >= thr: only a response equal to a nonzero threshold
+    // tells >= from >, and the stream chosen for it must hold one in the cycle model
+    const auto loaded = longer_stream("blocks_33x21x3_seed18");
+    const Geometry g{loaded.frames.front().width, loaded.frames.front().height};
+    HostDriver driver(g, frames::pointers(loaded.frames));
+    HarrisTop model(g, Formats{});
+    BusEvent ev;
+    long at_threshold = 0;   // writes after which a thresholded response equals the threshold
+    while (driver.next(ev)) {
+        model.write(ev.data);
+        const auto o = model.observe();
+        const std::int64_t thr = o.thr.value();
+        bool equal = false;
+        for (const auto& row : o.tr)
+            for (const auto& r : row) equal = equal || (thr != 0 && r.value() == thr);
+        at_threshold += equal ? 1 : 0;
+    }
+    CHECK(at_threshold >= 1);
+}
+
+TEST_CASE("a longer stimulus publishes another maximum when find-max takes a neighbour of the window centre",
+          "[mutants]") {
+    // harris_top feeds find_max the centre hrm(2, 2) on steps with t(4) set; fed hrm(2, 1) or
+    // hrm(2, 3) instead, the period maxima must differ somewhere in the stream chosen for it
+    const auto loaded = longer_stream("random_40x30x3_idle13");
+    const Geometry g{loaded.frames.front().width, loaded.frames.front().height};
+    HostDriver driver(g, frames::pointers(loaded.frames));
+    HarrisTop model(g, Formats{});
+    FindMax fed[3] = {FindMax(Formats{}), FindMax(Formats{}), FindMax(Formats{})};   // hrm(2, 1..3)
+    bool differs[3] = {false, false, false};
+    BusEvent ev;
+    while (driver.next(ev)) {
+        const auto before = model.observe();   // find_max samples its inputs at the edge
+        model.write(ev.data);
+        if ((before.t >> 4) & 1)
+            for (int j = 0; j < 3; ++j) fed[j] = fed[j].next(before.hr[1][j], g);
+        REQUIRE(fed[1].max.value() == model.find_max().max.value());   // the centre is the model's own
+        for (int j = 0; j < 3; ++j) differs[j] = differs[j] || fed[j].max.value() != fed[1].max.value();
+    }
+    CHECK(differs[0]);
+    CHECK(differs[2]);
 }
