@@ -1,6 +1,8 @@
-// metavalue_test.cpp: a register that powers up as 'U' (its reset removed in a scratch copy
-// of rtl/) is a METAVALUE failure of the system-level co-simulation, named by register and
-// stage; the unedited copy passes, so the failure is the edit's.
+// metavalue_test.cpp: edits of a scratch copy of rtl/ that only the testbench's checks off the
+// rising edge see: a register that powers up as 'U' (its reset removed) is a METAVALUE
+// failure; a wrong reset value is seen after reset; a register clocked on the falling edge is
+// seen while the clock is low. Each is named by register and stage; the unedited copy passes,
+// so each failure is the edit's.
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -67,4 +69,30 @@ TEST_CASE("a register without reset in a copy of the RTL is a METAVALUE failure 
     CHECK(r.summary.first_mismatch->signal == "t");
     CHECK_THAT(r.summary.first_mismatch->report, Catch::Contains("(METAVALUE)"));
     CHECK_THAT(r.summary.first_mismatch->report, Catch::Contains("control_shift_register"));
+}
+
+TEST_CASE("a register clocked on the falling edge in a copy of the RTL fails while the clock is low",
+          "[cosim][metavalue]") {
+    // with the inputs changing while the clock is low, such a register holds after the next
+    // rising edge what the design holds: only the look at the port between the edges sees it
+    util::ScratchDir scratch("hc-falling-edge");
+    copy_rtl(scratch.path() / "rtl", "corner_shift_register.vhd", "elsif clk'event and clk = '1' then",
+             "elsif clk'event and clk = '0' then");
+    const cosim::GhdlResult r = run_copy(scratch.path() / "rtl", scratch.path() / "sim");
+    CHECK_FALSE(r.summary.pass());
+    REQUIRE(r.summary.first_mismatch.has_value());
+    CHECK(r.summary.first_mismatch->stage == "corner_shift_register");
+    CHECK_THAT(r.summary.first_mismatch->report, Catch::Contains("while the clock was low"));
+}
+
+TEST_CASE("a wrong reset value in a copy of the RTL fails after reset, before the first edge", "[cosim][metavalue]") {
+    // threshold's output register resets to 1 instead of 0; the first write overwrites it
+    util::ScratchDir scratch("hc-reset-value");
+    copy_rtl(scratch.path() / "rtl", "threshold.vhd", "      r1       <= to_signed(0, RESP_W);",
+             "      r1       <= to_signed(1, RESP_W);");
+    const cosim::GhdlResult r = run_copy(scratch.path() / "rtl", scratch.path() / "sim");
+    CHECK_FALSE(r.summary.pass());
+    REQUIRE(r.summary.first_mismatch.has_value());
+    CHECK(r.summary.first_mismatch->write == 0);
+    CHECK_THAT(r.summary.first_mismatch->report, Catch::Contains("after reset, before the first clock edge"));
 }
