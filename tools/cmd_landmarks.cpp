@@ -143,7 +143,9 @@ void run_landmarks(const LandmarksOptions& o) {
             p.shards = o.runner.shards;
             const cluster::Manifest m = jobs::landmarks_manifest(p);
             const fs::path dir = o.runner.run_dir.empty() ? fs::path(o.out) / "run" : fs::path(o.runner.run_dir);
-            rows = jobs::landmarks_rows(jobs::run_and_merge(dir, m, run_options(o.runner, dir)));
+            const auto merged = run_sharded(dir, m, o.runner);
+            if (!merged) return;
+            rows = jobs::landmarks_rows(*merged);
         } else {
             rows = landmarks::compare(ds, co, &kps);
         }

@@ -173,15 +173,9 @@ void run_generated(const GeneratedFlags& f) {
     std::fprintf(stderr, "[mutate] %zu generated mutants in %zu shards, run directory %s\n", sel.size(),
                  m.shards.size(), dir.c_str());
     const auto t0 = std::chrono::steady_clock::now();
-    cluster::RunOptions ro = run_options(f.runner, dir);
-    if (f.runner.runner == "slurm" && f.runner.no_wait) {
-        cluster::prepare_run(dir, m);
-        cluster::run(dir, ro);
-        std::printf("harris-cosim mutate: submitted; `harris-cosim mutate --generate ... --run-dir %s --resume` "
-                    "renders the report when the shards are done\n", dir.c_str());
-        return;
-    }
-    const nlohmann::json merged = jobs::run_and_merge(dir, m, ro);
+    const auto got = run_sharded(dir, m, f.runner);
+    if (!got) return;
+    const nlohmann::json& merged = *got;
     const auto rs = jobs::mutants_results(merged);
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -47,7 +47,9 @@ void add_mutate_command(CLI::App& app) {
         if (cmd->count("--runner") + cmd->count("--shards") > 0) {
             const cluster::Manifest m = jobs::mutate_manifest({o->list, only, rf.shards});
             const std::filesystem::path dir = rf.run_dir.empty() ? std::filesystem::path("mutate-run") : std::filesystem::path(rf.run_dir);
-            r = jobs::mutate_result(m, jobs::run_and_merge(dir, m, run_options(rf, dir)));
+            const auto merged = run_sharded(dir, m, rf);
+            if (!merged) return;
+            r = jobs::mutate_result(m, *merged);
         } else {
             r = mutate::run_campaign(c, only, [](const std::string& s) { std::fprintf(stderr, "[mutate] %s\n", s.c_str()); });
         }

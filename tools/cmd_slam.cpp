@@ -80,7 +80,9 @@ void run_simulate(const SlamOptions& o) {
         p.shards = o.runner.shards;
         const cluster::Manifest m = jobs::slam_manifest(p);
         const std::filesystem::path dir = o.runner.run_dir.empty() ? std::filesystem::path(o.out) / "run" : std::filesystem::path(o.runner.run_dir);
-        mc = jobs::slam_result(m, jobs::run_and_merge(dir, m, run_options(o.runner, dir)));
+        const auto merged = run_sharded(dir, m, o.runner);
+        if (!merged) return;
+        mc = jobs::slam_result(m, *merged);
     } else {
         mc = slam::monte_carlo(c, o.runs, o.seed, 0.95, [](int done, int total) {
             if (done % 10 == 0 || done == total) std::fprintf(stderr, "slam: run %d/%d\n", done, total);

@@ -77,7 +77,9 @@ void run(const SweepCli& c) {
         p.shards = c.runner.shards;
         const cluster::Manifest m = jobs::sweep_manifest(p);
         const fs::path dir = c.runner.run_dir.empty() ? o.out / "run" : fs::path(c.runner.run_dir);
-        r = jobs::sweep_result(m, jobs::run_and_merge(dir, m, run_options(c.runner, dir)));
+        const auto merged = run_sharded(dir, m, c.runner);
+        if (!merged) return;
+        r = jobs::sweep_result(m, *merged);
         sweep::check_points(r, o);
         r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     } else {

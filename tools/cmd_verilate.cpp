@@ -68,7 +68,9 @@ void run_verilate_job(const VerilateArgs& a) {
     json merged;
     if (a.sharded) {
         if (a.runner.run_dir.empty()) throw InputError("a sharded verilate needs --run-dir");
-        merged = jobs::run_and_merge(a.runner.run_dir, m, run_options(a.runner, a.runner.run_dir));
+        auto got = run_sharded(a.runner.run_dir, m, a.runner);
+        if (!got) return;
+        merged = std::move(*got);
     } else {
         merged = cluster::run_in_process(jobs::registry(), m);
     }

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "jobs/jobs.hpp"
 #include "util/errors.hpp"
 
 namespace hc::tools {
@@ -78,6 +79,23 @@ cluster::RunOptions run_options(const RunnerFlags& f, const fs::path& dir) {
                      p.failed ? (", " + std::to_string(p.failed) + " failed").c_str() : "", p.elapsed_s, p.eta_s);
     };
     return o;
+}
+
+std::optional<nlohmann::json> run_sharded(const fs::path& dir, const cluster::Manifest& m, const RunnerFlags& f) {
+    const cluster::RunOptions o = run_options(f, dir);
+    if (o.runner == cluster::RunnerKind::slurm && !o.slurm.wait) {
+        jobs::registry().at(m.job);   // an unknown kind is bad input before anything is written
+        cluster::prepare_run(dir, m);
+        const cluster::RunSummary s = cluster::run(dir, o);
+        if (s.ran == 0) return jobs::merge_run(dir);   // every shard already has its result
+        std::printf("harris-cosim: submitted %zu shard(s) of %s as Slurm array job %s, merge job %s.\n"
+                    "`harris-cosim shard status %s` shows what is missing; when both jobs are done, the same\n"
+                    "command with --resume renders the report from the merged results without running anything.\n",
+                    s.ran, dir.c_str(), s.slurm_array_job.c_str(),
+                    s.slurm_merge_job.empty() ? "(none)" : s.slurm_merge_job.c_str(), dir.c_str());
+        return std::nullopt;
+    }
+    return jobs::run_and_merge(dir, m, o);
 }
 
 }  // namespace hc::tools

@@ -3,7 +3,10 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -35,5 +38,13 @@ const std::filesystem::path& program_path();
 /// A run directory that already holds results is refused unless --resume is given, so an
 /// earlier run's results are never silently reused (InputError naming the directory).
 cluster::RunOptions run_options(const RunnerFlags& f, const std::filesystem::path& dir);
+
+/// Runs the manifest's shards in `dir` and returns the merged result (jobs::run_and_merge).
+/// With --runner slurm --no-wait it submits the array and the merge job, prints their ids
+/// and how to render the report once they are done (the same command with --resume), and
+/// returns nothing: the caller writes no report. When every shard already has its result,
+/// it merges them instead, with or without --no-wait.
+std::optional<nlohmann::json> run_sharded(const std::filesystem::path& dir, const cluster::Manifest& m,
+                                          const RunnerFlags& f);
 
 }  // namespace hc::tools
