@@ -487,7 +487,8 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
     md << "The generator (`mutation/vhdl_mutants.hpp`, a tokenizer over `rtl/`) makes " << info.generated
        << " single-point mutants of 10 classes, each named ``file:line:column class `original` -> `replacement` ``.\n"
           "Each is applied to a scratch copy of `rtl/`, analysed with GHDL (mcode) and co-simulated against the\n"
-          "unmutated cycle model (`cosim::run_ghdl`, every register compared after every cycle), stimulus after\n"
+          "unmutated cycle model (`cosim::run_ghdl`: every register compared after reset, after every rising edge\n"
+          "and, for any change, while the clock is low; docs/cosim.md), stimulus after\n"
           "stimulus, stopping at the first failure:\n\n";
     md << "1. quick: " << stimulus_text(info.quick) << "\n";
     for (size_t k = 0; k < info.longer.size(); ++k) md << k + 2 << ". " << stimulus_text(info.longer[k]) << "\n";
