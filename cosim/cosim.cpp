@@ -40,19 +40,29 @@ void move_into_place(const fs::path& from, const fs::path& to) {
     fs::rename(tmp, to);
 }
 
-/// Refuses to run a simulator of the build older than a VHDL file it was built from.
-void check_fresh(const fs::path& sim, const std::string& backend) {
+/// Refuses to run a simulator older than a VHDL file it was built from; for the build's own
+/// simulators (`inputs`: the copy of rtl/ the build took before analysing it) also one whose
+/// RTL differs from that copy, whatever the files' dates.
+void check_fresh(const fs::path& sim, const std::string& backend, const fs::path& inputs = {}) {
     if (!fs::exists(sim))
         throw SimulatorError("the GHDL " + backend + " simulator '" + sim.string() +
                              "' is not built: run `cmake --build " HC_BUILD_DIR "`");
     const auto built = fs::last_write_time(sim);
-    std::vector<fs::path> inputs = rtl_sources();
+    std::vector<fs::path> files = rtl_sources();
     for (const char* f : {"harris_top_tb.vhd.in", "hc_bridge_pkg.vhd.in", "hc_bridge.h"})
-        inputs.push_back(fs::path(HC_SOURCE_DIR) / "cosim" / f);
-    for (const auto& p : inputs)
+        files.push_back(fs::path(HC_SOURCE_DIR) / "cosim" / f);
+    for (const auto& p : files)
         if (fs::exists(p) && fs::last_write_time(p) > built)
             throw SimulatorError("the GHDL " + backend + " simulator is older than " + p.string() +
                                  ", which changed since it was built: run `cmake --build " HC_BUILD_DIR "`");
+    if (inputs.empty()) return;
+    for (const auto& p : rtl_sources()) {
+        const fs::path copy = inputs / p.filename();
+        if (!fs::exists(copy) || util::read_file(copy) != util::read_file(p))
+            throw SimulatorError("the GHDL " + backend + " simulator was built from another " + p.string() +
+                                 " (its copy " + copy.string() + (fs::exists(copy) ? " differs" : " is missing") +
+                                 "): run `cmake --build " HC_BUILD_DIR "`");
+    }
 }
 
 }  // namespace
@@ -109,11 +119,16 @@ GhdlResult run_ghdl(const GhdlRun& r) {
     std::vector<std::string> argv;
     if (r.backend == "mcode") {
         const fs::path work = sim_dir / "ghdl-mcode";
-        check_fresh(work / "analysed.stamp", r.backend);   // the build's or analyse_mcode()'s
+        std::error_code ec;
+        const bool built = fs::equivalent(sim_dir, fs::path(HC_SIM_DIR), ec);
+        check_fresh(work / "analysed.stamp", r.backend, built ? work / "inputs" : fs::path{});   // the build's or analyse_mcode()'s
         argv = {HC_GHDL_MCODE, "-r", "--std=08", "--workdir=" + work.string(), "harris_top_tb"};
     } else {
         const fs::path exe = sim_dir / ("harris_top_tb_" + r.backend);
-        check_fresh(exe, r.backend);   // this build's or another directory's: never older than rtl/
+        // this build's or another directory's: never older than rtl/
+        std::error_code ec;
+        const bool built = fs::equivalent(sim_dir, fs::path(HC_SIM_DIR), ec);
+        check_fresh(exe, r.backend, built ? sim_dir / ("ghdl-" + r.backend) / "inputs" : fs::path{});
         argv = {exe.string()};
     }
     for (const auto& [name, value] : generics(g, r.formats)) argv.push_back("-g" + name + "=" + std::to_string(value));

@@ -1,8 +1,10 @@
 # stale_simulator.cmake: a GHDL simulator older than an RTL file it was built from is
-# refused (status 3) with the changed file and the command to run named, never run.
+# refused (status 3) with the changed file and the command to run named, never run; so is one
+# whose RTL differs from the copy the build took before analysing it, whatever the dates.
 # Editing an RTL file after the build is what makes a simulator stale; the test makes the
-# same state without touching rtl/: the back end's simulator (the gcc/llvm executable, the
-# mcode analysis stamp) is dated back to 2000, then its date is restored.
+# same states without touching rtl/: the back end's simulator (the gcc/llvm executable, the
+# mcode analysis stamp) is dated back to 2000, then its date is restored; then the build's
+# copy of m_products.vhd is edited, then restored.
 #   cmake -DCLI=harris-cosim -DSIM_DIR=<build>/cosim -DBACKEND=gcc|llvm|mcode -DWORK=dir -P stale_simulator.cmake
 if(BACKEND STREQUAL "mcode")
   set(stamp ${SIM_DIR}/ghdl-mcode/analysed.stamp)
@@ -22,4 +24,21 @@ if(NOT rc EQUAL 3)
 endif()
 if(NOT err MATCHES "simulator is older than [^ ]*/rtl/[a-z_]+\\.vhd, which changed since it was built: run `cmake --build ")
   message(FATAL_ERROR "the refusal does not name the changed file and the command to run")
+endif()
+
+set(copy ${SIM_DIR}/ghdl-${BACKEND}/inputs/m_products.vhd)
+if(NOT EXISTS ${copy})
+  message(FATAL_ERROR "the build kept no copy of the RTL it analysed: ${copy}")
+endif()
+file(READ ${copy} original)
+file(APPEND ${copy} "-- an edit the simulator was not built from\n")
+execute_process(COMMAND ${CLI} rtl --backend ${BACKEND} --pattern flat --size 20x10 --frames 1 --quiet
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+file(WRITE ${copy} "${original}")
+message(STATUS "${out}${err}")
+if(NOT rc EQUAL 3)
+  message(FATAL_ERROR "a ${BACKEND} simulator built from other RTL ran: status ${rc}, expected 3")
+endif()
+if(NOT err MATCHES "simulator was built from another [^ ]*/rtl/m_products\\.vhd \\(its copy [^ ]* differs\\): run `cmake --build ")
+  message(FATAL_ERROR "the refusal does not name the differing file and the command to run")
 endif()
