@@ -6,6 +6,19 @@
 # mcode analysis stamp) is dated back to 2000, then its date is restored; then the build's
 # copy of m_products.vhd is edited, then restored.
 #   cmake -DCLI=harris-cosim -DSIM_DIR=<build>/cosim -DBACKEND=gcc|llvm|mcode -DWORK=dir -P stale_simulator.cmake
+# Runs the simulator; FATAL_ERROR unless it is refused with status 3 and a message matching
+# `pattern` (`what` names the state in the failure).
+function(expect_refusal what pattern)
+  execute_process(COMMAND ${CLI} rtl --backend ${BACKEND} --pattern flat --size 20x10 --frames 1 --quiet
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message(STATUS "${out}${err}")
+  if(NOT rc EQUAL 3)
+    set(failed "${what} ${BACKEND} simulator ran: status ${rc}, expected 3" PARENT_SCOPE)
+  elseif(NOT err MATCHES "${pattern}")
+    set(failed "the refusal of ${what} ${BACKEND} simulator does not name the file and the command to run" PARENT_SCOPE)
+  endif()
+endfunction()
+
 if(BACKEND STREQUAL "mcode")
   set(stamp ${SIM_DIR}/ghdl-mcode/analysed.stamp)
 else()
@@ -15,15 +28,10 @@ set(keep ${WORK}/stamp-time)
 file(MAKE_DIRECTORY ${WORK})
 execute_process(COMMAND touch -r ${stamp} ${keep})
 execute_process(COMMAND touch -d 2000-01-01 ${stamp})
-execute_process(COMMAND ${CLI} rtl --backend ${BACKEND} --pattern flat --size 20x10 --frames 1 --quiet
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+expect_refusal("a stale" "simulator is older than [^ ]*/rtl/[a-z_]+\\.vhd, which changed since it was built: run `cmake --build ")
 execute_process(COMMAND touch -r ${keep} ${stamp})
-message(STATUS "${out}${err}")
-if(NOT rc EQUAL 3)
-  message(FATAL_ERROR "a stale ${BACKEND} simulator ran: status ${rc}, expected 3")
-endif()
-if(NOT err MATCHES "simulator is older than [^ ]*/rtl/[a-z_]+\\.vhd, which changed since it was built: run `cmake --build ")
-  message(FATAL_ERROR "the refusal does not name the changed file and the command to run")
+if(failed)
+  message(FATAL_ERROR "${failed}")
 endif()
 
 set(copy ${SIM_DIR}/ghdl-${BACKEND}/inputs/m_products.vhd)
@@ -32,13 +40,8 @@ if(NOT EXISTS ${copy})
 endif()
 file(READ ${copy} original)
 file(APPEND ${copy} "-- an edit the simulator was not built from\n")
-execute_process(COMMAND ${CLI} rtl --backend ${BACKEND} --pattern flat --size 20x10 --frames 1 --quiet
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+expect_refusal("a" "simulator was built from another [^ ]*/rtl/m_products\\.vhd \\(its copy [^ ]* differs\\): run `cmake --build ")
 file(WRITE ${copy} "${original}")
-message(STATUS "${out}${err}")
-if(NOT rc EQUAL 3)
-  message(FATAL_ERROR "a ${BACKEND} simulator built from other RTL ran: status ${rc}, expected 3")
-endif()
-if(NOT err MATCHES "simulator was built from another [^ ]*/rtl/m_products\\.vhd \\(its copy [^ ]* differs\\): run `cmake --build ")
-  message(FATAL_ERROR "the refusal does not name the differing file and the command to run")
+if(failed)
+  message(FATAL_ERROR "${failed}")
 endif()
