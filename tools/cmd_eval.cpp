@@ -66,7 +66,9 @@ void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
     if (o.sharded) {
         const fs::path dir = o.runner.run_dir.empty() ? fs::path(o.out) / "run" : fs::path(o.runner.run_dir);
         std::fprintf(stderr, "eval: %zu shard(s) in %s\n", m.shards.size(), dir.c_str());
-        merged = jobs::run_and_merge(dir, m, run_options(o.runner, dir));
+        cluster::RunOptions ro = run_options(o.runner, dir);
+        fork_workers(ro);
+        merged = jobs::run_and_merge(dir, m, ro);
     } else {
         merged = cluster::run_in_process(jobs::registry(), m);
     }

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "jobs/jobs.hpp"
 #include "util/errors.hpp"
 
 namespace hc::tools {
@@ -79,5 +80,11 @@ cluster::RunOptions run_options(const RunnerFlags& f, const fs::path& dir) {
     };
     return o;
 }
+
+void run_worker(const fs::path& dir, std::size_t index) {
+    cluster::run_shard(jobs::registry(), dir, index, {{"harris-cosim", "0.1.0"}});
+}
+
+void fork_workers(cluster::RunOptions& o) { o.fork_worker = run_worker; }
 
 }  // namespace hc::tools

@@ -36,4 +36,11 @@ const std::filesystem::path& program_path();
 /// earlier run's results are never silently reused (InputError naming the directory).
 cluster::RunOptions run_options(const RunnerFlags& f, const std::filesystem::path& dir);
 
+/// The worker's body, `harris-cosim shard run DIR INDEX` without starting the program.
+void run_worker(const std::filesystem::path& dir, std::size_t index);
+/// Local runner: each shard in a forked copy of this process running run_worker
+/// (cluster::RunOptions::fork_worker) while this process runs no other thread, else the
+/// worker program is started.
+void fork_workers(cluster::RunOptions& o);
+
 }  // namespace hc::tools
