@@ -80,6 +80,44 @@ pid_t spawn_logged(std::vector<std::string> argv, const fs::path& log) {
     return pid;
 }
 
+// Forks a copy of this process that calls fn(dir, index) with stdout and stderr appended to
+// `log` and stdin from /dev/null, as spawn_logged's worker has them; returns the pid. The
+// child exits 0 after fn returns, 3 when it throws.
+pid_t fork_logged(const std::function<void(const fs::path&, std::size_t)>& fn, const fs::path& dir,
+                  std::size_t index, const fs::path& log) {
+    std::fflush(nullptr);   // nothing buffered here is written by the child too
+    const pid_t pid = ::fork();
+    if (pid < 0) throw ClusterRunError(std::string("cannot fork a worker: ") + std::strerror(errno));
+    if (pid > 0) return pid;
+    const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    const int in = ::open("/dev/null", O_RDONLY);
+    if (out < 0 || in < 0 || ::dup2(out, 1) < 0 || ::dup2(out, 2) < 0 || ::dup2(in, 0) < 0) ::_exit(127);
+    ::close(out);
+    ::close(in);
+    int status = 0;
+    try {
+        fn(dir, index);
+    } catch (const std::exception& e) {
+        std::fflush(stdout);   // the message after what the shard printed
+        std::fprintf(stderr, "shard %zu: %s\n", index, e.what());
+        status = 3;
+    } catch (...) {
+        std::fflush(stdout);
+        std::fprintf(stderr, "shard %zu: unknown exception\n", index);
+        status = 3;
+    }
+    std::fflush(nullptr);
+    ::_exit(status);   // no exit handlers or destructors of the parent's state
+}
+
+// Whether this process runs one thread only (Linux: /proc/self/task); false when unknown.
+bool only_thread() {
+    std::error_code ec;
+    std::size_t n = 0;
+    for (fs::directory_iterator it("/proc/self/task", ec), end; !ec && it != end; it.increment(ec)) ++n;
+    return !ec && n == 1;
+}
+
 // Runs argv, returns (exit status, stdout). stderr is inherited.
 std::pair<int, std::string> capture(std::vector<std::string> argv) {
     int fds[2];
@@ -146,7 +184,8 @@ RunSummary run_local(const fs::path& dir, const Manifest& m, const std::vector<s
             argv.push_back(dir.string());
             argv.push_back(std::to_string(i));
             ++attempts[i];
-            running[spawn_logged(argv, log_path(dir, i))] = i;
+            running[o.fork_worker && only_thread() ? fork_logged(o.fork_worker, dir, i, log_path(dir, i))
+                                                   : spawn_logged(argv, log_path(dir, i))] = i;
             ++s.ran;
         }
         int st = 0;

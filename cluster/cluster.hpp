@@ -105,6 +105,12 @@ struct RunOptions {
     int jobs = 1;        ///< local: processes at once
     int retries = 1;     ///< local: extra attempts of a failed shard
     std::vector<std::string> worker;   ///< argv of the worker; DIR and INDEX are appended
+    /// local: when set, each shard runs in a forked copy of this process calling it with DIR
+    /// and INDEX instead of starting `worker`, so no shard loads the program again (dynamic
+    /// libraries, static initialisation); stdout and stderr go to the shard's log as a
+    /// started worker's do, and an exception is a failed shard. Used only while this process
+    /// runs no other thread (fork copies the calling thread only); else `worker` is started.
+    std::function<void(const fs::path& dir, std::size_t index)> fork_worker;
     std::vector<std::string> merger;   ///< slurm: argv of the dependent merge job (DIR appended); empty: none
     SlurmOptions slurm;
     ProgressFn progress;

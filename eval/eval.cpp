@@ -52,12 +52,17 @@ double since(std::chrono::steady_clock::time_point t0) {
 }
 }  // namespace
 
-SourceRun run_spec(const Stream& s, const spec::Options& o, int threads) {
+SourceRun run_spec(const Stream& s, const spec::Options& o, int threads, const Image* before) {
     const auto t0 = std::chrono::steady_clock::now();
     const spec::SpecModel m(o);
     std::vector<const Image*> ptrs;
     for (const auto& f : s.frames) ptrs.push_back(&f);
     std::int64_t prev = m.reset_max();
+    if (before && o.max_from == spec::MaxFrom::previous) {   // as if `before` were the stream's first frame
+        spec::Response r;
+        m.response(*before, r);
+        prev = r.max;
+    }
     auto fc = m.run(ptrs, prev, threads);
     SourceRun r;
     for (auto& f : fc) {

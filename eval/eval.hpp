@@ -113,7 +113,10 @@ CheckpointBase checkpoint_base(const Stream& s, const Formats& f, int frames_tot
 CycleCheckpoint warm_checkpoint(const Stream& s, const Formats& f, int offset, int frames_total,
                                 const CheckpointBase& base, int to, int warm);
 
-SourceRun run_spec(const Stream& s, const spec::Options& o, int threads);
+/// The spec model over a stream. The first frame's threshold comes from `before`'s maximum
+/// (its response only) when given and the options take the previous frame's maximum, else
+/// from the reset value.
+SourceRun run_spec(const Stream& s, const spec::Options& o, int threads, const Image* before = nullptr);
 /// The whole stream from reset.
 CycleRun run_cycle(const Stream& s, const Formats& f, bool progress);
 /// A span of a stream (see CycleSpan); vectors are indexed from span.first.

@@ -155,17 +155,11 @@ Part evaluate_part(const PartInput& in) {
                                         in.first, in.last, in.offset, in.offset + held));
     const Source source = in.source;
     const Stream own = slice(s, in.first - in.offset, in.last - in.offset);
-    const Stream with_prev = slice(s, in.first - in.offset - (look_back ? 1 : 0), in.last - in.offset);
     const int n = in.last - in.first;
-    // the spec model over the part, its first threshold from the previous frame's maximum
+    // the spec model over the part, its first threshold from the previous frame's maximum:
+    // that frame's response only, not its corners
     const auto spec_run = [&](const spec::Options& opt) {
-        SourceRun r = run_spec(with_prev, opt, in.threads);
-        if (look_back) {
-            r.masks.erase(r.masks.begin());
-            r.thr.erase(r.thr.begin());
-            r.max.erase(r.max.begin());
-        }
-        return r;
+        return run_spec(own, opt, in.threads, look_back ? &s.frames[in.first - in.offset - 1] : nullptr);
     };
     Part p;
     p.sequence = own.names.front().substr(0, own.names.front().find('/'));

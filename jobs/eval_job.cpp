@@ -16,10 +16,13 @@ namespace hc::jobs {
 
 namespace {
 
-/// Frames of warm-up before a cycle checkpoint (whole pairs): find-max publishes about once
-/// per frame and needs three publications after the pipeline has flushed; a warm-up that
-/// sees fewer (eval::warm_checkpoint refuses it) is repeated with the longer one.
-constexpr int kWarmFrames = 4, kWarmFramesLong = 8;
+/// Frames of warm-up before a cycle checkpoint, tried in order: find-max publishes a little
+/// less than once per frame (the drift) and needs three publications after the pipeline has
+/// flushed, which the shortest warm-up sees unless its period counter starts just past a
+/// publication; a warm-up that sees fewer (eval::warm_checkpoint refuses it) is repeated
+/// with the next one.
+constexpr int kWarmFrames[] = {3, 4, 8};
+constexpr int kWarmFramesMax = 8;
 
 /// Stereo pairs [first, last) of a sequence, as a job selects them.
 util::Range sequence_pairs(const fs::path& kitti, const std::string& seq, util::Range r, const std::string& what) {
@@ -135,20 +138,28 @@ cluster::Manifest eval_manifest(const EvalJob& j) {
             for (std::size_t t = 1; t < parts.size(); ++t) {
                 const int to_pair = static_cast<int>(parts[t].first), to = 2 * (to_pair - p0);
                 eval::CycleCheckpoint c;
-                if (to - kWarmFramesLong < 1) {
+                if (to - kWarmFramesMax < 1) {
                     std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (from reset)\n", j.sequences[s].c_str(), to_pair);
                     c = eval::cycle_checkpoint(load(p0, to_pair + 1), Formats{}, 0, total, nullptr, to);
                 } else {
                     if (!base) base = eval::checkpoint_base(load(p0, p0 + 2), Formats{}, total);
-                    std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (warm-up from pair %d)\n",
-                                 j.sequences[s].c_str(), to_pair, to_pair - kWarmFrames / 2);
-                    try {
-                        c = eval::warm_checkpoint(load(to_pair - kWarmFrames / 2, to_pair + 1), Formats{},
-                                                  to - kWarmFrames, total, *base, to, kWarmFrames);
-                    } catch (const InternalError& e) {
-                        std::fprintf(stderr, "eval: %s: warm-up of %d frames instead\n", e.what(), kWarmFramesLong);
-                        c = eval::warm_checkpoint(load(to_pair - kWarmFramesLong / 2, to_pair + 1), Formats{},
-                                                  to - kWarmFramesLong, total, *base, to, kWarmFramesLong);
+                    int held_from = -1;   // the first pair of `held`, which ends at pair to_pair
+                    eval::Stream held;
+                    for (const int warm : kWarmFrames) {
+                        const int from_pair = p0 + (to - warm) / 2;
+                        if (held_from != from_pair) {
+                            held = load(from_pair, to_pair + 1);
+                            held_from = from_pair;
+                        }
+                        std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (warm-up of %d frames)\n",
+                                     j.sequences[s].c_str(), to_pair, warm);
+                        try {
+                            c = eval::warm_checkpoint(held, Formats{}, 2 * (from_pair - p0), total, *base, to, warm);
+                            break;
+                        } catch (const InternalError& e) {
+                            if (warm == kWarmFramesMax) throw;
+                            std::fprintf(stderr, "eval: %s: a longer warm-up\n", e.what());
+                        }
                     }
                 }
                 starts[t] = eval::to_json(c);

@@ -66,7 +66,7 @@ void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
     if (o.sharded) {
         const fs::path dir = o.runner.run_dir.empty() ? fs::path(o.out) / "run" : fs::path(o.runner.run_dir);
         std::fprintf(stderr, "eval: %zu shard(s) in %s\n", m.shards.size(), dir.c_str());
-        auto got = run_sharded(dir, m, o.runner);
+        auto got = run_sharded(dir, m, o.runner, /*fork=*/true);
         if (!got) return;
         merged = std::move(*got);
     } else {

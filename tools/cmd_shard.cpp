@@ -5,6 +5,7 @@
 #include "cluster/cluster.hpp"
 #include "jobs/jobs.hpp"
 #include "tools/commands.hpp"
+#include "tools/runner_flags.hpp"
 
 namespace hc::tools {
 
@@ -24,7 +25,7 @@ void add_shard_command(CLI::App& app) {
     run->add_option("dir", o->dir, "run directory")->required();
     run->add_option("index", o->index, "shard index")->required();
     run->callback([o]() {
-        cluster::run_shard(jobs::registry(), o->dir, o->index, {{"harris-cosim", "0.1.0"}});
+        run_worker(o->dir, o->index);
     });
     CLI::App* merge = cmd->add_subcommand("merge", "fold every shard result of DIR into DIR/merged.json");
     merge->add_option("dir", o->dir, "run directory")->required();

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
         "what its fixed-point model says, and measures it against OpenCV's Harris.\n"
         "Exit status: 0 pass, 1 mismatch, 2 bad input, 3 simulator failure, 4 translation fault, 5 internal fault."};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "harris-cosim 0.1.0");
+    app.set_version_flag("--version", "harris-cosim " HC_VERSION);
     hc::tools::add_rtl_command(app);
     hc::tools::add_model_command(app);
     hc::tools::add_golden_command(app);

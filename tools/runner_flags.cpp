@@ -81,8 +81,10 @@ cluster::RunOptions run_options(const RunnerFlags& f, const fs::path& dir) {
     return o;
 }
 
-std::optional<nlohmann::json> run_sharded(const fs::path& dir, const cluster::Manifest& m, const RunnerFlags& f) {
-    const cluster::RunOptions o = run_options(f, dir);
+std::optional<nlohmann::json> run_sharded(const fs::path& dir, const cluster::Manifest& m, const RunnerFlags& f,
+                                          bool fork) {
+    cluster::RunOptions o = run_options(f, dir);
+    if (fork) fork_workers(o);
     if (o.runner == cluster::RunnerKind::slurm && !o.slurm.wait) {
         jobs::registry().at(m.job);   // an unknown kind is bad input before anything is written
         cluster::prepare_run(dir, m);
@@ -97,5 +99,11 @@ std::optional<nlohmann::json> run_sharded(const fs::path& dir, const cluster::Ma
     }
     return jobs::run_and_merge(dir, m, o);
 }
+
+void run_worker(const fs::path& dir, std::size_t index) {
+    cluster::run_shard(jobs::registry(), dir, index, {{"harris-cosim", HC_VERSION}});
+}
+
+void fork_workers(cluster::RunOptions& o) { o.fork_worker = run_worker; }
 
 }  // namespace hc::tools

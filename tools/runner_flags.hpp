@@ -43,8 +43,15 @@ cluster::RunOptions run_options(const RunnerFlags& f, const std::filesystem::pat
 /// With --runner slurm --no-wait it submits the array and the merge job, prints their ids
 /// and how to render the report once they are done (the same command with --resume), and
 /// returns nothing: the caller writes no report. When every shard already has its result,
-/// it merges them instead, with or without --no-wait.
+/// it merges them instead, with or without --no-wait. `fork`: the local runner forks its
+/// workers (fork_workers).
 std::optional<nlohmann::json> run_sharded(const std::filesystem::path& dir, const cluster::Manifest& m,
-                                          const RunnerFlags& f);
+                                          const RunnerFlags& f, bool fork = false);
+/// The worker's body, `harris-cosim shard run DIR INDEX` without starting the program.
+void run_worker(const std::filesystem::path& dir, std::size_t index);
+/// Local runner: each shard in a forked copy of this process running run_worker
+/// (cluster::RunOptions::fork_worker) while this process runs no other thread, else the
+/// worker program is started.
+void fork_workers(cluster::RunOptions& o);
 
 }  // namespace hc::tools

@@ -352,8 +352,10 @@ std::vector<FrameCorners> SpecModel::run(const std::vector<const Image*>& frames
     const int n = static_cast<int>(frames.size());
     std::vector<FrameCorners> out(static_cast<size_t>(n));
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    // responses are 8 bytes a pixel: hold a few frames at a time, not the whole stream
-    const int chunk = 8;
+    // responses are 8 bytes a pixel: hold as many frames at a time as there are threads (at
+    // most 8), not the whole stream; a run allocates these afresh, so each one costs the
+    // first touch of its pages in every run
+    const int chunk = std::clamp(arena.max_concurrency(), 1, 8);
     std::vector<Response> resp(static_cast<size_t>(std::min(n, chunk)));
     for (int first = 0; first < n; first += chunk) {
         const int last = std::min(n, first + chunk);

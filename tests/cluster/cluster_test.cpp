@@ -10,7 +10,10 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "cluster/cluster.hpp"
@@ -133,6 +136,37 @@ TEST_CASE("a shard killed mid-run leaves no result, and a resume completes the r
     const json merged = merge(squares_registry(), d);
     CHECK(merged == run_in_process(squares_registry(), m));
     CHECK(merged.at("items").size() == 30);
+}
+
+TEST_CASE("forked workers write what started ones write, print into the shard's log, and a worker that throws leaves its shard missing",
+          "[cluster]") {
+    const fs::path d = scratch("forked");
+    const Manifest m = squares_manifest(60, 5);
+    prepare_run(d, m);
+    RunOptions o = local_options(2);
+    o.worker = {"/nonexistent/cluster-worker"};   // never started: each shard runs in a fork
+    o.retries = 0;
+    o.fork_worker = [](const fs::path& dir, std::size_t index) {
+        std::printf("forked worker of shard %zu\n", index);
+        if (index == 3) throw std::runtime_error("no result for this one");
+        run_shard(squares_registry(), dir, index, {{"cluster_tests", "1"}});
+    };
+    const RunSummary s = run(d, o);
+    CHECK(s.ran == 5);
+    CHECK(s.failed == std::vector<std::size_t>{3});
+    const auto log = [&](std::size_t i) {
+        std::ifstream f(log_path(d, i));
+        return std::string(std::istreambuf_iterator<char>(f), {});
+    };
+    CHECK(log(0) == "forked worker of shard 0\n");
+    CHECK(log(3) == "forked worker of shard 3\nshard 3: no result for this one\n");
+    o.fork_worker = [](const fs::path& dir, std::size_t index) {
+        run_shard(squares_registry(), dir, index, {{"cluster_tests", "1"}});
+    };
+    const RunSummary resumed = run(d, o);
+    CHECK(resumed.ran == 1);
+    CHECK(resumed.skipped == 4);
+    CHECK(merge(squares_registry(), d) == run_in_process(squares_registry(), m));
 }
 
 TEST_CASE("a result file of another run is refused, not merged", "[cluster]") {

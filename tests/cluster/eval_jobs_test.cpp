@@ -187,6 +187,27 @@ TEST_CASE("a checkpoint from a warm-up of six frames equals the one from the ser
     CHECK_THROWS_AS(eval::warm_checkpoint(held, f, 4, 12, base, 10, 1), InternalError);
 }
 
+TEST_CASE("every warm-up of three frames that is accepted gives the serial run's checkpoint", "[cluster]") {
+    const auto s = pattern_stream(96, 40, 12);
+    const Formats f{};
+    const eval::CheckpointBase base = eval::checkpoint_base(s, f, 12);
+    std::vector<int> accepted, refused;
+    for (int to = 4; to < 12; ++to) {
+        INFO("checkpoint at frame " << to);
+        const eval::CycleCheckpoint serial = eval::cycle_checkpoint(s, f, 0, 12, nullptr, to);
+        try {
+            const eval::CycleCheckpoint warm = eval::warm_checkpoint(s, f, 0, 12, base, to, 3);
+            CHECK(eval::to_json(warm) == eval::to_json(serial));
+            accepted.push_back(to);
+        } catch (const InternalError&) {
+            refused.push_back(to);   // fewer than 3 publications: a longer warm-up is needed
+        }
+    }
+    // this stream's period counter: 3 publications in 3 frames before frames 4..7 and 11 only
+    CHECK(accepted == std::vector<int>{4, 5, 6, 7, 11});
+    CHECK(refused == std::vector<int>{8, 9, 10});
+}
+
 TEST_CASE("the spec model's threshold of a frame depends only on the previous frame", "[cluster]") {
     const auto s = pattern_stream(96, 40, 6);
     const auto whole = eval::run_spec(s, spec::Options{}, 1);
@@ -200,6 +221,28 @@ TEST_CASE("the spec model's threshold of a frame depends only on the previous fr
     for (int k = 3; k < 6; ++k) {
         CHECK(part.masks[k - 2] == whole.masks[k]);
         CHECK(part.thr[k - 2] == whole.thr[k]);
+    }
+}
+
+TEST_CASE("the spec model after a frame given for its maximum only equals the run through that frame, in every ablation variant", "[cluster]") {
+    const auto s = pattern_stream(96, 40, 6);
+    eval::Stream tail;   // frames 3..5, frame 2 given for its maximum only
+    for (int k = 3; k < 6; ++k) {
+        tail.frames.push_back(s.frames[k]);
+        tail.names.push_back(s.names[k]);
+        tail.pair_index.push_back(s.pair_index[k]);
+    }
+    for (const auto& v : eval::ablation_variants()) {
+        INFO("variant " << v.name);
+        const auto whole = eval::run_spec(s, v.opt, 1);
+        const auto part = eval::run_spec(tail, v.opt, 1, &s.frames[2]);
+        REQUIRE(part.masks.size() == 3);
+        for (int k = 3; k < 6; ++k) {
+            INFO("frame " << k);
+            CHECK(part.masks[k - 3] == whole.masks[k]);
+            CHECK(part.thr[k - 3] == whole.thr[k]);
+            CHECK(part.max[k - 3] == whole.max[k]);
+        }
     }
 }
 

@@ -15,7 +15,9 @@ flags=(eval --source cycle --kitti "$d/kitti" --sequences 04 --out "$d/out")
 coord=$!
 pid=
 for _ in $(seq 1 1200); do
-  pid=$(pgrep -f "shard run $d/run 1\$" | head -1)
+  # one shard at a time: shard 1 is the coordinator's only child once its log exists (a
+  # forked copy of the coordinator or a started `shard run` worker)
+  [ -e "$d/run/logs/00001.log" ] && pid=$(pgrep -P "$coord" | head -1)
   [ -n "$pid" ] && break
   sleep 0.1
 done
