@@ -117,18 +117,17 @@ GhdlResult run_ghdl(const GhdlRun& r) {
     util::write_file_atomic(cfg_path, to_json(cfg));
 
     std::vector<std::string> argv;
+    // the build's own simulators are also checked against the copy of rtl/ they were built from
+    std::error_code ec;
+    const fs::path inputs = fs::equivalent(sim_dir, fs::path(HC_SIM_DIR), ec)
+                                ? sim_dir / ("ghdl-" + r.backend) / "inputs" : fs::path{};
     if (r.backend == "mcode") {
         const fs::path work = sim_dir / "ghdl-mcode";
-        std::error_code ec;
-        const bool built = fs::equivalent(sim_dir, fs::path(HC_SIM_DIR), ec);
-        check_fresh(work / "analysed.stamp", r.backend, built ? work / "inputs" : fs::path{});   // the build's or analyse_mcode()'s
+        check_fresh(work / "analysed.stamp", r.backend, inputs);   // the build's or analyse_mcode()'s
         argv = {HC_GHDL_MCODE, "-r", "--std=08", "--workdir=" + work.string(), "harris_top_tb"};
     } else {
         const fs::path exe = sim_dir / ("harris_top_tb_" + r.backend);
-        // this build's or another directory's: never older than rtl/
-        std::error_code ec;
-        const bool built = fs::equivalent(sim_dir, fs::path(HC_SIM_DIR), ec);
-        check_fresh(exe, r.backend, built ? sim_dir / ("ghdl-" + r.backend) / "inputs" : fs::path{});
+        check_fresh(exe, r.backend, inputs);   // this build's or another directory's: never older than rtl/
         argv = {exe.string()};
     }
     for (const auto& [name, value] : generics(g, r.formats)) argv.push_back("-g" + name + "=" + std::to_string(value));
