@@ -1,5 +1,6 @@
 // report.cpp: see report.hpp.
 #include "eval/report.hpp"
+#include "util/errors.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -158,6 +159,12 @@ void write_overlay(const fs::path& file, const Image& img, const std::vector<std
     util::write_file_atomic(file, std::string(buf.begin(), buf.end()));
 }
 
+void require_rtl_agreement(const Report& r, const fs::path& out) {
+    if (r.rtl_mismatches > 0)
+        throw MismatchError(fmt::format("eval --source rtl: {} reads of the netlist disagree with the cycle model "
+                                        "run in lock step (report in {})", r.rtl_mismatches, out.string()));
+}
+
 bool write_plot(const fs::path& out, const Report& r) {
     // gnuplot's output goes to a log beside the plot's temporaries, removed with them
     const fs::path log = out / fmt::format(".plot.{}.log", ::getpid());
@@ -170,17 +177,25 @@ bool write_plot(const fs::path& out, const Report& r) {
     };
     const fs::path dat = out / fmt::format(".plot.{}.dat", ::getpid());
     const fs::path png_tmp = out / fmt::format(".recall_precision.{}.png", ::getpid());
+    std::vector<double> values, frames;
     {
         std::ofstream d(dat);
         for (const auto& f : r.frames)
-            if (f.scored) d << f.frame << ' ' << f.c.recall() << ' ' << f.c.precision() << '\n';
+            if (f.scored) {
+                d << f.frame << ' ' << f.c.recall() << ' ' << f.c.precision() << '\n';
+                values.insert(values.end(), {f.c.recall(), f.c.precision()});
+                frames.push_back(f.frame);
+            }
     }
+    // framed on the data: the rates' extent with a margin (within 0..1), the frames' extent
+    const std::string axes = "set yrange " + util::axis_range(values, 0.08, 0.0, 1.0, 0.01).gnuplot() +
+                             "\nset xrange " + util::axis_range(frames, 0.02, -1e300, 1e300, 1.0).gnuplot() + "\n";
     const fs::path gp = out / fmt::format(".plot.{}.gp", ::getpid());
     {
         std::ofstream g(gp);
         g << "set terminal pngcairo size 1000,400\n" << "set output '" << png_tmp.string() << "'\n"
           << "set title 'recall and precision per frame (" << r.source << " vs OpenCV)'\n"
-          << "set xlabel 'frame in stream (L0 R0 L1 R1 ...)'\nset yrange [0:1.02]\nset key bottom right\nset grid\n"
+          << "set xlabel 'frame in stream (L0 R0 L1 R1 ...)'\n" << axes << "set key outside right\nset grid\n"
           << "plot '" << dat.string() << "' using 1:2 with linespoints title 'recall', '' using 1:3 with linespoints title 'precision'\n";
     }
     const int rc = gnuplot(gp);
@@ -190,7 +205,7 @@ bool write_plot(const fs::path& out, const Report& r) {
         // pngcairo may be absent from gnuplot-nox builds: fall back to the plain png terminal
         std::ofstream g(gp);
         g << "set terminal png size 1000,400\nset output '" << png_tmp.string() << "'\n"
-          << "set title 'recall and precision per frame'\nset yrange [0:1.02]\nset key bottom right\nset grid\n"
+          << "set title 'recall and precision per frame'\n" << axes << "set key outside right\nset grid\n"
           << "plot '-' using 1:2 with linespoints title 'recall', '-' using 1:2 with linespoints title 'precision'\n";
         for (int k = 0; k < 2; ++k) {
             for (const auto& f : r.frames)

@@ -1,4 +1,6 @@
 // text.cpp: hashing and the little text formats (util.hpp).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -83,6 +85,30 @@ std::vector<RegressionStream> read_regression_set(const std::filesystem::path& p
     }
     if (v.empty()) throw InputError("regression set '" + p.string() + "' has no stream");
     return v;
+}
+
+std::string AxisRange::gnuplot() const {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "[%.6g:%.6g]", lo, hi);
+    return buf;
+}
+
+AxisRange axis_range(const std::vector<double>& v, double margin, double floor, double ceil, double min_span) {
+    double a = 1e300, b = -1e300;
+    for (double x : v)
+        if (std::isfinite(x)) a = std::min(a, x), b = std::max(b, x);
+    if (a > b) {
+        if (floor > -1e300 && ceil < 1e300) return {floor, ceil};
+        return {0, 1};
+    }
+    double span = b - a;
+    if (span < min_span) {
+        const double mid = (a + b) / 2;
+        a = mid - min_span / 2;
+        b = mid + min_span / 2;
+        span = min_span;
+    }
+    return {std::max(floor, a - margin * span), std::min(ceil, b + margin * span)};
 }
 
 }  // namespace hc::util

@@ -95,4 +95,18 @@ struct RegressionStream {
 /// Throws InputError naming the file and line when it cannot be read or a line is bad.
 std::vector<RegressionStream> read_regression_set(const std::filesystem::path& p);
 
+// ---- plots ----------------------------------------------------------------------------
+
+/// A plot axis framed on its data: [lo, hi] spans the finite values of `v` with `margin` of
+/// their extent on either side (at least `min_span` wide, centred on them), clipped to
+/// [floor, ceil] (a recall axis: 0 and 1). With no finite value: [floor, ceil] when both are
+/// finite, else [0, 1].
+struct AxisRange {
+    double lo = 0, hi = 1;
+    /// "[lo:hi]" for gnuplot's `set xrange` / `set yrange`
+    std::string gnuplot() const;
+};
+AxisRange axis_range(const std::vector<double>& v, double margin = 0.05, double floor = -1e300,
+                     double ceil = 1e300, double min_span = 1e-6);
+
 }  // namespace hc::util

@@ -1,6 +1,7 @@
 // util_test.cpp: the shared helpers of util/util.hpp.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -74,4 +75,19 @@ TEST_CASE("a child process's exit status, working directory and log come back", 
     CHECK(util::run_process({"sh", "-c", "echo $HC_X"}, {.extra_env = {"HC_X=42"}, .stdout_file = d.path() / "out"}) == 0);
     CHECK(util::read_file(d.path() / "out") == "42\n");
     CHECK_THROWS_AS(util::run_process({"no-such-program-hc"}), SimulatorError);
+}
+
+TEST_CASE("a plot axis spans its data with a margin, clipped to its bounds", "[model][util]") {
+    // recall between 0.9 and 1.0: 5 % of the 0.1 extent either side, the top clipped at 1
+    const auto r = util::axis_range({0.9, 0.95, 1.0, std::nan("")}, 0.05, 0.0, 1.0);
+    CHECK(r.lo == Approx(0.895));
+    CHECK(r.hi == Approx(1.0));
+    CHECK(r.gnuplot() == "[0.895:1]");
+    // one value: a span of min_span centred on it
+    const auto one = util::axis_range({2.0}, 0.1, -1e300, 1e300, 1.0);
+    CHECK(one.lo == Approx(1.45));
+    CHECK(one.hi == Approx(2.55));
+    // nothing finite: the bounds when both are given, else [0, 1]
+    CHECK(util::axis_range({}, 0.05, 0.0, 1.0).gnuplot() == "[0:1]");
+    CHECK(util::axis_range({INFINITY}).hi == 1.0);
 }
