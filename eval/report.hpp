@@ -52,6 +52,9 @@ struct Report {
     std::vector<DeviationRow> deviations;
     std::vector<std::string> notes;
     std::vector<std::string> overlays;   ///< overlay PNG files written (names in the output directory)
+    /// rtl source: reads where the netlist and the cycle model run in lock step disagree (a
+    /// regression failure: the command exits 1 after writing the report); 0 for the others
+    long rtl_mismatches = 0;
 };
 
 /// summary.md, frames.csv, totals.json (and sequences.csv with several sequences). Timings
@@ -61,6 +64,10 @@ void write_reports(const std::filesystem::path& out, const Report& r);
 /// Overlay: the frame in grey, both = green, source only = red, reference only = blue.
 void write_overlay(const std::filesystem::path& file, const Image& img, const std::vector<std::uint8_t>& src,
                    const std::vector<std::uint8_t>& ref);
+/// The rtl source is also a regression of the netlist against the cycle model: throws
+/// MismatchError (status 1) naming the count and the report directory `out` when any read
+/// disagreed (Report::rtl_mismatches > 0); nothing for the other sources.
+void require_rtl_agreement(const Report& r, const std::filesystem::path& out);
 /// recall/precision per scored frame via gnuplot; false (with a warning) if gnuplot is missing.
 bool write_plot(const std::filesystem::path& out, const Report& r);
 

@@ -206,6 +206,7 @@ Report merge_parts(const std::vector<Part>& parts, Source source, bool ablation)
         geometries.insert({p.width, p.height});
     }
     if (rep.sequences.size() == 1) rep.sequences.clear();   // a single stream: no per-sequence table
+    rep.rtl_mismatches = sum.rtl_mismatches;
     if (source == Source::rtl)
         rep.notes.push_back(fmt::format(
             "RTL source: GHDL-synthesised netlist under Verilator (gate passed), {} reads disagreeing with the "

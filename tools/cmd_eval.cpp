@@ -86,6 +86,7 @@ void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
                  rep.source.c_str(), rep.total.recall(), rep.total.precision(), (unsigned long long)rep.total.tp,
                  (unsigned long long)rep.total.fp, (unsigned long long)rep.total.fn,
                  (fs::path(o.out) / "summary.md").c_str());
+    eval::require_rtl_agreement(rep, o.out);
 }
 
 void run_eval(const EvalOptions& o) {
@@ -117,6 +118,7 @@ void run_eval(const EvalOptions& o) {
                  rep.source.c_str(), rep.total.recall(), rep.total.precision(), (unsigned long long)rep.total.tp,
                  (unsigned long long)rep.total.fp, (unsigned long long)rep.total.fn, rep.seconds_total,
                  (fs::path(o.out) / "summary.md").c_str());
+    eval::require_rtl_agreement(rep, o.out);
 }
 
 }  // namespace

@@ -1,6 +1,11 @@
 #!/usr/bin/env bash
 # setup.sh: installs the Debian packages harris-cosim needs (only the missing ones), then
 # configures and builds the project in ./build. Safe to run again.
+#   bash tools/setup.sh              everything (libraries, command line, simulators, tests,
+#                                    fuzzers, benchmarks)
+#   bash tools/setup.sh TARGET...    only those targets and what they need (the main job
+#                                    builds `main-job`: the command line and the simulators and
+#                                    tests of its co-simulation regression)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -23,4 +28,8 @@ fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j"$jobs"
+if (($#)); then
+  cmake --build build -j"$jobs" --target "$@"
+else
+  cmake --build build -j"$jobs"
+fi

@@ -6,6 +6,8 @@
 #include <opencv2/core.hpp>
 
 #include "eval/eval.hpp"
+#include "eval/report.hpp"
+#include "util/errors.hpp"
 #include "model/spec/opencv_reference.hpp"
 #include "model/spec/spec_model.hpp"
 
@@ -96,6 +98,15 @@ TEST_CASE("with every approximation ideal the spec model finds exactly OpenCV's 
 TEST_CASE("an unknown source is refused by name", "[eval]") {
     CHECK_THROWS_WITH(eval::parse_source("fpga"), Catch::Contains("fpga"));
     CHECK(eval::parse_source("rtl") == eval::Source::rtl);
+}
+
+TEST_CASE("an rtl evaluation whose netlist disagreed with the cycle model on a read is a mismatch", "[eval]") {
+    eval::Report r;
+    r.source = "rtl";
+    CHECK_NOTHROW(eval::require_rtl_agreement(r, "out"));
+    r.rtl_mismatches = 3;
+    CHECK_THROWS_AS(eval::require_rtl_agreement(r, "out"), MismatchError);
+    CHECK_THROWS_WITH(eval::require_rtl_agreement(r, "out"), Catch::Contains("3 reads") && Catch::Contains("out"));
 }
 
 TEST_CASE("the spec model and the cycle model agree on every pixel the hardware processes at the same thresholds",
