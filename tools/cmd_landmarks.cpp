@@ -315,7 +315,7 @@ void run_landmarks(const LandmarksOptions& o) {
                                       : std::string("ratio 1, the thesis's test of the grid, for every descriptor but "
                                                     "sift, which uses 0.8 as the thesis's SIFT reference (after Lowe); "
                                                     "sift-ratio1 is SIFT at ratio 1"),
-                          o.drop_ties ? ", ties dropped" : ", as printed");
+                          o.drop_ties ? "; ties dropped" : "; the test as printed");
         if (ds.rig)
             md << "A rig's unrectified pairs (`--calib " << o.calib
                << "`): keypoints undistorted and rectified by cv::undistortPoints with the calibration's intrinsics, "
