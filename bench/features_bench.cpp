@@ -1,11 +1,12 @@
 // features_bench.cpp: descriptor extraction + stereo matching per stereo pair, one thread:
 // the grid descriptor (thesis variant, g = 16, h = 3: the thesis's Harris choice; and the
-// corrected variant) against BRIEF, each followed by the same brute-force Hamming matcher
+// corrected variant) against BRIEF (the authors' 9 x 9 box smoothing over an integral image,
+// and the paper's 9 x 9 Gaussian), each followed by the same brute-force Hamming matcher
 // (hc::features::match_stereo: 2-NN both ways, symmetry, printed ratio test, |dy| < 5), on
 // the same keypoints, in the same run. Goal: grid + matching faster than BRIEF + matching
 // (thesis Tables 9-10: 1.72-1.88 times slower on a PC), measured by BM_grid_vs_brief_interleaved
-// (both chains alternately in every iteration: robust to a changing machine load). Also each
-// chain and stage alone, FREAK, and grid extraction against the keypoint count.
+// (the three chains one after the other in every iteration: robust to a changing machine
+// load). Also each chain and stage alone, FREAK, and grid extraction against the keypoint count.
 // Pair: KITTI 01 pair 0 from the data directory ($HARRIS_COSIM_DATA, else the build
 // default), else opencv-doc's aloeL/aloeR; keypoints: the 1,000 strongest Harris corners
 // per image at least 28 px inside it (BRIEF's margin), so every descriptor sees the same ones.
@@ -90,50 +91,54 @@ size_t describe_and_match_once(cv::Feature2D& f) {
 
 cv::Ptr<cv::Feature2D> grid_thesis() { return GridDescriptor::create(16, 3, GridVariant::thesis); }
 cv::Ptr<cv::Feature2D> grid_corrected() { return GridDescriptor::create(16, 3, GridVariant::corrected); }
-cv::Ptr<cv::Feature2D> brief() { return BriefDescriptor::create(); }
+cv::Ptr<cv::Feature2D> brief() { return BriefDescriptor::create(BorderPolicy::drop, BriefSmoothing::box); }
+cv::Ptr<cv::Feature2D> brief_gaussian() {
+    return BriefDescriptor::create(BorderPolicy::drop, BriefSmoothing::gaussian);
+}
 cv::Ptr<cv::Feature2D> freak() { return FreakDescriptor::create(); }
 
 void BM_grid_thesis_describe_and_match(benchmark::State& st) { run_describe_and_match(st, grid_thesis()); }
 void BM_grid_corrected_describe_and_match(benchmark::State& st) { run_describe_and_match(st, grid_corrected()); }
 void BM_brief_describe_and_match(benchmark::State& st) { run_describe_and_match(st, brief()); }
+void BM_brief_gaussian_describe_and_match(benchmark::State& st) { run_describe_and_match(st, brief_gaussian()); }
 void BM_freak_describe_and_match(benchmark::State& st) { run_describe_and_match(st, freak()); }
 void BM_grid_thesis_describe(benchmark::State& st) { run_describe(st, grid_thesis()); }
 void BM_grid_corrected_describe(benchmark::State& st) { run_describe(st, grid_corrected()); }
 void BM_brief_describe(benchmark::State& st) { run_describe(st, brief()); }
+void BM_brief_gaussian_describe(benchmark::State& st) { run_describe(st, brief_gaussian()); }
 void BM_grid_thesis_match(benchmark::State& st) { run_match(st, grid_thesis()); }
 void BM_grid_corrected_match(benchmark::State& st) { run_match(st, grid_corrected()); }
 void BM_brief_match(benchmark::State& st) { run_match(st, brief()); }
 
-/// Grid (thesis) + matching and BRIEF + matching alternately in every iteration, each timed
-/// (real and thread CPU time), so that a changing machine load hits both alike; counters:
-/// the two mean times per pair and their ratios.
+/// Grid (thesis) + matching, BRIEF (box) + matching and BRIEF (Gaussian) + matching one after
+/// the other in every iteration, each timed (real and thread CPU time), so that a changing
+/// machine load hits all alike; counters: the mean times per pair and the grid's ratios to
+/// each BRIEF.
 void BM_grid_vs_brief_interleaved(benchmark::State& st) {
-    const auto grid = grid_thesis(), br = brief();
-    double grid_real = 0, brief_real = 0, grid_cpu = 0, brief_cpu = 0;
+    const cv::Ptr<cv::Feature2D> chains[3] = {grid_thesis(), brief(), brief_gaussian()};
+    const char* names[3] = {"grid", "brief", "brief_gaussian"};
+    double real[3] = {0, 0, 0}, cpu[3] = {0, 0, 0};
     size_t sink = 0;
     using clock = std::chrono::steady_clock;
     for (auto _ : st) {
-        const auto r0 = clock::now();
-        const double c0 = thread_cpu_ms();
-        sink += describe_and_match_once(*grid);
-        const auto r1 = clock::now();
-        const double c1 = thread_cpu_ms();
-        sink += describe_and_match_once(*br);
-        const auto r2 = clock::now();
-        const double c2 = thread_cpu_ms();
-        grid_real += std::chrono::duration<double, std::milli>(r1 - r0).count();
-        brief_real += std::chrono::duration<double, std::milli>(r2 - r1).count();
-        grid_cpu += c1 - c0;
-        brief_cpu += c2 - c1;
+        for (int i = 0; i < 3; ++i) {
+            const auto r0 = clock::now();
+            const double c0 = thread_cpu_ms();
+            sink += describe_and_match_once(*chains[i]);
+            real[i] += std::chrono::duration<double, std::milli>(clock::now() - r0).count();
+            cpu[i] += thread_cpu_ms() - c0;
+        }
     }
     benchmark::DoNotOptimize(sink);
     const double n = double(st.iterations());
-    st.counters["grid_real_ms"] = grid_real / n;
-    st.counters["brief_real_ms"] = brief_real / n;
-    st.counters["grid_cpu_ms"] = grid_cpu / n;
-    st.counters["brief_cpu_ms"] = brief_cpu / n;
-    st.counters["real_ratio"] = grid_real / brief_real;
-    st.counters["cpu_ratio"] = grid_cpu / brief_cpu;
+    for (int i = 0; i < 3; ++i) {
+        st.counters[std::string(names[i]) + "_real_ms"] = real[i] / n;
+        st.counters[std::string(names[i]) + "_cpu_ms"] = cpu[i] / n;
+    }
+    st.counters["real_ratio"] = real[0] / real[1];
+    st.counters["cpu_ratio"] = cpu[0] / cpu[1];
+    st.counters["real_ratio_gaussian"] = real[0] / real[2];
+    st.counters["cpu_ratio_gaussian"] = cpu[0] / cpu[2];
 }
 BENCHMARK(BM_grid_vs_brief_interleaved)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 
@@ -153,9 +158,9 @@ void BM_grid_thesis_describe_n_keypoints(benchmark::State& st) {
 }
 BENCHMARK(BM_grid_thesis_describe_n_keypoints)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-/// BRIEF's smoothing alone (the paper's 9 x 9 Gaussian of sigma 2 on both images, padded by
-/// the 28-px margin as BriefDescriptor does): the share of BRIEF's extraction that the
-/// authors' box filter on an integral image would make cheaper.
+/// BRIEF's smoothing alone on both images, padded by the 28-px margin as BriefDescriptor
+/// does: the paper's 9 x 9 Gaussian of sigma 2 over the whole image (BM_brief_smoothing_only)
+/// against the integral image the authors' box filter reads (BM_brief_integral_only).
 void BM_brief_smoothing_only(benchmark::State& st) {
     cv::Mat padded, smooth;
     for (auto _ : st) {
@@ -166,15 +171,28 @@ void BM_brief_smoothing_only(benchmark::State& st) {
         }
     }
 }
+void BM_brief_integral_only(benchmark::State& st) {
+    cv::Mat padded, sum;
+    for (auto _ : st) {
+        for (const cv::Mat* img : {&g_pair.left, &g_pair.right}) {
+            cv::copyMakeBorder(*img, padded, 28, 28, 28, 28, cv::BORDER_REFLECT_101);
+            cv::integral(padded, sum, CV_32S);
+            benchmark::DoNotOptimize(sum.data);
+        }
+    }
+}
+BENCHMARK(BM_brief_integral_only)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_brief_smoothing_only)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK(BM_grid_thesis_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_grid_corrected_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_brief_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_brief_gaussian_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_freak_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_grid_thesis_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_grid_corrected_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_brief_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_brief_gaussian_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_grid_thesis_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_grid_corrected_match)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_brief_match)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -243,16 +261,26 @@ int main(int argc, char** argv) {
     RatioReporter rep;
     benchmark::RunSpecifiedBenchmarks(&rep);
     benchmark::Shutdown();
-    if (!rep.interleaved.empty())
-        std::printf("interleaved, grid (thesis) + matching / BRIEF + matching (goal < 1): real %.3f ms / %.3f ms = "
+    if (!rep.interleaved.empty()) {
+        auto& v = rep.interleaved;
+        std::printf("interleaved, grid (thesis) + matching / BRIEF (box) + matching (goal < 1): real %.3f ms / %.3f ms = "
                     "%.3f; CPU %.3f ms / %.3f ms = %.3f\n",
-                    rep.interleaved["grid_real_ms"], rep.interleaved["brief_real_ms"], rep.interleaved["real_ratio"],
-                    rep.interleaved["grid_cpu_ms"], rep.interleaved["brief_cpu_ms"], rep.interleaved["cpu_ratio"]);
-    rep.ratio("grid (thesis) + matching / BRIEF + matching (goal < 1)", "BM_grid_thesis_describe_and_match",
+                    v["grid_real_ms"], v["brief_real_ms"], v["real_ratio"], v["grid_cpu_ms"], v["brief_cpu_ms"],
+                    v["cpu_ratio"]);
+        std::printf("interleaved, grid (thesis) + matching / BRIEF (Gaussian) + matching: real %.3f ms / %.3f ms = "
+                    "%.3f; CPU %.3f ms / %.3f ms = %.3f\n",
+                    v["grid_real_ms"], v["brief_gaussian_real_ms"], v["real_ratio_gaussian"], v["grid_cpu_ms"],
+                    v["brief_gaussian_cpu_ms"], v["cpu_ratio_gaussian"]);
+    }
+    rep.ratio("grid (thesis) + matching / BRIEF (box) + matching (goal < 1)", "BM_grid_thesis_describe_and_match",
               "BM_brief_describe_and_match");
+    rep.ratio("grid (thesis) + matching / BRIEF (Gaussian) + matching", "BM_grid_thesis_describe_and_match",
+              "BM_brief_gaussian_describe_and_match");
     rep.ratio("grid (corrected) + matching / BRIEF + matching", "BM_grid_corrected_describe_and_match",
               "BM_brief_describe_and_match");
-    rep.ratio("grid (thesis) extraction / BRIEF extraction", "BM_grid_thesis_describe", "BM_brief_describe");
+    rep.ratio("grid (thesis) extraction / BRIEF (box) extraction", "BM_grid_thesis_describe", "BM_brief_describe");
+    rep.ratio("grid (thesis) extraction / BRIEF (Gaussian) extraction", "BM_grid_thesis_describe",
+              "BM_brief_gaussian_describe");
     rep.ratio("matching 35-byte grid / matching 32-byte BRIEF", "BM_grid_thesis_match", "BM_brief_match");
     return 0;
 }

@@ -88,15 +88,10 @@ std::vector<cv::Point2f> find_board(const cv::Mat& grey, const Board& board, int
 
 namespace {
 
-cv::Mat read_grey(const fs::path& p, cv::Size& size) {
+cv::Mat read_grey(const fs::path& p) {
     if (!fs::is_regular_file(p)) throw InputError(fmt::format("no such image file '{}'", p.string()));
     cv::Mat img = cv::imread(p.string(), cv::IMREAD_GRAYSCALE);
     if (img.empty()) throw InputError(fmt::format("cannot read image '{}'", p.string()));
-    if (size.empty())
-        size = img.size();
-    else if (img.size() != size)
-        throw InputError(fmt::format("image '{}' is {}x{}, the first image is {}x{}", p.string(),
-                                     img.cols, img.rows, size.width, size.height));
     return img;
 }
 
@@ -122,8 +117,11 @@ Detection detect_boards(const std::vector<fs::path>& left, const std::vector<fs:
     Detection d;
     for (size_t i = 0; i < left.size(); ++i) {
         const std::string name = left[i].filename().string() + " + " + right[i].filename().string();
-        const cv::Mat l = read_grey(left[i], d.image_size);
-        const cv::Mat r = read_grey(right[i], d.image_size);
+        const cv::Mat l = read_grey(left[i]);
+        const cv::Mat r = read_grey(right[i]);
+        if (l.size() != r.size())
+            throw InputError(fmt::format("image '{}' is {}x{}, its left partner '{}' is {}x{}", right[i].string(),
+                                         r.cols, r.rows, left[i].string(), l.cols, l.rows));
         StereoView v;
         v.name = name;
         v.left_file = left[i];
@@ -140,6 +138,13 @@ Detection detect_boards(const std::vector<fs::path>& left, const std::vector<fs:
             if (progress) progress("warning: skipping " + d.skipped.back());
             continue;
         }
+        // only pairs that are used fix the image size: a skipped pair may be of any size
+        if (d.views.empty())
+            d.image_size = l.size();
+        else if (l.size() != d.image_size)
+            throw InputError(fmt::format("image '{}' is {}x{}, the first pair used ({}) is {}x{}", left[i].string(),
+                                         l.cols, l.rows, d.views.front().name, d.image_size.width,
+                                         d.image_size.height));
         align_order(v.left, v.right);
         d.views.push_back(std::move(v));
         if (progress) progress(fmt::format("pair {}/{}: {}: board found", i + 1, left.size(), name));

@@ -71,7 +71,7 @@ struct StereoView {
 
 /// The boards found over a list of stereo pairs.
 struct Detection {
-    cv::Size image_size;                   ///< of every image (all must agree)
+    cv::Size image_size;                   ///< of the images of every used pair (all must agree)
     std::vector<StereoView> views;         ///< pairs with the board in both images
     std::vector<std::string> skipped;      ///< "name: board not found in the right image"
 };
@@ -88,9 +88,10 @@ struct DetectOptions {
 /// Finds the board in every pair left[i], right[i]. A pair without the whole board in both
 /// images is skipped (reported through `progress` as "warning: skipping NAME: ..."). Throws
 /// InputError when an option is out of range (min_views < 0, subpix_half outside 0..50), the
-/// lists differ in length, an image is missing, unreadable or of another size than the
-/// first, or fewer than opt.min_views pairs show the board (the message lists the skipped
-/// pairs).
+/// lists differ in length, an image is missing or unreadable, the two images of a pair differ
+/// in size, a used pair's size differs from the first used pair's (a skipped pair sets no
+/// size and may be of any size), or fewer than opt.min_views pairs show the board (the
+/// message lists the skipped pairs).
 Detection detect_boards(const std::vector<std::filesystem::path>& left,
                         const std::vector<std::filesystem::path>& right, const Board& board,
                         const DetectOptions& opt = {}, const Progress& progress = {});

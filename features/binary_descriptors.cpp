@@ -65,8 +65,8 @@ cv::Point clamp_into(cv::Point p, cv::Size s) {
 // ---- BRIEF --------------------------------------------------------------------------------
 
 constexpr int brief_bits = 256;
-constexpr int brief_kernel = 9;      // Gaussian kernel side (Calonder et al. 2010, section 3.1)
-constexpr double brief_sigma = 2.0;  // its sigma
+constexpr int brief_kernel = BriefDescriptor::kernel_size;  // 9 (Calonder et al. 2010, section 3.1)
+constexpr double brief_sigma = 2.0;  // the Gaussian's sigma (same section)
 
 /// SplitMix64 (Steele, Lea, Flood 2014): a fixed, platform-independent 64-bit sequence.
 struct SplitMix64 {
@@ -164,15 +164,52 @@ float box_mean(const cv::Mat& integral, cv::Point c, int s) {
 
 // ---- BriefDescriptor ----------------------------------------------------------------------
 
-cv::Ptr<BriefDescriptor> BriefDescriptor::create(BorderPolicy border) {
-    return cv::makePtr<BriefDescriptor>(border);
+cv::Ptr<BriefDescriptor> BriefDescriptor::create(BorderPolicy border, BriefSmoothing smoothing) {
+    return cv::makePtr<BriefDescriptor>(border, smoothing);
 }
-BriefDescriptor::BriefDescriptor(BorderPolicy border) : border_(border) {}
+BriefDescriptor::BriefDescriptor(BorderPolicy border, BriefSmoothing smoothing)
+    : border_(border), smoothing_(smoothing) {}
 
 const std::vector<cv::Vec4i>& BriefDescriptor::pattern() {
     static const std::vector<cv::Vec4i> p = make_brief_pattern();
     return p;
 }
+
+namespace {
+
+/// The 256 tests of every keypoint: `value(centre, offset)` is the smoothed intensity at
+/// `offset` (in the memory of the image `centre` points into) from the keypoint's pixel.
+template <class T, class Value>
+cv::Mat brief_tests(const cv::Mat& img, int margin, const std::vector<cv::KeyPoint>& keypoints, Value value) {
+    const auto& pat = BriefDescriptor::pattern();
+    const auto step = static_cast<std::ptrdiff_t>(img.step1());
+    std::vector<std::ptrdiff_t> off_a(brief_bits), off_b(brief_bits);
+    for (size_t k = 0; k < brief_bits; ++k) {
+        off_a[k] = pat[k][1] * step + pat[k][0];
+        off_b[k] = pat[k][3] * step + pat[k][2];
+    }
+    cv::Mat d(static_cast<int>(keypoints.size()), brief_bits / 8, CV_8U);
+    const int half = BriefDescriptor::patch_size / 2;
+    const cv::Size inner(img.cols - 2 * half, img.rows - 2 * half);
+    for (size_t i = 0; i < keypoints.size(); ++i) {
+        // the centre, clamped so that the whole patch stays on the padded image
+        cv::Point c = pixel_of(keypoints[i]) + cv::Point(margin, margin);
+        c = clamp_into(c - cv::Point(half, half), inner) + cv::Point(half, half);
+        const T* centre = img.ptr<T>(c.y) + c.x;
+        uchar* row = d.ptr<uchar>(static_cast<int>(i));
+        for (size_t byte = 0; byte < brief_bits / 8; ++byte) {
+            unsigned v = 0;
+            for (size_t bit = 0; bit < 8; ++bit) {
+                const size_t k = 8 * byte + bit;
+                v |= static_cast<unsigned>(value(centre, off_a[k]) < value(centre, off_b[k])) << bit;
+            }
+            row[byte] = static_cast<uchar>(v);
+        }
+    }
+    return d;
+}
+
+}  // namespace
 
 void BriefDescriptor::detectAndCompute(cv::InputArray image, cv::InputArray,
                                        std::vector<cv::KeyPoint>& keypoints,
@@ -181,36 +218,27 @@ void BriefDescriptor::detectAndCompute(cv::InputArray image, cv::InputArray,
     // the patch reaches S/2 pixels left/up and S/2 - 1 right/down, the kernel K/2 more
     const int margin = patch_size / 2 + brief_kernel / 2;
     apply_border(keypoints, grey.size(), margin, border_);
-    cv::Mat smooth;
-    cv::GaussianBlur(padded(grey, margin), smooth, cv::Size(brief_kernel, brief_kernel),
-                     brief_sigma, brief_sigma, cv::BORDER_REFLECT_101);
-    // each test's two points as offsets from the centre pixel in this image's memory
-    const auto& pat = pattern();
-    const auto step = static_cast<std::ptrdiff_t>(smooth.step1());
-    std::vector<std::ptrdiff_t> off_a(brief_bits), off_b(brief_bits);
-    for (size_t k = 0; k < brief_bits; ++k) {
-        off_a[k] = pat[k][1] * step + pat[k][0];
-        off_b[k] = pat[k][3] * step + pat[k][2];
+    if (smoothing_ == BriefSmoothing::gaussian) {
+        cv::Mat smooth;
+        cv::GaussianBlur(padded(grey, margin), smooth, cv::Size(brief_kernel, brief_kernel),
+                         brief_sigma, brief_sigma, cv::BORDER_REFLECT_101);
+        brief_tests<uchar>(smooth, margin, keypoints,
+                           [](const uchar* c, std::ptrdiff_t o) { return int(c[o]); })
+            .copyTo(descriptors);
+        return;
     }
-    cv::Mat d(static_cast<int>(keypoints.size()), brief_bits / 8, CV_8U);
-    const cv::Size inner(smooth.cols - 2 * (patch_size / 2), smooth.rows - 2 * (patch_size / 2));
-    for (size_t i = 0; i < keypoints.size(); ++i) {
-        // the centre, clamped so that the whole patch stays on the padded image
-        cv::Point c = pixel_of(keypoints[i]) + cv::Point(margin, margin);
-        c = clamp_into(c - cv::Point(patch_size / 2, patch_size / 2), inner) +
-            cv::Point(patch_size / 2, patch_size / 2);
-        const uchar* centre = smooth.ptr<uchar>(c.y) + c.x;
-        uchar* row = d.ptr<uchar>(static_cast<int>(i));
-        for (size_t byte = 0; byte < brief_bits / 8; ++byte) {
-            unsigned v = 0;
-            for (size_t bit = 0; bit < 8; ++bit) {
-                const size_t k = 8 * byte + bit;
-                v |= static_cast<unsigned>(centre[off_a[k]] < centre[off_b[k]]) << bit;
-            }
-            row[byte] = static_cast<uchar>(v);
-        }
-    }
-    d.copyTo(descriptors);
+    // box: integral image of the padded image; entry (y, x) sums pixels [0, y) x [0, x), so
+    // the 9 x 9 box centred on padded pixel (y, x) is read at rows/columns y - 4 and y + 5
+    cv::Mat integral;
+    cv::integral(padded(grey, margin), integral, CV_32S);
+    const auto istep = static_cast<std::ptrdiff_t>(integral.step1());
+    const int k = brief_kernel / 2;
+    const std::ptrdiff_t tl = -k * istep - k, tr = -k * istep + k + 1, bl = (k + 1) * istep - k,
+                         br = (k + 1) * istep + k + 1;
+    brief_tests<int>(integral, margin, keypoints, [&](const int* c, std::ptrdiff_t o) {
+        const int* p = c + o;   // modulo 2^32: exact for any box sum even if the integral wraps
+        return static_cast<int>(unsigned(p[br]) - unsigned(p[tr]) - unsigned(p[bl]) + unsigned(p[tl]));
+    }).copyTo(descriptors);
 }
 
 int BriefDescriptor::descriptorSize() const { return brief_bits / 8; }

@@ -135,15 +135,23 @@ private:
 /// (cv::BORDER_REFLECT_101), so every keypoint gets a descriptor.
 enum class BorderPolicy { drop, pad };
 
-/// BRIEF (Calonder, Lepetit, Strecha, Fua, ECCV 2010): image smoothed by a 9 x 9 Gaussian of
-/// sigma 2, then 256 tests I(p + x_k) < I(p + y_k) on a 48 x 48 patch around the rounded
-/// keypoint pixel; (x_k, y_k) drawn once from the paper's isotropic Gaussian G II
-/// (sigma^2 = S^2 / 25, S = 48), clamped to the patch, by a fixed-seed generator of this
-/// library (platform independent). 32 bytes, NORM_HAMMING. No orientation, one scale.
+/// How BRIEF smooths before its intensity tests.
+/// `box`: the authors' code and OpenCV contrib's BriefDescriptorExtractor: each test point's
+///   value is the sum of the 9 x 9 box around it, read from an integral image (only the test
+///   points are smoothed, 4 reads each). `gaussian`: the paper's text: the whole image
+///   smoothed by a 9 x 9 Gaussian of sigma 2 (cv::GaussianBlur), then single pixels compared.
+enum class BriefSmoothing { box, gaussian };
+
+/// BRIEF (Calonder, Lepetit, Strecha, Fua, ECCV 2010): 256 tests I(p + x_k) < I(p + y_k) on a
+/// 48 x 48 patch around the rounded keypoint pixel of the smoothed image (BriefSmoothing);
+/// (x_k, y_k) drawn once from the paper's isotropic Gaussian G II (sigma^2 = S^2 / 25, S = 48),
+/// clamped to the patch, by a fixed-seed generator of this library (platform independent).
+/// 32 bytes, NORM_HAMMING, bit k is bit k & 7 of byte k >> 3. No orientation, one scale.
 class BriefDescriptor : public cv::Feature2D {
 public:
-    static cv::Ptr<BriefDescriptor> create(BorderPolicy border = BorderPolicy::drop);
-    explicit BriefDescriptor(BorderPolicy border);
+    static cv::Ptr<BriefDescriptor> create(BorderPolicy border = BorderPolicy::drop,
+                                           BriefSmoothing smoothing = BriefSmoothing::box);
+    BriefDescriptor(BorderPolicy border, BriefSmoothing smoothing);
 
     void detectAndCompute(cv::InputArray image, cv::InputArray mask,
                           std::vector<cv::KeyPoint>& keypoints, cv::OutputArray descriptors,
@@ -153,12 +161,16 @@ public:
     int defaultNorm() const override;     ///< cv::NORM_HAMMING
     cv::String getDefaultName() const override;  ///< "hc.features.BriefDescriptor"
 
-    /// Patch side (48) and the test offsets (x1, y1, x2, y2) relative to the keypoint pixel.
+    /// Patch side (48), smoothing kernel side (9) and the test offsets (x1, y1, x2, y2)
+    /// relative to the keypoint pixel.
     static constexpr int patch_size = 48;
+    static constexpr int kernel_size = 9;
     static const std::vector<cv::Vec4i>& pattern();
+    BriefSmoothing smoothing() const { return smoothing_; }
 
 private:
     BorderPolicy border_;
+    BriefSmoothing smoothing_;
 };
 
 /// FREAK (Alahi, Ortiz, Vandergheynst, CVPR 2012): 43 overlapping receptive fields on 7

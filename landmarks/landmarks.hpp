@@ -15,7 +15,8 @@
 //   matching     hc::features::match_stereo (cross-check, 2-NN ratio, epipolar |y_r - y_l| < 5).
 //   scoring      a match is "correct (thesis)" when it passes all three tests; "correct
 //                (ground truth)" when besides |x_l - x_r - d(x_l, y_l)| <= 1 px with d the
-//                dataset's disparity at the left keypoint's pixel (0 = unknown: excluded).
+//                dataset's disparity at the left keypoint's pixel (0 = unknown: excluded)
+//                and |y_r - y_l| <= 1 px (the x-only count is kept beside it).
 //   geometry     triangulate(): rectified projection matrices P0, P1 (KITTI calib.txt, or
 //                Middlebury's focal length, baseline and offset), covariance by Jacobian
 //                propagation of an isotropic pixel noise.
@@ -100,10 +101,20 @@ std::vector<PairKeypoints> detect_pairs(Detector d, const std::vector<StereoImag
 
 // ---- descriptors and matching ----------------------------------------------------------
 
-enum class Descriptor { grid, grid_corrected, sift, orb, brisk, brief, freak };
-Descriptor parse_descriptor(const std::string& s);   ///< "grid", "grid-corrected", ...; InputError
+/// `sift`: SIFT matched at ratio 0.8, Lowe's recommendation (Lowe 2004), which the thesis uses
+/// for its SIFT reference (section 6.4.1); `sift_ratio1`: the same descriptor matched at ratio
+/// 1, the test the thesis applies to the grid descriptor (6.4.1, appendix F).
+/// `brief`: BRIEF with the authors' 9 x 9 box smoothing over an integral image (their code, as
+/// OpenCV contrib's); `brief_gaussian`: the paper's 9 x 9 Gaussian (features::BriefSmoothing).
+enum class Descriptor { grid, grid_corrected, sift, sift_ratio1, orb, brisk, brief, brief_gaussian, freak };
+Descriptor parse_descriptor(const std::string& s);   ///< "grid", "grid-corrected", "sift-ratio1", ...; InputError
 std::string descriptor_name(Descriptor d);
-std::vector<Descriptor> comparison_descriptors();   ///< grid sift orb brisk brief freak
+/// grid sift sift-ratio1 orb brisk brief brief-gaussian freak
+std::vector<Descriptor> comparison_descriptors();
+/// The 2-NN ratio a descriptor is matched at when MatchParams::ratio <= 0: 0.8 for `sift` (the
+/// thesis's SIFT reference, Lowe's value), 1 for every other (the thesis's test of the grid,
+/// which on Hamming distances removes nothing).
+double default_ratio(Descriptor d);
 
 struct GridParams {
     int g = 16;   ///< grid side (cells)
@@ -124,8 +135,8 @@ void check_combination(Descriptor d, Detector det, Norm n);
 
 struct MatchParams {
     Norm norm = Norm::automatic;
-    /// 2-NN ratio: the thesis's 1 (printed test, drops ratio > 1: never on Hamming; see
-    /// docs/landmarks.md) for binary descriptors, 0.8 (Lowe) for SIFT; <= 0: by descriptor.
+    /// 2-NN ratio for every descriptor; <= 0: by descriptor (default_ratio: 1, a printed test
+    /// that drops ratio > 1, never on Hamming, see docs/landmarks.md; 0.8 for `sift`).
     double ratio = 0;
     bool drop_ties = false;    ///< the evidently intended ratio test: also drop d0 == d1
     double epipolar_px = 5;    ///< |y_r - y_l| < epipolar_px
@@ -137,8 +148,13 @@ struct StereoMatch {
     float distance = 0;
     int left_index = 0, right_index = 0;   ///< into the described keypoints
     bool epipolar = false;                 ///< passes |y_r - y_l| < epipolar_px
-    int truth = -1;                        ///< -1 unknown disparity, 0 wrong, 1 within 1 px
+    int truth = -1;                        ///< truth_unknown, truth_wrong, truth_right or truth_x_only
 };
+/// StereoMatch::truth against a ground-truth disparity d at the left keypoint's pixel.
+inline constexpr int truth_unknown = -1;   ///< d unknown (0 in disp1.png) or no ground truth
+inline constexpr int truth_wrong = 0;      ///< |x_l - x_r - d| > 1 px
+inline constexpr int truth_right = 1;      ///< |x_l - x_r - d| <= 1 px and |y_r - y_l| <= 1 px
+inline constexpr int truth_x_only = 2;     ///< |x_l - x_r - d| <= 1 px but |y_r - y_l| > 1 px
 
 struct PairResult {
     std::string name;
@@ -147,7 +163,8 @@ struct PairResult {
     long all() const { return static_cast<long>(matches.size()); }
     long correct() const;          ///< thesis: all tests incl. epipolar
     long truth_known() const;      ///< correct, with a known ground-truth disparity
-    long truth_correct() const;    ///< correct, and within 1 px of the ground truth
+    long truth_correct() const;    ///< correct, within 1 px of the ground truth in x and |y_r - y_l| <= 1
+    long truth_correct_x() const;  ///< correct, within 1 px of the ground truth in x (y not checked)
     bool has_truth = false;        ///< scored against a ground-truth disparity map
     int descriptor_bytes = 0;
     double seconds = 0;            ///< extraction (both images) + matching, this thread
@@ -208,9 +225,13 @@ StereoCalib load_kitti_calib(const std::filesystem::path& calib_txt);
 /// camera's cx at cx + dmin * s so that Z = b f s / (x_l - x_r + dmin s). Units: metres.
 StereoCalib middlebury_calib(double scale, double dmin_full, cv::Size image);
 
-/// Pixel-noise model: each measured coordinate (x_l, y_l, x_r, y_r) carries independent
-/// zero-mean noise of standard deviation sigma_px; y enters the point through the mean of
-/// y_l and y_r. The landmark covariance is J diag(sigma^2) J^T with J = d(X,Y,Z)/d(x_l, y_l, x_r, y_r).
+/// Pixel-noise model: each measured corner coordinate (x_l, y_l, x_r, y_r) carries independent
+/// zero-mean Gaussian noise of standard deviation sigma_px (corner localisation noise); y
+/// enters the point through the mean of y_l and y_r, so in (u = x_l, v, d = x_l - x_r) the
+/// covariance is sigma^2 [[1, 0, 1], [0, 1/2, 0], [1, 0, 2]]. The landmark covariance is
+/// J diag(sigma^2) J^T with J = d(X,Y,Z)/d(x_l, y_l, x_r, y_r). The default 0.5 px is an
+/// assumed value, not a measured one; it is not the rounding of integer corner positions
+/// (a uniform error in [-0.5, 0.5) px has sigma 1/sqrt(12) = 0.289 px).
 struct PixelNoise {
     double sigma_px = 0.5;
 };
@@ -271,6 +292,7 @@ DepthError depth_error(const ComparisonRow& row, const Dataset& ds);
 
 struct Totals {
     long all = 0, correct = 0, truth_known = 0, truth_correct = 0;
+    long truth_correct_x = 0;   ///< x within 1 px, y not checked (PairResult::truth_correct_x)
     long keypoints = 0;
     double seconds = 0;
     int pairs = 0;
@@ -343,13 +365,29 @@ std::vector<ComparisonRow> compare(const Dataset& ds, const ComparisonOptions& o
 struct StudyCell {
     int g = 0, h = 0;
     long all = 0, correct = 0, truth_correct = 0;
+    long truth_correct_x = 0;                 ///< x within 1 px, y not checked
+    std::vector<long> pair_correct, pair_truth_correct;   ///< per pair of the dataset
 };
 struct StudyResult {
     Detector detector = Detector::opencv;
     std::vector<StudyCell> cells;   ///< g-major
     StudyCell best_correct() const;         ///< most thesis-correct matches (ties: smaller g, h)
     StudyCell best_truth() const;           ///< most ground-truth-correct matches
+    /// The same study restricted to the pairs `pairs` (indices into the dataset): every cell's
+    /// correct and truth_correct summed over those pairs only (all, truth_correct_x: 0).
+    StudyResult on_pairs(const std::vector<size_t>& pairs) const;
 };
+
+/// (g, h) chosen on some pairs and scored on others: the cell with the most ground-truth-correct
+/// matches over `choose` (`by_truth`; else thesis-correct), its counts over `report`, and for
+/// comparison the best cell of `report` itself (what choosing on the scored pairs would claim).
+struct HeldOutChoice {
+    StudyCell chosen;        ///< counts over `choose`
+    StudyCell on_report;     ///< the chosen (g, h), counts over `report`
+    StudyCell report_best;   ///< the best cell of `report` by the same criterion
+};
+HeldOutChoice held_out_choice(const StudyResult& s, const std::vector<size_t>& choose,
+                              const std::vector<size_t>& report, bool by_truth);
 struct StudyOptions {
     int g_min = 4, g_max = 32, h_min = 0, h_max = 5;
     bool corrected = false;                 ///< the corrected g x g grid instead of the thesis's
@@ -366,6 +404,44 @@ StudyResult study(const Dataset& ds, Detector d, const std::vector<PairKeypoints
 /// thesis's tests. Returns the summed totals (correct = thesis, truth_correct = ground truth).
 Totals score_formats(const Dataset& ds, const Formats& formats, Detector source = Detector::spec,
                      const GridParams& gp = {16, 3}, const MatchParams& mp = {});
+
+// ---- re-observations between consecutive frames --------------------------------------------
+
+/// How much a descriptor changes between consecutive frames of one camera (the left images of
+/// a dataset's pairs, e.g. a KITTI sequence driving forward), measured without descriptors:
+/// corners of frame k tracked into frame k+1 by pyramidal Lucas-Kanade optical flow (21 x 21
+/// window, 3 levels), kept when the backward track comes back within `max_fb_px` and a corner
+/// of frame k+1 lies within `max_corner_px` of the tracked point (a corner claimed by two
+/// tracks is dropped). No ground truth is used.
+struct ReobservationOptions {
+    Detector detector = Detector::opencv;
+    std::vector<Descriptor> descriptors{Descriptor::grid, Descriptor::grid_corrected, Descriptor::orb,
+                                        Descriptor::brisk, Descriptor::brief, Descriptor::freak};
+    GridParams grid{16, 3};
+    double max_fb_px = 0.5;
+    double max_corner_px = 1.0;
+    std::uint64_t seed = 1;   ///< random pairs
+    CornerOptions corners{};
+};
+/// Per descriptor: Hamming distances (as a fraction of the descriptor's bits) between the two
+/// descriptors of each re-observed corner, against a random pair per re-observation (the same
+/// corner of frame k and a random other corner of frame k+1).
+struct ReobservationRow {
+    Descriptor descriptor = Descriptor::grid;
+    int bits = 0;
+    long frames = 0;               ///< consecutive frame pairs with re-observations
+    long reobservations = 0;       ///< re-observed corners described in both frames
+    double same_median = 0, same_mean = 0;       ///< re-observations
+    double random_median = 0, random_mean = 0;   ///< random pairs
+    long below_random_median = 0;  ///< re-observations closer than the random pairs' median
+    long nearest = 0;              ///< re-observations whose nearest frame-(k+1) descriptor is their own
+};
+/// Indices (i into ka, j into kb) of the corners of image a re-observed in image b.
+std::vector<std::pair<int, int>> track_corners(const cv::Mat& a, const cv::Mat& b, const std::vector<cv::KeyPoint>& ka,
+                                               const std::vector<cv::KeyPoint>& kb, const ReobservationOptions& o);
+/// The rows above over the consecutive left images of `ds`; InputError for fewer than two
+/// frames or a float descriptor (SIFT).
+std::vector<ReobservationRow> reobservation_study(const Dataset& ds, const ReobservationOptions& o);
 
 // ---- reports -----------------------------------------------------------------------------
 

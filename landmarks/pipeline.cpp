@@ -18,10 +18,11 @@ namespace hc::landmarks {
 // ---- descriptors ------------------------------------------------------------------------
 
 Descriptor parse_descriptor(const std::string& s) {
-    for (Descriptor d : {Descriptor::grid, Descriptor::grid_corrected, Descriptor::sift, Descriptor::orb, Descriptor::brisk,
-                         Descriptor::brief, Descriptor::freak})
+    for (Descriptor d : {Descriptor::grid, Descriptor::grid_corrected, Descriptor::sift, Descriptor::sift_ratio1,
+                         Descriptor::orb, Descriptor::brisk, Descriptor::brief, Descriptor::brief_gaussian, Descriptor::freak})
         if (descriptor_name(d) == s) return d;
-    throw InputError("unknown descriptor '" + s + "' (grid, grid-corrected, sift, orb, brisk, brief or freak)");
+    throw InputError("unknown descriptor '" + s +
+                     "' (grid, grid-corrected, sift, sift-ratio1, orb, brisk, brief, brief-gaussian or freak)");
 }
 
 std::string descriptor_name(Descriptor d) {
@@ -29,16 +30,19 @@ std::string descriptor_name(Descriptor d) {
     case Descriptor::grid: return "grid";
     case Descriptor::grid_corrected: return "grid-corrected";
     case Descriptor::sift: return "sift";
+    case Descriptor::sift_ratio1: return "sift-ratio1";
     case Descriptor::orb: return "orb";
     case Descriptor::brisk: return "brisk";
     case Descriptor::brief: return "brief";
+    case Descriptor::brief_gaussian: return "brief-gaussian";
     case Descriptor::freak: return "freak";
     }
     return "?";
 }
 
 std::vector<Descriptor> comparison_descriptors() {
-    return {Descriptor::grid, Descriptor::sift, Descriptor::orb, Descriptor::brisk, Descriptor::brief, Descriptor::freak};
+    return {Descriptor::grid,  Descriptor::sift,  Descriptor::sift_ratio1,    Descriptor::orb,
+            Descriptor::brisk, Descriptor::brief, Descriptor::brief_gaussian, Descriptor::freak};
 }
 
 void validate(const GridParams& p) {
@@ -56,10 +60,13 @@ cv::Ptr<cv::Feature2D> make_descriptor(Descriptor d, const GridParams& p) {
         validate(p);
         return features::GridDescriptor::create(
             p.g, p.h, d == Descriptor::grid ? features::GridVariant::thesis : features::GridVariant::corrected);
-    case Descriptor::sift: return cv::SIFT::create();
+    case Descriptor::sift:
+    case Descriptor::sift_ratio1: return cv::SIFT::create();
     case Descriptor::orb: return cv::ORB::create();
     case Descriptor::brisk: return cv::BRISK::create();
-    case Descriptor::brief: return features::BriefDescriptor::create();
+    case Descriptor::brief: return features::BriefDescriptor::create(features::BorderPolicy::drop, features::BriefSmoothing::box);
+    case Descriptor::brief_gaussian:
+        return features::BriefDescriptor::create(features::BorderPolicy::drop, features::BriefSmoothing::gaussian);
     case Descriptor::freak: return features::FreakDescriptor::create();
     }
     throw std::logic_error("make_descriptor");
@@ -74,7 +81,8 @@ Norm parse_norm(const std::string& s) {
 
 namespace {
 
-bool binary(Descriptor d) { return d != Descriptor::sift; }
+bool is_sift(Descriptor d) { return d == Descriptor::sift || d == Descriptor::sift_ratio1; }
+bool binary(Descriptor d) { return !is_sift(d); }
 
 int cv_norm(Descriptor d, Norm n) {
     if (n == Norm::automatic) return binary(d) ? cv::NORM_HAMMING : cv::NORM_L2;
@@ -87,8 +95,8 @@ int cv_norm(Descriptor d, Norm n) {
 /// size and angle are kept.
 std::vector<cv::KeyPoint> adapt(const std::vector<cv::KeyPoint>& kp, Descriptor d, Detector det) {
     const bool sift_kp = det == Detector::sift || det == Detector::sift512;
-    const bool own = (d == Descriptor::sift && sift_kp) || (d == Descriptor::orb && det == Detector::orb);
-    if (own || (d != Descriptor::sift && d != Descriptor::orb)) return kp;
+    const bool own = (is_sift(d) && sift_kp) || (d == Descriptor::orb && det == Detector::orb);
+    if (own || (!is_sift(d) && d != Descriptor::orb)) return kp;
     std::vector<cv::KeyPoint> out = kp;
     for (auto& k : out) k.octave = 0;
     return out;
@@ -113,8 +121,16 @@ long PairResult::truth_known() const {
     return std::count_if(matches.begin(), matches.end(), [](const StereoMatch& m) { return m.epipolar && m.truth >= 0; });
 }
 long PairResult::truth_correct() const {
-    return std::count_if(matches.begin(), matches.end(), [](const StereoMatch& m) { return m.epipolar && m.truth == 1; });
+    return std::count_if(matches.begin(), matches.end(),
+                         [](const StereoMatch& m) { return m.epipolar && m.truth == truth_right; });
 }
+long PairResult::truth_correct_x() const {
+    return std::count_if(matches.begin(), matches.end(), [](const StereoMatch& m) {
+        return m.epipolar && (m.truth == truth_right || m.truth == truth_x_only);
+    });
+}
+
+double default_ratio(Descriptor d) { return d == Descriptor::sift ? 0.8 : 1.0; }
 
 namespace {
 
@@ -123,7 +139,7 @@ features::MatchOptions match_options(Descriptor d, const MatchParams& mp) {
     o.norm = cv_norm(d, mp.norm);
     o.symmetry = true;
     o.ratio = mp.drop_ties ? features::RatioTest::drop_ties : features::RatioTest::printed;
-    o.max_ratio = mp.ratio > 0 ? mp.ratio : (binary(d) ? 1.0 : 0.8);
+    o.max_ratio = mp.ratio > 0 ? mp.ratio : default_ratio(d);
     o.epipolar = false;   // scored here: matches failing it still count as "all"
     return o;
 }
@@ -144,7 +160,10 @@ void score(const std::vector<cv::DMatch>& dm, const std::vector<cv::KeyPoint>& k
         if (!disparity.empty()) {
             const int x = static_cast<int>(std::lround(s.left.x)), y = static_cast<int>(std::lround(s.left.y));
             const float d = x >= 0 && y >= 0 && x < disparity.cols && y < disparity.rows ? disparity.at<float>(y, x) : 0.f;
-            if (d > 0) s.truth = std::abs(s.left.x - s.right.x - d) <= 1.0f ? 1 : 0;
+            if (d > 0) {
+                const bool x_ok = std::abs(s.left.x - s.right.x - d) <= 1.0f;
+                s.truth = !x_ok ? truth_wrong : std::abs(s.right.y - s.left.y) <= 1.0f ? truth_right : truth_x_only;
+            }
         }
         out.push_back(s);
     }
@@ -263,6 +282,7 @@ void Totals::add(const PairResult& r) {
     correct += r.correct();
     truth_known += r.truth_known();
     truth_correct += r.truth_correct();
+    truth_correct_x += r.truth_correct_x();
     keypoints += r.keypoints_left + r.keypoints_right;
     seconds += r.seconds;
     ++pairs;
@@ -359,6 +379,34 @@ StudyCell StudyResult::best_truth() const {
     return b;
 }
 
+StudyResult StudyResult::on_pairs(const std::vector<size_t>& pairs) const {
+    StudyResult r;
+    r.detector = detector;
+    for (const auto& c : cells) {
+        StudyCell sub{c.g, c.h, 0, 0, 0, 0, {}, {}};
+        for (size_t k : pairs) {
+            if (k >= c.pair_correct.size()) throw std::out_of_range("StudyResult::on_pairs: no such pair");
+            sub.correct += c.pair_correct[k];
+            sub.truth_correct += c.pair_truth_correct[k];
+            sub.pair_correct.push_back(c.pair_correct[k]);
+            sub.pair_truth_correct.push_back(c.pair_truth_correct[k]);
+        }
+        r.cells.push_back(std::move(sub));
+    }
+    return r;
+}
+
+HeldOutChoice held_out_choice(const StudyResult& s, const std::vector<size_t>& choose, const std::vector<size_t>& report,
+                              bool by_truth) {
+    const StudyResult a = s.on_pairs(choose), b = s.on_pairs(report);
+    HeldOutChoice h;
+    h.chosen = by_truth ? a.best_truth() : a.best_correct();
+    for (const auto& c : b.cells)
+        if (c.g == h.chosen.g && c.h == h.chosen.h) h.on_report = c;
+    h.report_best = by_truth ? b.best_truth() : b.best_correct();
+    return h;
+}
+
 StudyResult study(const Dataset& ds, Detector d, const StudyOptions& o) {
     return study(ds, d, detect_dataset(ds, d, o.corners), o);
 }
@@ -371,7 +419,7 @@ StudyResult study(const Dataset& ds, Detector d, const std::vector<PairKeypoints
     StudyResult res;
     res.detector = d;
     for (int g = o.g_min; g <= o.g_max; ++g)
-        for (int h = o.h_min; h <= o.h_max; ++h) res.cells.push_back(StudyCell{g, h, 0, 0, 0});
+        for (int h = o.h_min; h <= o.h_max; ++h) res.cells.push_back(StudyCell{g, h, 0, 0, 0, 0, {}, {}});
     const Descriptor desc = o.corrected ? Descriptor::grid_corrected : Descriptor::grid;
     tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
     const int before = cv::getNumThreads();
@@ -385,6 +433,9 @@ StudyResult study(const Dataset& ds, Detector d, const std::vector<PairKeypoints
                 c.all += r.all();
                 c.correct += r.correct();
                 c.truth_correct += r.truth_correct();
+                c.truth_correct_x += r.truth_correct_x();
+                c.pair_correct.push_back(r.correct());
+                c.pair_truth_correct.push_back(r.truth_correct());
             }
         });
     });

@@ -35,7 +35,11 @@ cv::Mat match_overlay(const StereoImages& img, const PairResult& r) {
     for (const auto& k : r.kp_left) cv::circle(canvas, k.pt, 1, grey, -1);
     for (const auto& k : r.kp_right) cv::circle(canvas, k.pt + off, 1, grey, -1);
     for (const auto& m : r.matches) {
-        const cv::Scalar c = !m.epipolar ? red : m.truth == 1 ? green : m.truth == 0 ? red : r.has_truth ? yellow : green;
+        const cv::Scalar c = !m.epipolar                ? red
+                             : m.truth == truth_right   ? green
+                             : m.truth != truth_unknown ? red
+                             : r.has_truth              ? yellow
+                                                        : green;
         cv::line(canvas, m.left, m.right + off, c, 1, cv::LINE_AA);
         cv::circle(canvas, m.left, 2, c, 1);
         cv::circle(canvas, m.right + off, 2, c, 1);
@@ -60,36 +64,38 @@ std::string row_label(const ComparisonRow& r) {
 std::string comparison_csv(const std::string& dataset, const std::vector<ComparisonRow>& rows) {
     std::ostringstream o;
     o << "dataset,descriptor,g,h,detector,pairs,keypoints,all_matches,correct_thesis,truth_known,correct_truth,"
-         "truth_precision,descriptor_bytes,ms_per_pair,available\n";
+         "truth_precision,correct_truth_x_only,descriptor_bytes,ms_per_pair,available\n";
     std::vector<Detector> seen;
     for (const auto& r : rows) {
         const bool grid = r.descriptor == Descriptor::grid || r.descriptor == Descriptor::grid_corrected;
-        o << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4f},{},{:.3f},yes\n", dataset, descriptor_name(r.descriptor),
+        o << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4f},{},{},{:.3f},yes\n", dataset, descriptor_name(r.descriptor),
                          grid ? std::to_string(r.grid.g) : "", grid ? std::to_string(r.grid.h) : "",
                          detector_name(r.detector), r.totals.pairs, r.totals.keypoints, r.totals.all, r.totals.correct,
                          r.totals.truth_known, r.totals.truth_correct, ratio(r.totals.truth_correct, r.totals.truth_known),
-                         r.descriptor_bytes, r.totals.pairs ? 1e3 * r.totals.seconds / r.totals.pairs : 0.0);
+                         r.totals.truth_correct_x, r.descriptor_bytes, r.totals.pairs ? 1e3 * r.totals.seconds / r.totals.pairs : 0.0);
         if (std::find(seen.begin(), seen.end(), r.detector) == seen.end()) seen.push_back(r.detector);
     }
-    for (Detector d : seen) o << fmt::format("{},surf,,,{},,,,,,,,,,no (nonfree; absent from Debian's OpenCV)\n", dataset, detector_name(d));
+    for (Detector d : seen) o << fmt::format("{},surf,,,{},,,,,,,,,,,no (nonfree; absent from Debian's OpenCV)\n", dataset, detector_name(d));
     return o.str();
 }
 
 std::string comparison_markdown(const std::vector<ComparisonRow>& rows) {
     std::ostringstream o;
     o << "| descriptor | detector | keypoints | all matches | correct (thesis) | ratio | correct (ground truth) | "
-         "of known | bytes | ms / pair |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+         "x only | of known | bytes | ms / pair |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     std::vector<Detector> seen;
     for (const auto& r : rows) {
         const Totals& t = r.totals;
-        o << fmt::format("| {} | {} | {} | {} | {} | {:.3f} | {} | {} | {} | {:.2f} |\n", row_label(r), detector_name(r.detector),
-                         t.keypoints, t.all, t.correct, ratio(t.correct, t.all),
+        o << fmt::format("| {} | {} | {} | {} | {} | {:.3f} | {} | {} | {} | {} | {:.2f} |\n", row_label(r),
+                         detector_name(r.detector), t.keypoints, t.all, t.correct, ratio(t.correct, t.all),
                          t.truth_known ? fmt::format("{} ({:.3f})", t.truth_correct, ratio(t.truth_correct, t.truth_known)) : "n/a",
+                         t.truth_known ? fmt::format("{} ({:.3f})", t.truth_correct_x, ratio(t.truth_correct_x, t.truth_known))
+                                       : "n/a",
                          t.truth_known, r.descriptor_bytes, t.pairs ? 1e3 * t.seconds / t.pairs : 0.0);
         if (std::find(seen.begin(), seen.end(), r.detector) == seen.end()) seen.push_back(r.detector);
     }
     for (Detector d : seen)
-        o << fmt::format("| surf | {} | unavailable: nonfree, absent from Debian's OpenCV 4.6 | | | | | | | |\n", detector_name(d));
+        o << fmt::format("| surf | {} | unavailable: nonfree, absent from Debian's OpenCV 4.6 | | | | | | | | |\n", detector_name(d));
     return o.str();
 }
 
@@ -105,6 +111,7 @@ std::string comparison_json(const std::string& dataset, const std::vector<Compar
                            {"correct_thesis", r.totals.correct},
                            {"truth_known", r.totals.truth_known},
                            {"correct_truth", r.totals.truth_correct},
+                           {"correct_truth_x_only", r.totals.truth_correct_x},
                            {"keypoints", r.totals.keypoints},
                            {"seconds", r.totals.seconds}};
         if (r.descriptor == Descriptor::grid || r.descriptor == Descriptor::grid_corrected) {
@@ -119,6 +126,7 @@ std::string comparison_json(const std::string& dataset, const std::vector<Compar
                                     {"correct_thesis", p.correct()},
                                     {"truth_known", p.truth_known()},
                                     {"correct_truth", p.truth_correct()},
+                                    {"correct_truth_x_only", p.truth_correct_x()},
                                     {"seconds", p.seconds}});
         j["rows"].push_back(row);
     }

@@ -32,6 +32,7 @@ struct LandmarksOptions {
     int g = 16, h = 3, overlays = 2, threads = 0;
     double ratio = 0, sigma = 0.5;
     bool drop_ties = false, compare = false, study = false, corrected = false, landmark_files = true, no_truth = false;
+    bool reobservation = false, descriptor_given = false;
     RunnerFlags runner;   ///< the comparison in shards (--runner, --shards)
     bool sharded = false;
 };
@@ -93,10 +94,64 @@ landmarks::Dataset load_dataset(const LandmarksOptions& o, fs::path& root) {
     throw InputError("--dataset '" + o.dataset + "' (middlebury or kitti)");
 }
 
+/// The re-observation study: its table on stdout and in <out>/reobservation.md and .csv.
+void run_reobservation(const LandmarksOptions& o) {
+    landmarks::ReobservationOptions ro;
+    const auto dets = split(o.corners);
+    if (dets.size() != 1) throw InputError("--reobservation takes one corner source (--corners)");
+    ro.detector = landmarks::parse_detector(dets[0]);
+    if (o.descriptor_given) {
+        ro.descriptors.clear();
+        for (const auto& s : split(o.descriptor)) ro.descriptors.push_back(landmarks::parse_descriptor(s));
+    }
+    ro.grid = {o.g, o.h};
+    landmarks::validate(ro.grid);
+    ro.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
+    fs::path root;
+    const landmarks::Dataset ds = load_dataset(o, root);
+    std::fprintf(stderr, "landmarks: re-observations over %zu consecutive left images of %s...\n", ds.pairs.size(),
+                 ds.name.c_str());
+    const auto rows = landmarks::reobservation_study(ds, ro);
+    std::ostringstream md, csv;
+    md << fmt::format("# Re-observations between consecutive frames: {} ({} left images, {} corners)\n\n", ds.name,
+                      ds.pairs.size(), landmarks::detector_name(ro.detector))
+       << fmt::format("Corners of frame k tracked into frame k+1 by Lucas-Kanade optical flow (forward-backward error <= "
+                      "{} px, a corner of frame k+1 within {} px of the tracked point); Hamming distances as a fraction of "
+                      "the descriptor's bits; a random pair is the same corner against a random other corner of frame "
+                      "k+1. Grid g = {}, h = {}.\n\n",
+                      ro.max_fb_px, ro.max_corner_px, ro.grid.g, ro.grid.h)
+       << "| descriptor | bits | re-observations | median, re-observed | median, random | mean, re-observed | mean, "
+          "random | re-observed below the random median | own descriptor nearest |\n"
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    csv << "dataset,detector,descriptor,bits,frames,reobservations,same_median,random_median,same_mean,random_mean,"
+           "below_random_median,nearest\n";
+    for (const auto& r : rows) {
+        const double n = r.reobservations ? double(r.reobservations) : 1.0;
+        md << fmt::format("| {} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} |\n",
+                          landmarks::descriptor_name(r.descriptor), r.bits, r.reobservations, r.same_median,
+                          r.random_median, r.same_mean, r.random_mean, double(r.below_random_median) / n,
+                          double(r.nearest) / n);
+        csv << fmt::format("{},{},{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{},{}\n", ds.name,
+                           landmarks::detector_name(ro.detector), landmarks::descriptor_name(r.descriptor), r.bits,
+                           r.frames, r.reobservations, r.same_median, r.random_median, r.same_mean, r.random_mean,
+                           r.below_random_median, r.nearest);
+    }
+    fs::create_directories(o.out);
+    landmarks::write_atomic(fs::path(o.out) / "reobservation.md", md.str());
+    landmarks::write_atomic(fs::path(o.out) / "reobservation.csv", csv.str());
+    std::printf("%s", md.str().c_str());
+}
+
 void run_landmarks(const LandmarksOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     try {
+        if (o.reobservation) {
+            if (o.compare || o.study || o.sharded || !o.calib.empty())
+                throw InputError("--reobservation runs alone: leave out --compare, --study, --calib, --runner and --shards");
+            run_reobservation(o);
+            return;
+        }
         landmarks::ComparisonOptions co;
         co.detectors.clear();
         co.descriptors.clear();
@@ -178,7 +233,8 @@ void run_landmarks(const LandmarksOptions& o) {
         }
 
         // the g x h study
-        std::ostringstream study_md, study_plots;
+        std::ostringstream study_md, study_plots, held_out_md;
+        bool held_out_by_truth = true;
         std::string study_csv;
         if (o.study) {
             landmarks::StudyOptions so;
@@ -214,7 +270,34 @@ void run_landmarks(const LandmarksOptions& o) {
                 const auto bc = st.best_correct(), bt = st.best_truth();
                 study_md << fmt::format("| {} | ({}, {}) | {} | {} | {} | {:.1f} |\n", dn, bc.g, bc.h, bc.correct,
                                         bt.truth_correct ? fmt::format("({}, {})", bt.g, bt.h) : "n/a", bt.truth_correct, t_study);
+                // (g, h) chosen on half of the pairs, scored on the other half, both ways
+                if (ds.pairs.size() >= 2) {
+                    const bool by_truth = bt.truth_correct > 0;
+                    std::vector<size_t> even, odd;
+                    for (size_t k = 0; k < ds.pairs.size(); ++k) (k % 2 ? odd : even).push_back(k);
+                    const auto names = [&](const std::vector<size_t>& v) {
+                        std::string out;
+                        for (size_t k : v) out += (out.empty() ? "" : ", ") + ds.pairs[k].name;
+                        return out;
+                    };
+                    const auto count = [&](const landmarks::StudyCell& c) { return by_truth ? c.truth_correct : c.correct; };
+                    for (const auto& [choose, report] : {std::pair{even, odd}, std::pair{odd, even}}) {
+                        const auto ho = landmarks::held_out_choice(st, choose, report, by_truth);
+                        held_out_md << fmt::format("| {} | {} | {} | ({}, {}) | {} | {} | ({}, {}) | {} |\n", dn, names(choose),
+                                                   names(report), ho.chosen.g, ho.chosen.h, count(ho.chosen),
+                                                   count(ho.on_report), ho.report_best.g, ho.report_best.h,
+                                                   count(ho.report_best));
+                    }
+                    held_out_by_truth = held_out_by_truth && by_truth;
+                }
             }
+            if (!held_out_md.str().empty())
+                study_md << "\n(g, h) chosen on the pairs of one half and scored on the other ("
+                         << (held_out_by_truth ? "ground-truth-correct" : "thesis-correct")
+                         << " matches; 'best on scored' is what choosing on the scored pairs themselves would claim):\n\n"
+                            "| detector | chosen on | scored on | chosen (g, h) | count on chosen | count on scored | best on scored "
+                            "| its count |\n|---|---|---|---|---:|---:|---|---:|\n"
+                         << held_out_md.str();
             study_md << "\n" << study_plots.str();
             landmarks::write_atomic(fs::path(o.out) / "study.csv", study_csv);
         }
@@ -223,11 +306,16 @@ void run_landmarks(const LandmarksOptions& o) {
         // report
         std::ostringstream md;
         md << "# Landmark acquisition: " << ds.name << "\n\n";
-        md << fmt::format("{} stereo pairs. Matches pass the cross-check and the 2-NN ratio test (thesis: ratio {} for binary "
-                          "descriptors{}, 0.8 for SIFT); *correct (thesis)* adds the epipolar test |y_r - y_l| < 5; *correct "
-                          "(ground truth)* counts, of those with a known disparity, the ones with |x_l - x_r - d| <= 1 px. "
-                          "Time: extraction of both images + matching, one thread.\n\n",
-                          ds.pairs.size(), o.ratio > 0 ? o.ratio : 1.0, o.drop_ties ? ", ties dropped" : " as printed");
+        md << fmt::format("{} stereo pairs. Matches pass the cross-check and the 2-NN ratio test ({}{}); *correct (thesis)* "
+                          "adds the epipolar test |y_r - y_l| < 5; *correct (ground truth)* counts, of those with a known "
+                          "disparity, the ones with |x_l - x_r - d| <= 1 px and |y_r - y_l| <= 1 px; *x only* the ones with "
+                          "|x_l - x_r - d| <= 1 px whatever their rows. Time: extraction of both images + matching, one thread.\n\n",
+                          ds.pairs.size(),
+                          o.ratio > 0 ? fmt::format("ratio {} for every descriptor", o.ratio)
+                                      : std::string("ratio 1, the thesis's test of the grid, for every descriptor but "
+                                                    "sift, which uses 0.8 as the thesis's SIFT reference (after Lowe); "
+                                                    "sift-ratio1 is SIFT at ratio 1"),
+                          o.drop_ties ? "; ties dropped" : "; the test as printed");
         if (ds.rig)
             md << "A rig's unrectified pairs (`--calib " << o.calib
                << "`): keypoints undistorted and rectified by cv::undistortPoints with the calibration's intrinsics, "
@@ -261,15 +349,21 @@ void add_landmarks_command(CLI::App& app) {
         "landmarks", "corners -> descriptor -> stereo matches -> 3D landmarks, scored against ground truth (thesis 6.4)");
     cmd->add_option("--corners", o->corners, "corner sources, comma-separated: opencv, sift, sift512, orb, brisk, spec, cycle, rtl")
         ->capture_default_str();
-    cmd->add_option("--descriptor", o->descriptor, "descriptors, comma-separated: grid, grid-corrected, sift, orb, brisk, brief, freak")
+    cmd->add_option("--descriptor", o->descriptor, "descriptors, comma-separated: grid, grid-corrected, sift (ratio 0.8), sift-ratio1 (SIFT at the grid's ratio 1), orb, brisk, "
+                    "brief (the authors' box smoothing), brief-gaussian (the paper's Gaussian), freak")
         ->capture_default_str();
     cmd->add_option("--g", o->g, "grid side")->capture_default_str();
     cmd->add_option("--h", o->h, "grid resolution reduction 2^h")->capture_default_str();
     cmd->add_option("--norm", o->norm, "matcher norm: auto (the descriptor's), hamming or l2")->capture_default_str();
-    cmd->add_option("--ratio", o->ratio, "2-NN ratio (0: thesis, 1 for binary, 0.8 for SIFT)");
+    cmd->add_option("--ratio", o->ratio, "2-NN ratio for every descriptor (0: by descriptor: 0.8 for sift, the thesis's SIFT reference after Lowe; 1 for the others)");
     cmd->add_flag("--drop-ties", o->drop_ties, "ratio test also drops d0 == d1 (the evidently intended test)");
-    cmd->add_flag("--compare", o->compare, "the thesis's comparison: detectors sift512, sift, opencv x all six descriptors");
+    cmd->add_flag("--compare", o->compare, "the thesis's comparison: detectors sift512, sift, opencv x the descriptors grid, sift, sift-ratio1, orb, brisk, "
+                  "brief, brief-gaussian, freak");
     cmd->add_flag("--study", o->study, "g x h study of the grid descriptor (g 4..32, h 0..5) on each detector's corners");
+    cmd->add_flag("--reobservation", o->reobservation,
+                  "how descriptors change between consecutive frames: corners tracked by optical flow from each left "
+                  "image to the next, Hamming distance of re-observations against random pairs (default descriptors: "
+                  "grid, grid-corrected, orb, brisk, brief, freak)");
     cmd->add_flag("--corrected", o->corrected, "study the corrected g x g grid instead of the thesis's");
     cmd->add_option("--dataset", o->dataset, "middlebury or kitti")->capture_default_str();
     cmd->add_option("--middlebury", o->middlebury, "Middlebury 2006 folder of scenes, or one scene (default: <data>/middlebury2006/half)");
@@ -284,7 +378,8 @@ void add_landmarks_command(CLI::App& app) {
     cmd->add_option("--right", o->right, "with --calib: the rig's right images, in the order of --left");
     cmd->add_option("--data", o->data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");
     cmd->add_option("--config", o->config, "formats JSON of the co-processor (spec, cycle, rtl corners)");
-    cmd->add_option("--sigma", o->sigma, "pixel noise (px, each coordinate) of the landmark covariance")->capture_default_str();
+    cmd->add_option("--sigma", o->sigma, "corner localisation noise: standard deviation (px) of each of x_l, y_l, x_r, y_r, independent, "
+                    "in the landmark covariance (an assumed value; integer rounding alone would be 1/sqrt(12) = 0.29 px)")->capture_default_str();
     cmd->add_option("--overlays", o->overlays, "match overlay PNGs per row (first N pairs)")->capture_default_str();
     cmd->add_flag("!--no-landmark-files", o->landmark_files, "skip the per-pair landmark CSV/PLY files");
     cmd->add_option("--threads", o->threads,
@@ -294,6 +389,7 @@ void add_landmarks_command(CLI::App& app) {
     add_runner_flags(cmd, o->runner);
     cmd->callback([o, cmd] {
         o->sharded = cmd->count("--runner") + cmd->count("--shards") > 0;
+        o->descriptor_given = cmd->count("--descriptor") > 0;
         run_landmarks(*o);
     });
 }

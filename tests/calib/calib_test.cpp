@@ -5,6 +5,7 @@
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -280,6 +281,43 @@ TEST_CASE("the OpenCV storage reads back what it wrote, in YAML and in JSON", "[
     std::ofstream(bad) << "%YAML:1.0\n---\nimage_width: 640\n";
     CHECK_THROWS_WITH(read_opencv_storage(bad), Catch::Contains("hc_calib_test_bad.yml"));
     fs::remove(bad);
+}
+
+namespace {
+
+// A 9x6-inner-corner chessboard (10 x 7 squares of `square` px) on a white image of `size`.
+cv::Mat chessboard_image(cv::Size size, int square) {
+    cv::Mat img(size, CV_8U, cv::Scalar(255));
+    const int x0 = (size.width - 10 * square) / 2, y0 = (size.height - 7 * square) / 2;
+    for (int r = 0; r < 7; ++r)
+        for (int c = 0; c < 10; ++c)
+            if ((r + c) % 2 == 0)
+                cv::rectangle(img, cv::Rect(x0 + c * square, y0 + r * square, square, square), cv::Scalar(0), cv::FILLED);
+    return img;
+}
+
+}  // namespace
+
+TEST_CASE("a skipped pair sets no image size; a used pair of another size is refused naming both", "[calib]") {
+    const fs::path dir = fs::temp_directory_path() / "hc_calib_size_test";
+    fs::create_directories(dir);
+    // sorted as a glob would: the board-less pair of another size comes first (opencv-doc's
+    // left.jpg / right.jpg are 612x459 before the 640x480 left01.jpg ...)
+    cv::imwrite((dir / "a_blank.png").string(), cv::Mat(459, 612, CV_8U, cv::Scalar(128)));
+    cv::imwrite((dir / "b_board.png").string(), chessboard_image({640, 480}, 40));
+    cv::imwrite((dir / "c_board.png").string(), chessboard_image({800, 600}, 50));
+    const Board board = parse_board("9x6", 1);
+    const Detection d = detect_boards({dir / "a_blank.png", dir / "b_board.png"},
+                                      {dir / "a_blank.png", dir / "b_board.png"}, board, DetectOptions{1, 0});
+    REQUIRE(d.views.size() == 1);
+    CHECK(d.views[0].name == "b_board.png + b_board.png");
+    CHECK(d.skipped == std::vector<std::string>{"a_blank.png + a_blank.png: 9x6 board not found in both images"});
+    CHECK(d.image_size == cv::Size(640, 480));
+    CHECK_THROWS_WITH(detect_boards({dir / "b_board.png", dir / "c_board.png"},
+                                    {dir / "b_board.png", dir / "c_board.png"}, board, DetectOptions{1, 0}),
+                      Catch::Contains("c_board.png' is 800x600") &&
+                          Catch::Contains("the first pair used (b_board.png + b_board.png) is 640x480"));
+    fs::remove_all(dir);
 }
 
 TEST_CASE("pairs without a board are skipped by name, and too few pairs are refused", "[calib]") {

@@ -28,6 +28,13 @@ expect_2 "--square -1" --left "$samples/left01.jpg" --right "$samples/right01.jp
 expect_2 "7x4 board not found" --left "$samples/left0[1-3].jpg" --right "$samples/right0[1-3].jpg" --board 7x4 --min-pairs 1
 expect_2 "2 left images but 1 right" --left "$samples/left0[1-2].jpg" --right "$samples/right01.jpg"
 
+# left*.jpg also matches left.jpg (612x459, no 9x6 board), sorted first: it is skipped and
+# the 640x480 pairs after it are used
+"$cli" calibrate --left "$samples/left*.jpg" --right "$samples/right*.jpg" --board 9x6 \
+  --square 0.025 --out "$out/all" > "$out/log" 2>&1 || { cat "$out/log"; fail "calibrate over left*.jpg exited non-zero"; }
+grep -qF "skipping left.jpg + right.jpg" "$out/log" || { cat "$out/log"; fail "left.jpg + right.jpg was not skipped"; }
+[ "$(wc -l < "$out/all/views.csv")" -eq 14 ] || fail "views.csv over left*.jpg does not hold 13 pairs"
+
 "$cli" calibrate --left "$samples/left[0-9]*.jpg" --right "$samples/right[0-9]*.jpg" --board 9x6 \
   --square 0.025 --out "$out/good" > "$out/log" 2>&1 || { cat "$out/log"; fail "calibrate on the samples exited non-zero"; }
 for f in calib.txt calib.yml calib.json views.csv rectified.png report.md; do

@@ -28,4 +28,7 @@ expect2 "Middlebury folder without disp1.png" "disp1.png" --middlebury "$tmp/nod
 mkdir -p "$tmp/sizes" && cp "$scene/view1.png" "$scene/disp1.png" "$tmp/sizes/"
 cp "$data/middlebury2006/half/Baby1/view5.png" "$tmp/sizes/view5.png"
 expect2 "left and right images of different sizes" "differ in size" --middlebury "$tmp/sizes"
+expect2 "re-observations with the comparison" "runs alone" --middlebury "$scene" --reobservation --compare
+expect2 "re-observations of one frame" "at least two consecutive frames" --middlebury "$scene" --reobservation
+expect2 "re-observations of a float descriptor" "binary descriptors" --middlebury "$data/middlebury2006/half" --reobservation --descriptor sift-ratio1
 exit $fail
