@@ -73,9 +73,9 @@ SPEC
 sweep_rtl)
   # the sweep with its RTL checks on the smallest spec: m6 and the thesis configuration,
   # which the spec adds (three syntheses), both on the Pareto front, each checked by GHDL
-  # (mcode) on two streams of the regression set. Between the runs the trust cache is
-  # emptied (the synthesis cache is kept), so that the sharded run simulates every check
-  # again, each in a shard of its own.
+  # (mcode) on two streams of the regression set. Before each run the trust cache is
+  # emptied (the synthesis cache is kept), so that both runs simulate every check, the
+  # sharded one each in a shard of its own.
   need "$data/kitti/sequences/01"
   cat > spec.json <<'SPEC'
 {"name": "shard-rtl-test", "configs": [{"name": "m6", "m_drop": 6}], "data": {"sequence": "01", "pairs": "0:3"},
@@ -84,6 +84,7 @@ SPEC
   printf 'flat 33x21 3 0\nrandom 40x30 3 13\n' > streams.txt
   cache=$work/../sweep-rtl-shard-cache
   between="rm -rf $cache/trust"
+  $between
   shards=1
   both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1 --backend mcode \
     --regression-set streams.txt
