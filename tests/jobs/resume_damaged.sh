@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # resume_damaged.sh HARRIS_COSIM WORKDIR: a sharded SLAM Monte-Carlo (6 seeds, 3 shards)
 # whose result files are then damaged from outside: shard 1's truncated to half its bytes,
-# shard 2's with a number of its data changed and its digest left. The merge refuses both
-# (status 2, naming each as damaged); `--resume` sets both aside (kept as
-# NNNNN.json.damaged-1 with their bytes, named in the command's log and the shard's log),
+# shard 2's with a number of its data changed and its digest left. The merge refuses
+# (status 2, naming shard 1's result as damaged), `shard status` lists both as damaged, and
+# `--resume` sets both aside (kept as NNNNN.json.damaged-1 with their bytes, named in the
+# command's log and the shard's log),
 # runs those two shards only, and the reports equal the single-process run's byte for byte.
 set -euo pipefail
 bin=$1; work=$2
@@ -32,6 +33,10 @@ set +e
 set -e
 [ $rc -eq 2 ] || fail "the merge of damaged results ended with status $rc, expected 2"
 grep -q "00001.json' is damaged" merge.log || fail "the merge did not name shard 1's result as damaged: $(cat merge.log)"
+
+"$bin" shard status run > status.log 2>&1 || fail "shard status failed: $(cat status.log)"
+grep -q "damaged 1: .*does not parse" status.log || fail "shard status does not list shard 1 as damaged: $(cat status.log)"
+grep -q "damaged 2: .*does not match its digest" status.log || fail "shard status does not list shard 2 as damaged: $(cat status.log)"
 
 "$bin" "${flags[@]}" --out out --shards 3 --runner local --jobs 2 --run-dir run --resume > resume.log 2>&1 ||
   { tail -20 resume.log; fail "--resume failed"; }
