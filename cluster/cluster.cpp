@@ -198,7 +198,7 @@ RunSummary run_local(const fs::path& dir, const Manifest& m, const std::vector<s
         if (it == running.end()) continue;   // a child this runner did not start
         const std::size_t i = it->second;
         running.erase(it);
-        const bool ok = WIFEXITED(st) && WEXITSTATUS(st) == 0 && read_result(dir, m, i).has_value();
+        const bool ok = WIFEXITED(st) && WEXITSTATUS(st) == 0 && check_result(dir, m, i).state == ResultState::valid;
         if (ok) {
             ++done;
         } else if (attempts[i] <= o.retries) {
@@ -376,51 +376,120 @@ Manifest read_manifest(const fs::path& dir) {
     }
 }
 
+namespace {
+
+// The digest a result carries: of its compact JSON without the "digest" key. nlohmann's
+// objects keep their keys sorted and its numbers are written so that they read back to the
+// same value, so a parsed file gives the bytes it was digested from.
+std::string content_digest(json j) {
+    j.erase("digest");
+    return util::hex64(util::fnv1a(j.dump()));
+}
+
+}  // namespace
+
 void write_result(const fs::path& dir, const ShardResult& r) {
-    const json j{{"schema", "harris-cosim.shard/1"}, {"job", r.job},           {"index", r.index},
-                 {"manifest", r.manifest_hash},     {"provenance", r.provenance}, {"data", r.data}};
+    json j{{"schema", "harris-cosim.shard/1"}, {"job", r.job},           {"index", r.index},
+           {"manifest", r.manifest_hash},     {"provenance", r.provenance}, {"data", r.data}};
+    j["digest"] = content_digest(j);
     write_atomic(result_path(dir, r.index), j.dump(1) + "\n");
 }
 
-std::optional<ShardResult> read_result(const fs::path& dir, const Manifest& m, std::size_t index) {
+ResultCheck check_result(const fs::path& dir, const Manifest& m, std::size_t index) {
     const fs::path p = result_path(dir, index);
-    if (!fs::exists(p)) return std::nullopt;
+    ResultCheck c;
+    if (!fs::exists(p)) return c;
+    c.state = ResultState::damaged;
+    json j;
+    try {
+        j = json::parse(slurp(p));
+    } catch (const json::exception& e) {   // truncated, or a syntax error, or a number out of range
+        c.why = std::string("does not parse: ") + e.what();
+        return c;
+    }
+    if (!j.is_object() || j.value("schema", "") != "harris-cosim.shard/1" || !j.contains("data")) {
+        c.why = "is not a shard result";
+        return c;
+    }
+    if (!j.contains("digest") || !j["digest"].is_string()) {
+        c.why = "carries no digest of its content";
+        return c;
+    }
+    if (const std::string d = content_digest(j); d != j["digest"].get<std::string>()) {
+        c.why = "does not match its digest (" + j["digest"].get<std::string>() + " recorded, " + d +
+                " computed from its content)";
+        return c;
+    }
     ShardResult r;
     try {
-        const json j = json::parse(slurp(p));
-        if (!j.is_object() || j.value("schema", "") != "harris-cosim.shard/1" || !j.contains("data"))
-            throw ClusterInputError("'" + p.string() + "' is not a shard result");
         r.job = j.value("job", "");
         r.index = j.value("index", std::size_t{0});
         r.manifest_hash = j.value("manifest", "");
         r.provenance = j.value("provenance", json::object());
-        r.data = j["data"];
-    } catch (const json::exception& e) {   // a syntax error, a number out of range, a key of another type
+    } catch (const json::exception& e) {   // a key of another type: written so, then digested
         throw ClusterInputError("'" + p.string() + "' is not a shard result: " + e.what());
     }
+    r.data = std::move(j["data"]);
     if (r.job != m.job || r.index != index || r.manifest_hash != m.hash())
         throw ClusterInputError("'" + p.string() + "' belongs to another run (job '" + r.job +
                                 "', manifest " + r.manifest_hash + ")");
-    return r;
+    c.state = ResultState::valid;
+    c.result = std::move(r);
+    return c;
+}
+
+std::optional<ShardResult> read_result(const fs::path& dir, const Manifest& m, std::size_t index) {
+    ResultCheck c = check_result(dir, m, index);
+    if (c.state == ResultState::damaged)
+        throw ClusterInputError("'" + result_path(dir, index).string() + "' is damaged: it " + c.why +
+                                "; --resume sets it aside and runs shard " + std::to_string(index) + " again");
+    return std::move(c.result);
 }
 
 std::vector<std::size_t> missing_shards(const fs::path& dir, const Manifest& m) {
     std::vector<std::size_t> v;
     for (std::size_t i = 0; i < m.shards.size(); ++i)
-        if (!read_result(dir, m, i)) v.push_back(i);
+        if (check_result(dir, m, i).state != ResultState::valid) v.push_back(i);
     return v;
+}
+
+std::vector<SetAside> set_aside_damaged(const fs::path& dir, const Manifest& m) {
+    std::vector<SetAside> moved;
+    for (std::size_t i = 0; i < m.shards.size(); ++i) {
+        const ResultCheck c = check_result(dir, m, i);
+        if (c.state != ResultState::damaged) continue;
+        const fs::path p = result_path(dir, i);
+        fs::path kept;
+        for (int k = 1;; ++k) {
+            kept = p.string() + ".damaged-" + std::to_string(k);
+            if (!fs::exists(kept)) break;
+        }
+        fs::rename(p, kept);
+        moved.push_back({i, kept, c.why});
+        std::ofstream log(log_path(dir, i), std::ios::app);
+        log << "harris-cosim: the result of shard " << i << " was damaged (it " << c.why << "); kept as " << kept.string()
+            << ", the shard runs again\n";
+    }
+    return moved;
 }
 
 RunSummary run(const fs::path& dir, const RunOptions& o) {
     const Manifest m = read_manifest(dir);
     if (o.worker.empty()) throw ClusterInputError("no worker command to run the shards");
+    std::vector<SetAside> moved = set_aside_damaged(dir, m);
+    for (const SetAside& a : moved)
+        if (o.notice)
+            o.notice("shard " + std::to_string(a.index) + ": its result was damaged (it " + a.why + "); kept as " +
+                     a.kept.string() + ", the shard runs again");
     const auto todo = missing_shards(dir, m);
+    RunSummary s;
     if (todo.empty()) {
-        RunSummary s;
         s.shards = s.skipped = m.shards.size();
-        return s;
+    } else {
+        s = o.runner == RunnerKind::local ? run_local(dir, m, todo, o) : run_slurm(dir, m, todo, o);
     }
-    return o.runner == RunnerKind::local ? run_local(dir, m, todo, o) : run_slurm(dir, m, todo, o);
+    s.set_aside = std::move(moved);
+    return s;
 }
 
 void JobRegistry::add(ShardJob j) {

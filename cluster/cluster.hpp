@@ -4,7 +4,10 @@
 // A run lives in one directory:
 //   DIR/manifest.json          the job kind, its common parameters and one entry per shard
 //   DIR/shards/NNNNN.json      one self-describing result per finished shard (written
-//                              atomically: a shard killed half-way leaves no file)
+//                              atomically: a shard killed half-way leaves no file), with a
+//                              digest of its own content; one damaged from outside (a
+//                              truncated copy, a bad disk) is set aside by the next run as
+//                              NNNNN.json.damaged-K and its shard runs again
 //   DIR/logs/NNNNN.log         the shard's stdout/stderr (local runner) or Slurm's output
 //   DIR/slurm/                 the sbatch scripts and job ids (slurm runner)
 // A shard is run by a worker command (argv + "DIR" + "INDEX"), which computes the shard's
@@ -74,13 +77,41 @@ struct ShardResult {
     json data;                          ///< what the job kind's merge folds
 };
 
-/// Writes DIR/shards/NNNNN.json atomically (temporary file in the same folder, then rename).
+/// Writes DIR/shards/NNNNN.json atomically (temporary file in the same folder, then rename),
+/// with "digest": FNV-1a 64 (hex) of the result's compact JSON without that key.
 void write_result(const fs::path& dir, const ShardResult& r);
-/// The result of shard `index` if it is present, complete and belongs to `m`; nullopt when
-/// absent. A file that exists but is corrupt or foreign is ClusterInputError.
+
+/// What a shard's result file holds.
+enum class ResultState {
+    absent,    ///< no file
+    valid,     ///< parses, its digest matches its content, and it belongs to the manifest
+    damaged,   ///< does not parse, is not a shard result, or its digest does not match
+};
+struct ResultCheck {
+    ResultState state = ResultState::absent;
+    std::optional<ShardResult> result;   ///< when valid
+    std::string why;                     ///< when damaged: what is wrong with it
+};
+/// Reads and checks the result of shard `index`. A file that is intact but belongs to
+/// another run (job, index or manifest hash differ) is ClusterInputError: it is not damage
+/// but a mix-up of run directories, which no rerun should hide.
+ResultCheck check_result(const fs::path& dir, const Manifest& m, std::size_t index);
+/// The result of shard `index` if it is present, intact and belongs to `m`; nullopt when
+/// absent. A damaged file (check_result) or a foreign one is ClusterInputError naming it.
 std::optional<ShardResult> read_result(const fs::path& dir, const Manifest& m, std::size_t index);
-/// Indices of the shards without a valid result, ascending.
+/// Indices of the shards without a valid result (absent or damaged), ascending.
 std::vector<std::size_t> missing_shards(const fs::path& dir, const Manifest& m);
+
+/// A damaged result moved out of the way.
+struct SetAside {
+    std::size_t index = 0;
+    fs::path kept;      ///< where the damaged file is now (DIR/shards/NNNNN.json.damaged-K)
+    std::string why;
+};
+/// Renames every damaged result of DIR to NNNNN.json.damaged-K (K: the first number not
+/// taken), so that its shard counts as missing and the file stays for inspection; appends a
+/// line naming it to the shard's log. Returns what it moved, in shard order.
+std::vector<SetAside> set_aside_damaged(const fs::path& dir, const Manifest& m);
 
 /// Progress of a run, as reported to the callback after each shard.
 struct Progress {
@@ -114,16 +145,20 @@ struct RunOptions {
     std::vector<std::string> merger;   ///< slurm: argv of the dependent merge job (DIR appended); empty: none
     SlurmOptions slurm;
     ProgressFn progress;
+    /// Called with one line per damaged result set aside before the shards run (empty: none).
+    std::function<void(const std::string&)> notice;
 };
 
 struct RunSummary {
     std::size_t shards = 0, ran = 0, skipped = 0;   ///< skipped: already had a result
     std::vector<std::size_t> failed;                ///< still without a result
+    std::vector<SetAside> set_aside;                ///< damaged results moved away first
     std::string slurm_array_job, slurm_merge_job;   ///< job ids (slurm runner)
 };
 
 /// Runs every shard of DIR's manifest that has no valid result yet (so a second call resumes
-/// an interrupted or failed run). Local: up to `jobs` worker processes at once, a failed
+/// an interrupted or failed run); damaged results are set aside first (set_aside_damaged,
+/// each reported through `notice`) and their shards run again. Local: up to `jobs` worker processes at once, a failed
 /// shard retried `retries` times. Slurm: one sbatch job array over the missing shards and,
 /// if `merger` is set, a merge job depending on it (afterok); with `wait` it polls squeue
 /// until both have left the queue. Returns which shards are still missing.

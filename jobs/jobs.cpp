@@ -15,6 +15,7 @@ const cluster::JobRegistry& registry() {
         add_eval_job(r);
         add_verilate_job(r);
         r.add(detail::sweep_job());
+        r.add(detail::sweep_check_job());
         r.add(detail::mutate_job());
         r.add(detail::landmarks_job());
         r.add(detail::slam_job());

@@ -106,7 +106,8 @@ void prepare_rtl(const cluster::Manifest& m);
 // ---- sweep (jobs/sweep_job.cpp) --------------------------------------------------------
 // A shard evaluates a group of configurations (sweep::evaluate_points: synthesis cost,
 // overflow audit, accuracy); the merge lists the points in spec order. The RTL checks of
-// the Pareto points need the whole front: the command runs them after the merge.
+// the Pareto points need the whole front: they are a second run of their own kind,
+// "sweep-check", planned from the merged points (sweep::plan_checks), one shard per check.
 
 struct SweepShards {
     std::string spec_text;        ///< the spec file's contents (the manifest carries them)
@@ -123,6 +124,20 @@ cluster::Manifest sweep_manifest(const SweepShards& p);
 /// points to verify marked, synthesis counts, the phases' times summed over the shards; no
 /// RTL checks run.
 sweep::SweepResult sweep_result(const cluster::Manifest& m, const json& merged);
+
+/// The RTL checks of a merged sweep (kind "sweep-check"): a shard per check of `plan` (one
+/// GHDL stream, the gate or the Verilator run of a point), run by sweep::CheckRunner with
+/// `o`'s out, cache, KITTI root, GHDL back end and threads; the merge lists the outcomes in
+/// the plan's order ({"outcomes": [...]}). The manifest carries the spec, the points'
+/// formats, the trust cache keys and the regression streams: a worker reads nothing else.
+cluster::Manifest sweep_check_manifest(const std::string& spec_text, const std::string& spec_name,
+                                       const sweep::SweepResult& r, const sweep::CheckPlan& plan,
+                                       const sweep::SweepOptions& o);
+/// Folds the merged outcomes into `r` in the plan's order (sweep::apply_check, then
+/// sweep::finish_checks), as sweep::check_points does. ClusterInputError when they do not
+/// answer the plan's checks one for one.
+void apply_sweep_checks(sweep::SweepResult& r, const sweep::CheckPlan& plan, const json& merged,
+                        const sweep::SweepOptions& o);
 
 // ---- mutate (jobs/mutate_job.cpp) ------------------------------------------------------
 // A shard co-simulates a group of the list's mutants (mutate::run_mutant); the first shard
@@ -180,6 +195,7 @@ slam::MonteCarlo slam_result(const cluster::Manifest& m, const json& merged);
 namespace detail {
 /// Registration of each kind (jobs/<kind>_job.cpp).
 cluster::ShardJob sweep_job();
+cluster::ShardJob sweep_check_job();
 cluster::ShardJob mutate_job();
 cluster::ShardJob landmarks_job();
 cluster::ShardJob slam_job();

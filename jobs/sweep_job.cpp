@@ -1,6 +1,7 @@
 // sweep_job.cpp: the "sweep" job kind, configurations of a bit-width sweep in shards.
 #include "jobs/jobs.hpp"
 
+#include <cstdio>
 #include <string>
 
 #include "model/harris/formats_json.hpp"
@@ -99,7 +100,91 @@ sweep::PointResult point_from(const json& j) {
     return p;
 }
 
+json outcome_json(const sweep::CheckTask& t, const sweep::CheckOutcome& c) {
+    return {{"point", t.point}, {"kind", sweep::check_kind_name(t.kind)}, {"stream", t.stream},
+            {"status", c.status}, {"log", c.log.string()}, {"gate_cached", c.gate_cached},
+            {"result", sweep::trust_to_json(c.one)}};
+}
+
+sweep::CheckOutcome outcome_from(const json& j) {
+    sweep::CheckOutcome c;
+    c.status = j.at("status");
+    c.log = j.at("log").get<std::string>();
+    c.gate_cached = j.at("gate_cached");
+    c.one = sweep::trust_from_json(j.at("result"));
+    return c;
+}
+
+// The options both sweep kinds' shards share: the KITTI root, the cache, accuracy threads.
+sweep::SweepOptions shard_options(const json& common) {
+    sweep::SweepOptions o;
+    o.kitti = common.at("kitti").get<std::string>();
+    o.cache = common.at("cache").get<std::string>();
+    o.threads = common.at("threads");
+    return o;
+}
+
+json stream_json(const util::RegressionStream& s) {
+    return {{"pattern", s.pattern}, {"width", s.width}, {"height", s.height}, {"frames", s.frames},
+            {"idle_every", s.idle_every}};
+}
+
+util::RegressionStream stream_from(const json& j) {
+    util::RegressionStream s;
+    s.pattern = j.at("pattern");
+    s.width = j.at("width");
+    s.height = j.at("height");
+    s.frames = j.at("frames");
+    s.idle_every = j.at("idle_every");
+    return s;
+}
+
 }  // namespace
+
+cluster::Manifest sweep_check_manifest(const std::string& spec_text, const std::string& spec_name,
+                                       const sweep::SweepResult& r, const sweep::CheckPlan& plan,
+                                       const sweep::SweepOptions& o) {
+    cluster::Manifest m;
+    m.job = "sweep-check";
+    json streams = json::array();
+    for (const auto& s : plan.streams) streams.push_back(stream_json(s));
+    m.common = {{"spec", spec_text},
+                {"spec_name", spec_name},
+                {"spec_hash", util::hex64(util::fnv1a(spec_text))},
+                {"kitti", fs::absolute(o.kitti).string()},
+                {"cache", fs::absolute(o.cache).string()},
+                {"out", fs::absolute(o.out).string()},
+                {"backend", o.ghdl_backend},
+                {"threads", o.threads},
+                {"streams", streams}};
+    for (const sweep::CheckTask& t : plan.tasks) {
+        const sweep::PointResult& p = r.points.at(t.point);
+        m.shards.push_back({{"point", t.point},
+                            {"name", p.config.name},
+                            {"formats", json::parse(formats_to_json(p.config.formats))},
+                            {"key", plan.keys.at(t.point)},
+                            {"kind", sweep::check_kind_name(t.kind)},
+                            {"stream", t.stream}});
+    }
+    return m;
+}
+
+void apply_sweep_checks(sweep::SweepResult& r, const sweep::CheckPlan& plan, const json& merged,
+                        const sweep::SweepOptions& o) {
+    const json& outs = merged.at("outcomes");
+    if (outs.size() != plan.tasks.size())
+        throw cluster::ClusterInputError("sweep-check: the merged data holds " + std::to_string(outs.size()) +
+                                         " outcomes, the plan " + std::to_string(plan.tasks.size()) + " checks");
+    for (std::size_t k = 0; k < outs.size(); ++k) {
+        const sweep::CheckTask& t = plan.tasks[k];
+        const json& j = outs[k];
+        if (j.at("point").get<std::size_t>() != t.point || j.at("kind") != sweep::check_kind_name(t.kind) ||
+            j.at("stream").get<int>() != t.stream)
+            throw cluster::ClusterInputError("sweep-check: outcome " + std::to_string(k) + " answers another check than the plan's");
+        sweep::apply_check(r, plan, t, outcome_from(j), o);
+    }
+    sweep::finish_checks(r);
+}
 
 cluster::Manifest sweep_manifest(const SweepShards& p) {
     const sweep::SweepSpec spec = sweep::parse_sweep_spec(p.spec_text, p.spec_name);
@@ -154,11 +239,8 @@ cluster::ShardJob sweep_job() {
     return {"sweep",
             [](const json& common, const json& shard, std::size_t) {
                 const sweep::SweepSpec spec = sweep::parse_sweep_spec(common.at("spec"), common.at("spec_name"));
-                sweep::SweepOptions o;
-                o.kitti = common.at("kitti").get<std::string>();
-                o.cache = common.at("cache").get<std::string>();
+                sweep::SweepOptions o = shard_options(common);
                 o.middlebury = common.at("middlebury").get<std::string>();
-                o.threads = common.at("threads");
                 o.jobs = common.at("jobs");
                 std::vector<std::size_t> which;
                 for (long i = shard.at("first"); i < shard.at("last").get<long>(); ++i) which.push_back(i);
@@ -188,6 +270,37 @@ cluster::ShardJob sweep_job() {
                             {"landmark_pairs", data.empty() ? json("") : data.front().at("landmark_pairs")},
                             {"points", points},
                             {"seconds", seconds}};
+            }};
+}
+
+cluster::ShardJob sweep_check_job() {
+    return {"sweep-check",
+            [](const json& common, const json& shard, std::size_t) {
+                const sweep::SweepSpec spec = sweep::parse_sweep_spec(common.at("spec"), common.at("spec_name"));
+                sweep::SweepOptions o = shard_options(common);
+                o.out = common.at("out").get<std::string>();
+                o.ghdl_backend = common.at("backend");
+                std::vector<util::RegressionStream> streams;
+                for (const auto& s : common.at("streams")) streams.push_back(stream_from(s));
+                sweep::CheckTask t;
+                t.point = shard.at("point");
+                t.kind = sweep::check_kind_from_name(shard.at("kind"));
+                t.stream = shard.at("stream");
+                sweep::Config config;
+                config.name = shard.at("name");
+                config.formats = formats_from_json(shard.at("formats"), "sweep-check manifest, configuration " + config.name);
+                sweep::CheckRunner runner(spec, o);
+                const sweep::CheckOutcome c = runner.run(t, config, shard.at("key"), streams);
+                std::printf("sweep-check: %s %s%s: %s (%.0f s%s)\n", config.name.c_str(), sweep::check_kind_name(t.kind),
+                            t.kind == sweep::CheckKind::ghdl ? (" " + streams.at(t.stream).pattern + " " + streams.at(t.stream).size()).c_str() : "",
+                            c.status.c_str(), c.one.seconds, c.one.cached ? ", cached" : "");
+                return json{{"outcomes", json::array({outcome_json(t, c)})}};
+            },
+            [](const json&, const std::vector<json>& data) {
+                json outs = json::array();
+                for (const auto& d : data)
+                    for (const auto& o : d.at("outcomes")) outs.push_back(o);
+                return json{{"outcomes", outs}};
             }};
 }
 

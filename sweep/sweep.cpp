@@ -69,23 +69,6 @@ void run_pool(size_t n, int jobs, const std::function<void(size_t)>& task) {
     if (err) std::rethrow_exception(err);
 }
 
-json trust_json(const TrustResult& t) {
-    return {{"runs", t.runs}, {"failed", t.failed}, {"mismatches", t.mismatches}, {"reads", t.reads},
-            {"seconds", t.seconds}, {"detail", t.detail}};
-}
-TrustResult trust_from_json(const json& j) {
-    TrustResult t;
-    t.ran = true;
-    t.cached = true;
-    t.runs = j.at("runs");
-    t.failed = j.at("failed");
-    t.mismatches = j.at("mismatches");
-    t.reads = j.at("reads");
-    t.seconds = j.at("seconds");
-    t.detail = j.at("detail");
-    return t;
-}
-
 /// Adds one run (or a cached run) to a point's check; cached only if every run was.
 void add_run(TrustResult& t, const TrustResult& one) {
     const bool first = !t.ran;
@@ -100,6 +83,24 @@ void add_run(TrustResult& t, const TrustResult& one) {
 }
 
 }  // namespace
+
+json trust_to_json(const TrustResult& t) {
+    return {{"ran", t.ran},         {"runs", t.runs},   {"failed", t.failed},   {"mismatches", t.mismatches},
+            {"reads", t.reads},     {"seconds", t.seconds}, {"cached", t.cached}, {"detail", t.detail}};
+}
+
+TrustResult trust_from_json(const json& j) {
+    TrustResult t;
+    t.ran = j.value("ran", true);
+    t.cached = j.value("cached", false);
+    t.runs = j.at("runs");
+    t.failed = j.at("failed");
+    t.mismatches = j.at("mismatches");
+    t.reads = j.at("reads");
+    t.seconds = j.at("seconds");
+    t.detail = j.at("detail");
+    return t;
+}
 
 void mark_pareto(std::vector<PointResult>& pts) {
     std::vector<std::vector<double>> obj;
@@ -298,179 +299,238 @@ SweepResult run_sweep(const SweepOptions& o) {
     return res;
 }
 
-void check_points(SweepResult& res, const SweepOptions& o) {
+const char* check_kind_name(CheckKind k) {
+    switch (k) {
+    case CheckKind::gate: return "gate";
+    case CheckKind::verilator: return "verilator";
+    case CheckKind::ghdl: return "ghdl";
+    }
+    return "?";
+}
+
+CheckKind check_kind_from_name(const std::string& name) {
+    for (CheckKind k : {CheckKind::gate, CheckKind::verilator, CheckKind::ghdl})
+        if (name == check_kind_name(k)) return k;
+    throw InputError("unknown RTL check kind '" + name + "' (gate, verilator, ghdl)");
+}
+
+CheckPlan plan_checks(const SweepResult& res, const SweepOptions& o) {
     const SweepSpec& spec = res.spec;
+    CheckPlan plan;
     const size_t n = res.points.size();
-    std::mutex m;
-    auto t = Clock::now();
-    // ---- 4. RTL checks of the points marked verify ------------------------------------
-    if (o.trust && (spec.trust.rtl || !spec.trust.verilator_pairs.empty() || spec.trust.verilator_gate)) {
-        CostOptions co;
-        co.rtl_sources = cosim::rtl_sources();
-        co.cache_dir = o.cache / "synth";
-        co.geometry = spec.cost_geometry;
-        const CostContext ctx(co);
-        const fs::path trust_cache = o.cache / "trust";
-        fs::create_directories(trust_cache);
-        const auto rset = util::read_regression_set(o.regression_set);
+    plan.keys.resize(n);
+    if (!o.trust || !(spec.trust.rtl || !spec.trust.verilator_pairs.empty() || spec.trust.verilator_gate)) return plan;
+    CostOptions co;
+    co.rtl_sources = cosim::rtl_sources();
+    co.cache_dir = o.cache / "synth";
+    co.geometry = spec.cost_geometry;
+    const CostContext ctx(co);
+    if (spec.trust.rtl) plan.streams = util::read_regression_set(o.regression_set);
+    for (size_t i = 0; i < n; ++i) {
+        const PointResult& p = res.points[i];
+        if (!p.verify) continue;
         // the RTL checks depend on the RTL, the tool versions and the formats: same key basis
-        struct TJob { size_t point; int stream; };   // stream -1: Verilator, -2: the gate
-        std::vector<TJob> tj;
-        std::vector<std::string> keys(n);
-        for (size_t i = 0; i < n; ++i) {
-            if (!res.points[i].verify) continue;
-            keys[i] = util::hex64(util::fnv1a(ctx.fingerprint + fields_text(res.points[i].config.formats, format_fields()) +
-                                              fmt::format("|{}|{}|{}", spec.trust.verilator_pairs,
-                                                          spec.trust.verilator_gate, spec.sequence)));
-            const fs::path cfg = o.out / "configs" / (res.points[i].config.name + ".json");
-            util::write_file_atomic(cfg, formats_to_json(res.points[i].config.formats, res.points[i].config.name));
-            auto& p = res.points[i];
-            // one cache entry per passed simulator run, written as soon as it passes, so an
-            // interrupted sweep keeps what it finished
-            if (spec.trust.rtl)
-                for (int st = 0; st < static_cast<int>(rset.size()); ++st) {
-                    const fs::path c = trust_cache / fmt::format("{}-rtl-{}.json", keys[i], st);
-                    if (fs::exists(c)) add_run(p.rtl, trust_from_json(json::parse(util::read_file(c))));
-                    else tj.push_back({i, st});
-                }
-            // the gate keeps its own record (vl::run_gate_cached: formats, sources, tools)
-            if (spec.trust.verilator_gate) tj.push_back({i, -2});
-            if (!spec.trust.verilator_pairs.empty()) {
-                const fs::path c = trust_cache / (keys[i] + "-verilator.json");
-                if (fs::exists(c)) add_run(p.verilator, trust_from_json(json::parse(util::read_file(c))));
-                else tj.push_back({i, -1});
+        plan.keys[i] = util::hex64(util::fnv1a(ctx.fingerprint + fields_text(p.config.formats, format_fields()) +
+                                               fmt::format("|{}|{}|{}", spec.trust.verilator_pairs,
+                                                           spec.trust.verilator_gate, spec.sequence)));
+        util::write_file_atomic(o.out / "configs" / (p.config.name + ".json"),
+                                formats_to_json(p.config.formats, p.config.name));
+        if (spec.trust.verilator_gate) plan.tasks.push_back({i, CheckKind::gate, -1});
+        if (!spec.trust.verilator_pairs.empty()) plan.tasks.push_back({i, CheckKind::verilator, -1});
+        for (int st = 0; st < static_cast<int>(plan.streams.size()); ++st) plan.tasks.push_back({i, CheckKind::ghdl, st});
+    }
+    // gates, then Verilator runs first: they are the longest (netlist builds)
+    std::stable_sort(plan.tasks.begin(), plan.tasks.end(),
+                     [](const CheckTask& a, const CheckTask& b) { return a.kind < b.kind; });
+    return plan;
+}
+
+struct CheckRunner::State {
+    SweepSpec spec;
+    SweepOptions o;
+    fs::path trust_cache;
+    std::mutex verilator_m;   // one verilated design at a time (Verilator's runtime is process-global)
+    std::once_flag vl_loaded;
+    frames::Stream vl_stream;   // the Verilator runs' frames: the KITTI pairs of the trust spec
+};
+
+CheckRunner::CheckRunner(const SweepSpec& spec, const SweepOptions& o) : s_(std::make_unique<State>()) {
+    s_->spec = spec;
+    s_->o = o;
+    s_->trust_cache = o.cache / "trust";
+    fs::create_directories(s_->trust_cache);
+}
+
+CheckRunner::~CheckRunner() = default;
+
+CheckOutcome CheckRunner::run(const CheckTask& j, const Config& config, const std::string& key,
+                              const std::vector<util::RegressionStream>& rset) {
+    const SweepSpec& spec = s_->spec;
+    const SweepOptions& o = s_->o;
+    if (j.kind == CheckKind::ghdl && (j.stream < 0 || j.stream >= static_cast<int>(rset.size())))
+        throw InputError(fmt::format("RTL check of {}: stream {} is not in the regression set ({} streams)", config.name,
+                                     j.stream, rset.size()));
+    const fs::path rel = fs::path("trust") / config.name;
+    const fs::path dir = o.out / rel;
+    fs::create_directories(dir);
+    CheckOutcome c;
+    TrustResult& one = c.one;
+    // one cache entry per passed simulator run, a GHDL run's named by its stream (not its
+    // place in the set, which another set or an edit of it changes); the gate keeps its
+    // own record (vl::run_gate_cached: formats, sources, tools)
+    const auto stream_tag = [&] {
+        const util::RegressionStream& s = rset[j.stream];
+        return fmt::format("{}-{}-{}-{}", s.pattern, s.size(), s.frames, s.idle_every);
+    };
+    const fs::path entry = j.kind == CheckKind::ghdl        ? s_->trust_cache / fmt::format("{}-rtl-{}.json", key, stream_tag())
+                           : j.kind == CheckKind::verilator ? s_->trust_cache / (key + "-verilator.json")
+                                                            : fs::path();
+    if (!entry.empty() && fs::exists(entry)) {
+        c.one = trust_from_json(json::parse(util::read_file(entry)));
+        c.one.cached = true;
+        c.status = "pass";
+        return c;
+    }
+    const auto ts = Clock::now();
+    one.ran = true;
+    one.runs = 1;
+    std::string& status = c.status;
+    if (j.kind == CheckKind::gate) {
+        c.log = rel / "gate.log";
+        std::ofstream glog(o.out / c.log);
+        std::string why;
+        if (!vl::toolchain_available(&why)) {
+            status = "no gate: " + why;
+        } else {
+            try {
+                std::lock_guard<std::mutex> l(s_->verilator_m);
+                const vl::GateResult g = vl::run_gate_cached(config.formats, {}, vl::default_cache_dir(), glog, &c.gate_cached);
+                one.reads = g.reads;
+                one.cached = c.gate_cached;
+                status = g.verdict == vl::GateVerdict::pass ? "pass" : std::string(vl::verdict_name(g.verdict)) + ": " + g.first;
+                one.detail = g.verdict == vl::GateVerdict::pass
+                                 ? fmt::format("pass: {} writes, {} reads agree three ways ({:.0f} s{})", g.writes, g.reads,
+                                               g.seconds, c.gate_cached ? ", recorded" : "")
+                                 : std::string();
+                one.seconds = g.seconds;
+            } catch (const SimulatorError& e) {
+                status = e.what();
             }
         }
-        // the Verilator runs' frames: the KITTI pairs of the trust spec, loaded once
-        frames::Stream vl_stream;
-        if (!spec.trust.verilator_pairs.empty())
-            vl_stream = frames::load_kitti_stream(o.kitti, spec.sequence,
-                                                  util::parse_range(spec.trust.verilator_pairs, "trust.verilator_pairs"),
-                                                  "sweep spec trust.verilator_pairs '" + spec.trust.verilator_pairs + "'",
-                                                  o.threads);
-        // gates, then Verilator runs first: they are the longest (netlist builds)
-        std::stable_sort(tj.begin(), tj.end(), [](const TJob& a, const TJob& b) { return std::min(a.stream, 0) < std::min(b.stream, 0); });
-        std::atomic<int> tdone{0};
-        std::mutex verilator_m;   // one verilated design at a time (Verilator's runtime is process-global)
-        run_pool(tj.size(), o.jobs, [&](size_t k) {
-            const TJob& j = tj[k];
-            PointResult& p = res.points[j.point];
-            const std::string name = p.config.name;
-            const fs::path dir = o.out / "trust" / name;
-            fs::create_directories(dir);
-            const auto ts = Clock::now();
-            TrustResult one;
-            one.ran = true;
-            one.runs = 1;
-            std::string status;
-            fs::path log;
-            bool gate_cached = false;
-            if (j.stream == -2) {
-                log = dir / "gate.log";
-                std::ofstream glog(log);
-                std::string why;
-                if (!vl::toolchain_available(&why)) {
-                    status = "no gate: " + why;
-                } else {
-                    try {
-                        std::lock_guard<std::mutex> l(verilator_m);
-                        const vl::GateResult g =
-                            vl::run_gate_cached(p.config.formats, {}, vl::default_cache_dir(), glog, &gate_cached);
-                        one.reads = g.reads;
-                        one.cached = gate_cached;
-                        status = g.verdict == vl::GateVerdict::pass ? "pass" : std::string(vl::verdict_name(g.verdict)) + ": " + g.first;
-                        one.detail = g.verdict == vl::GateVerdict::pass
-                                         ? fmt::format("pass: {} writes, {} reads agree three ways ({:.0f} s{})", g.writes,
-                                                       g.reads, g.seconds, gate_cached ? ", recorded" : "")
-                                         : std::string();
-                        one.seconds = g.seconds;
-                    } catch (const SimulatorError& e) {
-                        status = e.what();
-                    }
-                }
-            } else if (j.stream >= 0) {
-                const util::RegressionStream& s = rset[j.stream];
-                const std::string tag = fmt::format("rtl-{}-{}-{}", s.pattern, s.size(), s.idle_every);
-                log = dir / (tag + ".log");
-                fs::remove(log);
-                cosim::GhdlRun run;
-                for (int f = 0; f < s.frames; ++f) {
-                    run.frames.push_back(make_pattern(parse_pattern(s.pattern), s.width, s.height, f, 1));
-                    run.frame_names.push_back(s.pattern + "#" + std::to_string(f));
-                }
-                run.formats = p.config.formats;
-                run.backend = o.ghdl_backend;
-                run.keep_going = true;
-                run.idle_every = s.idle_every;
-                run.progress = false;
-                run.log = log;
-                run.summary_json = dir / (tag + ".json");
-                run.vcd = dir / (tag + ".vcd");
-                try {
-                    const cosim::GhdlResult r = cosim::run_ghdl(run);
-                    one.mismatches = r.summary.mismatching_cycles + r.summary.read_mismatches;
-                    one.reads = r.summary.reads;
-                    const bool ok = r.summary.pass() && r.summary.complete && r.simulator_status == 0;
-                    status = ok ? "pass" : r.summary.mismatching_cycles > 0 ? "mismatch" : "incomplete";
-                } catch (const SimulatorError& e) {
-                    status = e.what();
-                }
-            } else {
-                log = dir / "verilate.log";
-                fs::remove(log);
-                vl::VerilateRun run;
-                run.frames = vl_stream.frames;
-                run.frame_names = vl_stream.names;
-                run.formats = p.config.formats;
-                run.gate = false;   // the gate is its own check (stream -2)
-                run.keep_going = true;
-                std::ofstream vlog(log);
-                try {
-                    std::lock_guard<std::mutex> l(verilator_m);
-                    const vl::VerilateResult r = vl::run_verilate(run, vlog);
-                    if (r.run) {
-                        one.mismatches = r.run->mismatches;
-                        one.reads = r.run->reads;
-                    }
-                    status = r.status();
-                } catch (const SimulatorError& e) {
-                    status = e.what();
-                }
-            }
-            if (j.stream != -2) one.seconds = since(ts);
-            if (status != "pass") {
-                one.failed = 1;
-                one.detail = fmt::format("{}: {} (log {})", j.stream >= 0 ? rset[j.stream].pattern + " " + rset[j.stream].size()
-                                                          : j.stream == -1 ? "verilate" : "gate",
-                                         status, log.string());
-            } else if (j.stream != -2) {
-                const std::string entry = j.stream >= 0 ? fmt::format("{}-rtl-{}.json", keys[j.point], j.stream)
-                                                        : keys[j.point] + "-verilator.json";
-                util::write_file_atomic(trust_cache / entry, trust_json(one).dump(2));
-            }
-            {
-                std::lock_guard<std::mutex> l(m);
-                add_run(j.stream >= 0 ? p.rtl : j.stream == -1 ? p.verilator : p.gate, one);
-                if (j.stream == -2) {
-                    if (gate_cached) ++res.gates_cached;
-                    else {
-                        ++res.gates_run;
-                        res.gate_seconds_sum += one.seconds;
-                    }
-                }
-            }
-            progress(o.progress, fmt::format("[rtl {}/{}] {} {}: {} ({:.0f} s{})", ++tdone, tj.size(), name,
-                                             j.stream >= 0 ? "ghdl " + rset[j.stream].pattern + " " + rset[j.stream].size()
-                                             : j.stream == -1 ? "verilator " + spec.trust.verilator_pairs : "three-way gate",
-                                             status, one.seconds, gate_cached ? ", verdict recorded earlier" : ""));
+    } else if (j.kind == CheckKind::ghdl) {
+        const util::RegressionStream& s = rset[j.stream];
+        const std::string tag = fmt::format("rtl-{}-{}-{}", s.pattern, s.size(), s.idle_every);
+        c.log = rel / (tag + ".log");
+        fs::remove(o.out / c.log);
+        cosim::GhdlRun run;
+        for (int f = 0; f < s.frames; ++f) {
+            run.frames.push_back(make_pattern(parse_pattern(s.pattern), s.width, s.height, f, 1));
+            run.frame_names.push_back(s.pattern + "#" + std::to_string(f));
+        }
+        run.formats = config.formats;
+        run.backend = o.ghdl_backend;
+        run.keep_going = true;
+        run.idle_every = s.idle_every;
+        run.progress = false;
+        run.log = o.out / c.log;
+        run.summary_json = dir / (tag + ".json");
+        run.vcd = dir / (tag + ".vcd");
+        try {
+            const cosim::GhdlResult r = cosim::run_ghdl(run);
+            one.mismatches = r.summary.mismatching_cycles + r.summary.read_mismatches;
+            one.reads = r.summary.reads;
+            const bool ok = r.summary.pass() && r.summary.complete && r.simulator_status == 0;
+            status = ok ? "pass" : r.summary.mismatching_cycles > 0 ? "mismatch" : "incomplete";
+        } catch (const SimulatorError& e) {
+            status = e.what();
+        }
+    } else {
+        std::call_once(s_->vl_loaded, [&] {
+            s_->vl_stream = frames::load_kitti_stream(o.kitti, spec.sequence,
+                                                      util::parse_range(spec.trust.verilator_pairs, "trust.verilator_pairs"),
+                                                      "sweep spec trust.verilator_pairs '" + spec.trust.verilator_pairs + "'",
+                                                      o.threads);
         });
-        for (auto& p : res.points) {
-            if (!p.verify) continue;
-            if (p.rtl.ran && p.rtl.detail.empty())
-                p.rtl.detail = fmt::format("{}/{} streams pass", p.rtl.runs - p.rtl.failed, p.rtl.runs);
-            if (p.verilator.ran && p.verilator.detail.empty())
-                p.verilator.detail = fmt::format("pairs {} pass", spec.trust.verilator_pairs);
+        c.log = rel / "verilate.log";
+        fs::remove(o.out / c.log);
+        vl::VerilateRun run;
+        run.frames = s_->vl_stream.frames;
+        run.frame_names = s_->vl_stream.names;
+        run.formats = config.formats;
+        run.gate = false;   // the gate is its own check
+        run.keep_going = true;
+        std::ofstream vlog(o.out / c.log);
+        try {
+            std::lock_guard<std::mutex> l(s_->verilator_m);
+            const vl::VerilateResult r = vl::run_verilate(run, vlog);
+            if (r.run) {
+                one.mismatches = r.run->mismatches;
+                one.reads = r.run->reads;
+            }
+            status = r.status();
+        } catch (const SimulatorError& e) {
+            status = e.what();
         }
+    }
+    if (j.kind != CheckKind::gate) one.seconds = since(ts);
+    if (status != "pass") one.failed = 1;
+    else if (!entry.empty()) util::write_file_atomic(entry, trust_to_json(one).dump(2));
+    return c;
+}
+
+void apply_check(SweepResult& res, const CheckPlan& plan, const CheckTask& j, const CheckOutcome& c, const SweepOptions& o) {
+    PointResult& p = res.points.at(j.point);
+    TrustResult one = c.one;
+    if (one.failed)
+        one.detail = fmt::format("{}: {} (log {})",
+                                 j.kind == CheckKind::ghdl        ? plan.streams.at(j.stream).pattern + " " + plan.streams.at(j.stream).size()
+                                 : j.kind == CheckKind::verilator ? std::string("verilate")
+                                                                  : std::string("gate"),
+                                 c.status, (o.out / c.log).string());
+    add_run(j.kind == CheckKind::ghdl ? p.rtl : j.kind == CheckKind::verilator ? p.verilator : p.gate, one);
+    if (j.kind == CheckKind::gate) {
+        if (c.gate_cached) ++res.gates_cached;
+        else {
+            ++res.gates_run;
+            res.gate_seconds_sum += one.seconds;
+        }
+    }
+}
+
+void finish_checks(SweepResult& res) {
+    for (auto& p : res.points) {
+        if (!p.verify) continue;
+        if (p.rtl.ran && p.rtl.detail.empty())
+            p.rtl.detail = fmt::format("{}/{} streams pass", p.rtl.runs - p.rtl.failed, p.rtl.runs);
+        if (p.verilator.ran && p.verilator.detail.empty())
+            p.verilator.detail = fmt::format("pairs {} pass", res.spec.trust.verilator_pairs);
+    }
+}
+
+void check_points(SweepResult& res, const SweepOptions& o) {
+    const auto t = Clock::now();
+    // ---- 4. RTL checks of the points marked verify ------------------------------------
+    const CheckPlan plan = plan_checks(res, o);
+    if (!plan.tasks.empty()) {
+        CheckRunner runner(res.spec, o);
+        std::vector<CheckOutcome> outcomes(plan.tasks.size());
+        std::atomic<int> tdone{0};
+        run_pool(plan.tasks.size(), o.jobs, [&](size_t k) {
+            const CheckTask& j = plan.tasks[k];
+            const PointResult& p = res.points[j.point];
+            outcomes[k] = runner.run(j, p.config, plan.keys[j.point], plan.streams);
+            const CheckOutcome& c = outcomes[k];
+            progress(o.progress,
+                     fmt::format("[rtl {}/{}] {} {}: {} ({:.0f} s{})", ++tdone, plan.tasks.size(), p.config.name,
+                                 j.kind == CheckKind::ghdl ? "ghdl " + plan.streams[j.stream].pattern + " " + plan.streams[j.stream].size()
+                                 : j.kind == CheckKind::verilator ? "verilator " + res.spec.trust.verilator_pairs
+                                                                  : std::string("three-way gate"),
+                                 c.status, c.one.seconds,
+                                 c.gate_cached ? ", verdict recorded earlier" : c.one.cached ? ", cached" : ""));
+        });
+        // in the plan's order, whatever order they finished in
+        for (size_t k = 0; k < plan.tasks.size(); ++k) apply_check(res, plan, plan.tasks[k], outcomes[k], o);
+        finish_checks(res);
     }
     res.seconds_trust = since(t);
 }

@@ -8,14 +8,18 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "eval/eval.hpp"
 #include "landmarks/landmarks.hpp"
 #include "sweep/cost.hpp"
 #include "sweep/overflow.hpp"
 #include "sweep/sweep_config.hpp"
+#include "util/util.hpp"
 
 namespace hc::sweep {
 
@@ -30,6 +34,11 @@ struct TrustResult {
     bool cached = false;
     std::string detail;        ///< e.g. "10/10 streams pass" or the first failure
 };
+
+/// A check as JSON (every field) and back; the trust cache's entries are these (an entry
+/// written without "ran" or "cached" reads as ran, not cached).
+nlohmann::json trust_to_json(const TrustResult& t);
+TrustResult trust_from_json(const nlohmann::json& j);
 
 struct PointResult {
     Config config;
@@ -79,6 +88,7 @@ struct SweepResult {
     double gate_seconds_sum = 0;       ///< wall time of the gates run now (cached ones: 0)
     double synth_seconds_sum = 0;      ///< sum of synthesis times of the runs made now
     std::string command;
+    std::string regression_set = "golden/regression-set.txt";   ///< the GHDL checks' streams, as the reports name them
 };
 
 /// Pareto front: minimise LUTs and DSPs, maximise F1; only configurations that do not wrap.
@@ -118,7 +128,71 @@ struct PointsRun {
 /// only, so any split of the indices gives the same points.
 PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& which, const SweepOptions& o);
 /// The RTL checks (cosim::run_ghdl, vl::run_verilate) of the points marked verify, when
-/// o.trust and the spec asks for them; sets r.seconds_trust.
+/// o.trust and the spec asks for them, `o.jobs` at a time in this process (plan_checks,
+/// run_check, apply_check); sets r.seconds_trust.
 void check_points(SweepResult& r, const SweepOptions& o);
+
+// ---- the RTL checks one by one (what check_points runs, and what a sharded sweep runs as
+// shards of its own job kind) -----------------------------------------------------------
+
+/// Which simulator an RTL check runs.
+enum class CheckKind {
+    gate,        ///< verilate's three-way gate (GHDL / Verilator / model on small frames)
+    verilator,   ///< Verilator on the trust spec's KITTI pairs
+    ghdl,        ///< GHDL co-simulation of one stream of the regression set
+};
+const char* check_kind_name(CheckKind k);
+/// Inverse of check_kind_name; InputError for another name.
+CheckKind check_kind_from_name(const std::string& name);
+
+/// One RTL check of a point marked verify.
+struct CheckTask {
+    size_t point = 0;          ///< index into SweepResult::points
+    CheckKind kind = CheckKind::ghdl;
+    int stream = -1;           ///< ghdl: index into CheckPlan::streams
+};
+
+/// The RTL checks of a result, in the order they run (the gates, then the Verilator runs,
+/// the longest, then the GHDL streams), and what they share.
+struct CheckPlan {
+    std::vector<CheckTask> tasks;                 ///< empty: nothing to check
+    std::vector<std::string> keys;                ///< per point: the trust cache's key ("" when not verified)
+    std::vector<util::RegressionStream> streams;  ///< the GHDL checks' streams (o.regression_set)
+};
+/// The checks of the points marked verify (none unless o.trust and the spec asks for some);
+/// writes each such point's formats to o.out/configs/NAME.json.
+CheckPlan plan_checks(const SweepResult& r, const SweepOptions& o);
+
+/// What one check found.
+struct CheckOutcome {
+    TrustResult one;                  ///< runs 1; failed 1 unless it passed
+    std::string status;               ///< "pass", or what went wrong
+    std::filesystem::path log;        ///< the simulator's log, relative to o.out
+    bool gate_cached = false;         ///< gate: the verdict was recorded earlier
+};
+/// Runs checks of one spec: each in a child simulator process (Verilator's in this process,
+/// one at a time), or read from the trust cache under o.cache when it passed before; a run
+/// that passes is recorded there at once, so an interrupted sweep keeps what it finished.
+/// The Verilator runs' KITTI pairs are loaded on the first that needs them. Logs go to
+/// o.out/trust/NAME/.
+class CheckRunner {
+public:
+    CheckRunner(const SweepSpec& spec, const SweepOptions& o);
+    ~CheckRunner();
+    /// Checks `formats` (the point's configuration `name`, trust cache key `key`).
+    CheckOutcome run(const CheckTask& t, const Config& config, const std::string& key,
+                     const std::vector<util::RegressionStream>& streams);
+
+private:
+    struct State;
+    std::unique_ptr<State> s_;
+};
+/// Adds an outcome to its point's check (and the gate counts of r); a failure's detail names
+/// its log under o.out. Outcomes applied in the plan's order give the same result whatever
+/// ran them.
+void apply_check(SweepResult& r, const CheckPlan& plan, const CheckTask& t, const CheckOutcome& c,
+                 const SweepOptions& o);
+/// After the last apply_check: the summary detail of every check that passed.
+void finish_checks(SweepResult& r);
 
 }  // namespace hc::sweep

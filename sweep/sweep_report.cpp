@@ -94,9 +94,9 @@ std::string to_markdown(const SweepResult& r) {
     s += fmt::format("Cost: yosys `synth_xilinx` of harris_top (OBSERVE=false, IMG {}x{}), GHDL's Verilog with signed "
                      "multiplies restored (docs/bit-widths.md); LUT = LUT1..LUT6, INV cells not included.\n\n",
                      r.spec.cost_geometry.width, r.spec.cost_geometry.height);
-    s += "Pareto front: minimum LUTs and DSPs, maximum F1, among configurations that do not wrap (marked **P**). "
-         "RTL checks (the Pareto points, the thesis and the findings below): GHDL co-simulation of "
-         "golden/regression-set.txt (mismatching cycles, every inter-stage register compared after every cycle) and ";
+    s += fmt::format("Pareto front: minimum LUTs and DSPs, maximum F1, among configurations that do not wrap (marked **P**). "
+                     "RTL checks (the Pareto points, the thesis and the findings below): GHDL co-simulation of "
+                     "{} (mismatching cycles, every inter-stage register compared after every cycle) and ", r.regression_set);
     s += r.spec.trust.verilator_pairs.empty()
              ? std::string("no Verilator run")
              : fmt::format("Verilator on KITTI {} pairs {} (mismatching writes; reads compared)", r.spec.sequence,

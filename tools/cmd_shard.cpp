@@ -40,7 +40,14 @@ void add_shard_command(CLI::App& app) {
         const auto missing = cluster::missing_shards(o->dir, m);
         std::printf("%s: job %s, %zu of %zu shards done\n", o->dir.c_str(), m.job.c_str(),
                     m.shards.size() - missing.size(), m.shards.size());
-        for (std::size_t i : missing) std::printf("  missing %zu (log %s)\n", i, cluster::log_path(o->dir, i).c_str());
+        for (std::size_t i : missing) {
+            const cluster::ResultCheck c = cluster::check_result(o->dir, m, i);
+            if (c.state == cluster::ResultState::damaged)
+                std::printf("  damaged %zu: %s %s (--resume sets it aside and runs the shard again)\n", i,
+                            cluster::result_path(o->dir, i).c_str(), c.why.c_str());
+            else
+                std::printf("  missing %zu (log %s)\n", i, cluster::log_path(o->dir, i).c_str());
+        }
     });
 }
 

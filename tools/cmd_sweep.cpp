@@ -26,7 +26,7 @@ namespace hc::tools {
 namespace {
 
 struct SweepCli {
-    std::string config, out = "sweep-report", cache, kitti, data, backend, middlebury;
+    std::string config, out = "sweep-report", cache, kitti, data, backend, middlebury, regression_set;
     int threads = 0;
     bool no_rtl = false, quiet = false;
     RunnerFlags runner;   ///< runner.jobs: also the synthesis / GHDL processes at once
@@ -55,7 +55,10 @@ void run(const SweepCli& c) {
     } else if (auto d = frames::data_dir(c.data); d && fs::is_directory(*d / "middlebury2006" / "half")) {
         o.middlebury = *d / "middlebury2006" / "half";
     }   // else: no landmark column (the report says why)
-    o.regression_set = fs::path(HC_SOURCE_DIR) / "golden" / "regression-set.txt";
+    o.regression_set = !c.regression_set.empty() ? fs::path(c.regression_set)
+                                                 : fs::path(HC_SOURCE_DIR) / "golden" / "regression-set.txt";
+    if (!fs::is_regular_file(o.regression_set))
+        throw InputError("--regression-set '" + o.regression_set.string() + "': no such file");
     const auto backends = cosim::ghdl_backends();
     o.ghdl_backend = !c.backend.empty() ? c.backend : backends.empty() ? "gcc" : backends.front();
     o.threads = c.threads;
@@ -80,12 +83,24 @@ void run(const SweepCli& c) {
         const auto merged = run_sharded(dir, m, c.runner);
         if (!merged) return;
         r = jobs::sweep_result(m, *merged);
-        sweep::check_points(r, o);
+        // the RTL checks of the merged Pareto front: a second run, one shard per check
+        const auto tc = std::chrono::steady_clock::now();
+        const sweep::CheckPlan plan = sweep::plan_checks(r, o);
+        if (!plan.tasks.empty()) {
+            const cluster::Manifest cm = jobs::sweep_check_manifest(p.spec_text, p.spec_name, r, plan, o);
+            const auto checked = run_sharded(dir / "checks", cm, c.runner);
+            if (!checked) return;
+            jobs::apply_sweep_checks(r, plan, *checked, o);
+        }
+        r.seconds_trust = std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count();
         r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     } else {
         r = sweep::run_sweep(o);
     }
-    r.command = fmt::format("harris-cosim sweep --config {} --out {}{}", c.config, c.out, c.no_rtl ? " --no-rtl" : "");
+    if (!c.regression_set.empty()) r.regression_set = c.regression_set;
+    r.command = fmt::format("harris-cosim sweep --config {} --out {}{}{}", c.config, c.out,
+                            c.regression_set.empty() ? "" : " --regression-set " + c.regression_set,
+                            c.no_rtl ? " --no-rtl" : "");
     sweep::write_reports(r, o.out);
     std::fprintf(stderr, "sweep: %zu configurations in %.1f s; reports in %s (sweep.md, sweep.csv, sweep.json, pareto.png)\n",
                  r.points.size(), r.seconds_total, o.out.string().c_str());
@@ -107,9 +122,10 @@ void add_sweep_command(CLI::App& app) {
         "(spec model), correct stereo matches of the landmark chain on Middlebury pairs, overflow audit, yosys\n"
         "synth_xilinx cost (cached); Pareto front, each Pareto point verified on the RTL (GHDL co-simulation +\n"
         "Verilator). Exit status: 0 done, 1 an RTL check failed, 2 bad input, 3 tool failure.\n"
-        "--jobs: shards at once, and the synthesis / GHDL processes at once of a single-process run and of the RTL checks.\n"
-        "With --runner or --shards the configurations run in shards (run directory --run-dir, default <out>/run); the RTL\n"
-        "checks of the merged Pareto front run after the merge, here.");
+        "--jobs: shards at once; in a single-process run, the synthesis / GHDL processes at once.\n"
+        "With --runner or --shards the configurations run in shards (run directory --run-dir, default <out>/run), then the RTL\n"
+        "checks of the merged Pareto front, one shard per check (run directory <run-dir>/checks); --shards counts the\n"
+        "configurations' shards only.");
     s->add_option("--config", c->config, "JSON sweep spec (configs/*.json; see sweep/sweep_config.hpp)")->required();
     s->add_option("--out", c->out, "output directory (sweep.md, sweep.csv, sweep.json, pareto.png)")->capture_default_str();
     s->add_option("--cache", c->cache, "synthesis/RTL-check cache (else $HARRIS_COSIM_SWEEP_CACHE or <build>/sweep-cache)");
@@ -119,6 +135,8 @@ void add_sweep_command(CLI::App& app) {
                   "Middlebury 2006 half-size folder of the stereo-match column (default <data>/middlebury2006/half)");
     s->add_option("--threads", c->threads, "threads for the accuracy runs (0: all cores)")->check(whole_number(0));
     s->add_option("--backend", c->backend, "GHDL back end of the RTL checks (default: the first built: gcc, llvm, mcode)");
+    s->add_option("--regression-set", c->regression_set,
+                  "the GHDL checks' streams, one per line as golden/regression-set.txt (the default)");
     s->add_flag("--no-rtl", c->no_rtl, "skip the RTL checks of the Pareto points");
     s->add_flag("--quiet", c->quiet, "no progress lines");
     c->runner.jobs = 2;

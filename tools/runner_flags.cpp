@@ -78,6 +78,7 @@ cluster::RunOptions run_options(const RunnerFlags& f, const fs::path& dir) {
         std::fprintf(stderr, "[shards] %zu/%zu done%s, %.0f s elapsed, ETA %.0f s\n", p.done, p.total,
                      p.failed ? (", " + std::to_string(p.failed) + " failed").c_str() : "", p.elapsed_s, p.eta_s);
     };
+    o.notice = [](const std::string& line) { std::fprintf(stderr, "[shards] %s\n", line.c_str()); };
     return o;
 }
 

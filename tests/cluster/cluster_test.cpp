@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <thread>
 
@@ -177,6 +178,120 @@ TEST_CASE("a result file of another run is refused, not merged", "[cluster]") {
     REQUIRE(run(a, local_options(1)).failed.empty());
     fs::copy_file(result_path(a, 0), result_path(b, 0));
     CHECK_THROWS_WITH(read_result(b, mb, 0), Catch::Contains("belongs to another run"));
+}
+
+namespace {
+
+std::string file_text(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+void put_text(const fs::path& p, const std::string& s) {
+    std::ofstream f(p, std::ios::binary | std::ios::trunc);
+    f << s;
+}
+
+// A finished run of 4 shards whose result `index` is then damaged by `damage` (the file's
+// bytes in, the damaged bytes out); returns the damaged bytes.
+std::string run_then_damage(const fs::path& d, const Manifest& m, std::size_t index,
+                            const std::function<std::string(const std::string&)>& damage) {
+    prepare_run(d, m);
+    REQUIRE(run(d, local_options(2)).failed.empty());
+    const std::string damaged = damage(file_text(result_path(d, index)));
+    put_text(result_path(d, index), damaged);
+    return damaged;
+}
+
+// The damaged result of shard `index` is named as such, set aside by the next run (kept
+// under its new name with its bytes, named in the shard's log and through `notice`), its
+// shard alone runs again, and the merge equals the single-process result.
+void check_recovered(const fs::path& d, const Manifest& m, std::size_t index, const std::string& damaged,
+                     const std::string& why) {
+    CHECK(check_result(d, m, index).state == ResultState::damaged);
+    CHECK_THAT(check_result(d, m, index).why, Catch::Contains(why));
+    CHECK(missing_shards(d, m) == std::vector<std::size_t>{index});
+    CHECK_THROWS_WITH(read_result(d, m, index), Catch::Contains("is damaged") && Catch::Contains("--resume"));
+    CHECK_THROWS_WITH(merge(squares_registry(), d), Catch::Contains("is damaged"));
+    std::vector<std::string> notices;
+    RunOptions o = local_options(2);
+    o.notice = [&](const std::string& s) { notices.push_back(s); };
+    const RunSummary s = run(d, o);
+    CHECK(s.ran == 1);
+    CHECK(s.skipped == m.shards.size() - 1);
+    CHECK(s.failed.empty());
+    const fs::path kept = result_path(d, index).string() + ".damaged-1";
+    REQUIRE(s.set_aside.size() == 1);
+    CHECK(s.set_aside[0].index == index);
+    CHECK(s.set_aside[0].kept == kept);
+    REQUIRE(fs::exists(kept));
+    CHECK(file_text(kept) == damaged);
+    REQUIRE(notices.size() == 1);
+    CHECK_THAT(notices[0], Catch::Contains(kept.string()) && Catch::Contains(why));
+    CHECK_THAT(file_text(log_path(d, index)), Catch::Contains(kept.string()));
+    CHECK(check_result(d, m, index).state == ResultState::valid);
+    CHECK(merge(squares_registry(), d) == run_in_process(squares_registry(), m));
+}
+
+}  // namespace
+
+TEST_CASE("a truncated result is set aside and its shard runs again", "[cluster]") {
+    const fs::path d = scratch("truncated");
+    const Manifest m = squares_manifest(40, 4);
+    const std::string damaged =
+        run_then_damage(d, m, 3, [](const std::string& s) { return s.substr(0, s.size() / 2); });
+    check_recovered(d, m, 3, damaged, "does not parse");
+    // a second damage of the same shard is kept beside the first
+    put_text(result_path(d, 3), "");
+    RunOptions o = local_options(1);
+    const RunSummary s = run(d, o);
+    REQUIRE(s.set_aside.size() == 1);
+    CHECK(s.set_aside[0].kept == result_path(d, 3).string() + ".damaged-2");
+    CHECK(fs::exists(result_path(d, 3).string() + ".damaged-1"));
+    CHECK(merge(squares_registry(), d) == run_in_process(squares_registry(), m));
+}
+
+TEST_CASE("a result whose content no longer matches its digest is set aside and its shard runs again", "[cluster]") {
+    const fs::path d = scratch("digest");
+    const Manifest m = squares_manifest(40, 4);
+    // shard 1 holds 10..19: its sum 2185 becomes 2186, the digest stays
+    const std::string damaged = run_then_damage(d, m, 1, [](std::string s) {
+        const auto at = s.find("\"sum\": 2185");
+        REQUIRE(at != std::string::npos);
+        s.replace(at, 11, "\"sum\": 2186");
+        return s;
+    });
+    REQUIRE(json::parse(damaged).at("data").at("sum") == 2186);
+    check_recovered(d, m, 1, damaged, "does not match its digest");
+}
+
+TEST_CASE("a result written again with other whitespace is intact: the digest is of its content", "[cluster]") {
+    const fs::path d = scratch("reindented");
+    const Manifest m = squares_manifest(20, 2);
+    const std::string before = run_then_damage(d, m, 1, [](const std::string& s) { return json::parse(s).dump(4); });
+    CHECK(check_result(d, m, 1).state == ResultState::valid);
+    const RunSummary s = run(d, local_options(1));
+    CHECK(s.ran == 0);
+    CHECK(s.set_aside.empty());
+    CHECK(file_text(result_path(d, 1)) == before);
+    CHECK(merge(squares_registry(), d) == run_in_process(squares_registry(), m));
+}
+
+TEST_CASE("a result without a digest is damaged; an intact result of another run still stops the run", "[cluster]") {
+    const fs::path d = scratch("no-digest");
+    const Manifest m = squares_manifest(20, 2);
+    const std::string damaged = run_then_damage(d, m, 0, [](const std::string& s) {
+        json j = json::parse(s);
+        j.erase("digest");
+        return j.dump(1);
+    });
+    check_recovered(d, m, 0, damaged, "carries no digest");
+    const fs::path other = scratch("no-digest-other");
+    const Manifest mo = squares_manifest(22, 2);
+    prepare_run(other, mo);
+    fs::copy_file(result_path(d, 1), result_path(other, 1));
+    CHECK_THROWS_WITH(run(other, local_options(1)), Catch::Contains("belongs to another run"));
+    CHECK(fs::exists(result_path(other, 1)));
 }
 
 TEST_CASE("the Slurm runner's merged result equals the single-process result", "[slurm]") {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # sharded_equals_single.sh KIND HARRIS_COSIM WORKDIR [RUNNER FLAGS...]
-# Runs one command of job kind KIND (slam, mutate, sweep, landmarks) twice on small inputs:
+# Runs one command of job kind KIND (slam, mutate, sweep, sweep_rtl, landmarks) twice on small inputs:
 # in one process, then in shards through the given runner flags (default: --runner local
 # --jobs 2), with the same --out (moved aside in between, so that the command quoted in the
 # reports is the same), and compares the report data byte for byte; time columns and the
@@ -15,14 +15,25 @@ fail() { echo "FAIL: $*"; exit 1; }
 same() {   # same FILE-A FILE-B: byte for byte
   cmp "$1" "$2" || { diff "$1" "$2" | head -20; fail "$1 and $2 differ"; }
 }
+between=:   # a command run between the two runs of both()
 both() {   # both ARGS...: the single-process run into single/, the sharded one into sharded/
   mkdir -p out
   "$bin" "$@" > single.log 2>&1 || { tail -20 single.log; fail "single-process run failed"; }
   mv out single
+  $between
   mkdir -p out
   "$bin" "$@" --shards "$shards" "${runner[@]}" > sharded.log 2>&1 || { tail -30 sharded.log; fail "sharded run failed"; }
   mv out sharded
   grep -q "^\[shards\] $shards/$shards done" sharded.log || fail "the sharded run did not report $shards/$shards shards done"
+}
+same_sweep_reports() {   # sweep.csv, sweep.json without times and cache flags, sweep.md without its timing line
+  same single/sweep.csv sharded/sweep.csv
+  untimed_json single/sweep.json > single.json
+  untimed_json sharded/sweep.json > sharded.json
+  same single.json sharded.json
+  grep -v '^Timing: ' single/sweep.md > single.md
+  grep -v '^Timing: ' sharded/sweep.md > sharded.md
+  same single.md sharded.md
 }
 untimed_json() { jq -S 'del(.. | objects | .seconds?, .synth_seconds?, .eval_seconds?, .overflow_seconds?, .cached?, .synthesised?, .synth_cached?, .synth_seconds_sum?)' "$1"; }
 
@@ -56,14 +67,37 @@ sweep)
 SPEC
   shards=3
   both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$work/../sweep-shard-cache" --quiet --no-rtl --threads 1
-  same single/sweep.csv sharded/sweep.csv
-  untimed_json single/sweep.json > single.json
-  untimed_json sharded/sweep.json > sharded.json
-  same single.json sharded.json
-  grep -v '^Timing: ' single/sweep.md > single.md
-  grep -v '^Timing: ' sharded/sweep.md > sharded.md
-  same single.md sharded.md
+  same_sweep_reports
   echo "sweep: $(($(wc -l < single/sweep.csv) - 1)) configurations in 3 shards: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
+  ;;
+sweep_rtl)
+  # the sweep with its RTL checks on the smallest spec: m6 and the thesis configuration,
+  # which the spec adds (three syntheses), both on the Pareto front, each checked by GHDL
+  # (mcode) on two streams of the regression set. Before each run the trust cache is
+  # emptied (the synthesis cache is kept), so that both runs simulate every check, the
+  # sharded one each in a shard of its own.
+  need "$data/kitti/sequences/01"
+  cat > spec.json <<'SPEC'
+{"name": "shard-rtl-test", "configs": [{"name": "m6", "m_drop": 6}], "data": {"sequence": "01", "pairs": "0:3"},
+ "trust": {"rtl": true, "verilator_pairs": "", "verilator_gate": false}}
+SPEC
+  printf 'flat 33x21 3 0\nrandom 40x30 3 13\n' > streams.txt
+  cache=$work/../sweep-rtl-shard-cache
+  between="rm -rf $cache/trust"
+  $between
+  shards=1
+  both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1 --backend mcode \
+    --regression-set streams.txt
+  run=sharded/run/checks
+  [ "$(ls "$run"/shards/*.json | wc -l)" -eq 4 ] || fail "expected the 4 RTL checks as 4 shards in $run"
+  grep -q '^\[shards\] 4/4 done' sharded.log || fail "the sharded run did not report the 4 check shards done"
+  jq -e -s 'map(.data.outcomes[0]) | length == 4 and all(.kind == "ghdl" and .status == "pass" and (.result.cached | not))' \
+    "$run"/shards/*.json > /dev/null || fail "the check shards did not each simulate a passing GHDL stream"
+  for p in m6 thesis; do
+    grep -q "^$p,.*,1,2,0,0,,,," single/sweep.csv || fail "$p is not a Pareto point with 2 GHDL runs, 0 failed, 0 mismatches"
+  done
+  same_sweep_reports
+  echo "sweep_rtl: 2 configurations in 1 shard, then 4 GHDL checks of the 2 Pareto points in 4 shards: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
   ;;
 landmarks)
   need "$data/middlebury2006/half/Aloe"
