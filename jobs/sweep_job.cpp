@@ -55,6 +55,7 @@ json point_json(const sweep::PointResult& p) {
               {"eval_seconds", p.eval_seconds},
               {"overflow_seconds", p.overflow_seconds}};
     if (p.has_cost_ghdl) j["cost_ghdl"] = cost_json(p.cost_ghdl);
+    if (p.has_ranges) j["ranges"] = sweep::range_report_to_json(p.ranges);
     if (p.has_landmarks) {
         const landmarks::Totals& l = p.landmarks;
         j["landmarks"] = {{"keypoints", l.keypoints}, {"all", l.all}, {"correct", l.correct},
@@ -84,6 +85,11 @@ sweep::PointResult point_from(const json& j) {
     if (j.contains("cost_ghdl")) {
         p.cost_ghdl = cost_from(j.at("cost_ghdl"));
         p.has_cost_ghdl = true;
+    }
+    if (j.contains("ranges")) {
+        p.ranges = sweep::range_report_from_json(j.at("ranges"));
+        p.ranges.formats = p.config.formats;
+        p.has_ranges = true;
     }
     if (j.contains("landmarks")) {
         const json& l = j.at("landmarks");

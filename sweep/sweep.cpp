@@ -1,6 +1,7 @@
 // sweep.cpp: see sweep.hpp. Phases, each parallel over the cores:
 //   1. frames + OpenCV reference masks (once for all configurations)
-//   2. cost: synthesis of every configuration, `jobs` at a time (cache hits instant)
+//   2. cost: synthesis of every configuration, `jobs` at a time (cache hits instant);
+//      derived ranges of every configuration (ranges.hpp), cached by the synthesis key
 //   3. accuracy and overflow audit per configuration (frames in parallel, TBB); correct stereo
 //      matches of the landmark chain per configuration (configurations in parallel, TBB)
 //   4. Pareto front; RTL checks of its points, `jobs` simulator processes at a time
@@ -25,6 +26,7 @@
 #include "cosim/cosim.hpp"
 #include "cosim/verilator/verilate.hpp"
 #include "frames/frames.hpp"
+#include "regress/golden.hpp"
 #include "model/harris/formats_json.hpp"
 #include "util/util.hpp"
 #include "sweep/pareto.hpp"
@@ -227,6 +229,16 @@ PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& whic
     });
     res.seconds_cost = since(t);
 
+    // ---- 2b. derived ranges, cached under the synthesis key -------------------------
+    for (size_t i = 0; i < n; ++i) {
+        PointResult& p = res.points[i];
+        p.ranges = cached_ranges(p.config.formats, p.cost.key, o.cache / "ranges");
+        p.has_ranges = true;
+        progress(o.progress, fmt::format("[ranges {}/{}] {}: {} ({})", i + 1, n, p.config.name, p.ranges.summary(),
+                                         p.ranges.cached ? "cached" : fmt::format("{:.2f} s", p.ranges.seconds_interval +
+                                                                                                  p.ranges.seconds_search)));
+    }
+
     // ---- 3. accuracy and overflow ------------------------------------------------------
     t = Clock::now();
     for (size_t i = 0; i < n; ++i) {
@@ -394,10 +406,8 @@ void check_points(SweepResult& res, const SweepOptions& o) {
                 log = dir / (tag + ".log");
                 fs::remove(log);
                 cosim::GhdlRun run;
-                for (int f = 0; f < s.frames; ++f) {
-                    run.frames.push_back(make_pattern(parse_pattern(s.pattern), s.width, s.height, f, 1));
-                    run.frame_names.push_back(s.pattern + "#" + std::to_string(f));
-                }
+                run.frames = regress::stream_frames(s);
+                for (int f = 0; f < s.frames; ++f) run.frame_names.push_back(s.pattern + "#" + std::to_string(f));
                 run.formats = p.config.formats;
                 run.backend = o.ghdl_backend;
                 run.keep_going = true;
