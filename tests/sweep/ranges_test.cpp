@@ -212,3 +212,23 @@ TEST_CASE("each witness stream of the regression set wraps its configuration in 
     }
     CHECK(witnesses >= 4);
 }
+
+TEST_CASE("the range analysis is cached under the key it is given; an unreadable entry is analysed again",
+          "[model][sweep][ranges]") {
+    const util::ScratchDir d;
+    Formats f;
+    f.m_prod_w = 20;
+    f.m_drop = 4;
+    const RangeReport first = cached_ranges(f, "0123456789abcdef", d.path());
+    CHECK_FALSE(first.cached);
+    CHECK(first.key == "0123456789abcdef");
+    REQUIRE(std::filesystem::exists(d.path() / "0123456789abcdef.json"));
+    const RangeReport again = cached_ranges(f, "0123456789abcdef", d.path());
+    CHECK(again.cached);
+    CHECK(again.summary() == first.summary());
+    CHECK(again.at(Reg::m_a).witness == first.at(Reg::m_a).witness);
+    util::write_file_atomic(d.path() / "0123456789abcdef.json", "{ not json");
+    const RangeReport redone = cached_ranges(f, "0123456789abcdef", d.path());
+    CHECK_FALSE(redone.cached);
+    CHECK(redone.summary() == first.summary());
+}
