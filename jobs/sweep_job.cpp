@@ -56,6 +56,7 @@ json point_json(const sweep::PointResult& p) {
               {"eval_seconds", p.eval_seconds},
               {"overflow_seconds", p.overflow_seconds}};
     if (p.has_cost_ghdl) j["cost_ghdl"] = cost_json(p.cost_ghdl);
+    if (p.has_ranges) j["ranges"] = sweep::range_report_to_json(p.ranges);
     if (p.has_landmarks) {
         const landmarks::Totals& l = p.landmarks;
         j["landmarks"] = {{"keypoints", l.keypoints}, {"all", l.all}, {"correct", l.correct},
@@ -85,6 +86,11 @@ sweep::PointResult point_from(const json& j) {
     if (j.contains("cost_ghdl")) {
         p.cost_ghdl = cost_from(j.at("cost_ghdl"));
         p.has_cost_ghdl = true;
+    }
+    if (j.contains("ranges")) {
+        p.ranges = sweep::range_report_from_json(j.at("ranges"));
+        p.ranges.formats = p.config.formats;
+        p.has_ranges = true;
     }
     if (j.contains("landmarks")) {
         const json& l = j.at("landmarks");
@@ -126,7 +132,7 @@ sweep::SweepOptions shard_options(const json& common) {
 
 json stream_json(const util::RegressionStream& s) {
     return {{"pattern", s.pattern}, {"width", s.width}, {"height", s.height}, {"frames", s.frames},
-            {"idle_every", s.idle_every}};
+            {"idle_every", s.idle_every}, {"image", s.image.string()}, {"breaks", s.breaks.string()}};
 }
 
 util::RegressionStream stream_from(const json& j) {
@@ -136,6 +142,8 @@ util::RegressionStream stream_from(const json& j) {
     s.height = j.at("height");
     s.frames = j.at("frames");
     s.idle_every = j.at("idle_every");
+    s.image = j.at("image").get<std::string>();
+    s.breaks = j.at("breaks").get<std::string>();
     return s;
 }
 
@@ -292,7 +300,7 @@ cluster::ShardJob sweep_check_job() {
                 sweep::CheckRunner runner(spec, o);
                 const sweep::CheckOutcome c = runner.run(t, config, shard.at("key"), streams);
                 std::printf("sweep-check: %s %s%s: %s (%.0f s%s)\n", config.name.c_str(), sweep::check_kind_name(t.kind),
-                            t.kind == sweep::CheckKind::ghdl ? (" " + streams.at(t.stream).pattern + " " + streams.at(t.stream).size()).c_str() : "",
+                            t.kind == sweep::CheckKind::ghdl ? (" " + streams.at(t.stream).stem()).c_str() : "",
                             c.status.c_str(), c.one.seconds, c.one.cached ? ", cached" : "");
                 return json{{"outcomes", json::array({outcome_json(t, c)})}};
             },

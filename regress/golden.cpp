@@ -21,8 +21,7 @@ struct StreamResult {
 };
 
 StreamResult run_stream(const util::RegressionStream& s, bool with_stages) {
-    std::vector<Image> frames;
-    for (int k = 0; k < s.frames; ++k) frames.push_back(make_pattern(parse_pattern(s.pattern), s.width, s.height, k, 1));
+    const std::vector<Image> frames = stream_frames(s);
     std::vector<const Image*> ptrs;
     for (const auto& f : frames) ptrs.push_back(&f);
     const Geometry g{s.width, s.height};
@@ -30,7 +29,8 @@ StreamResult run_stream(const util::RegressionStream& s, bool with_stages) {
     HostDriver drv(g, ptrs);
     HarrisTop top(g, fm);
     std::ostringstream reads, maxima, stages;
-    const std::string what = "# " + std::to_string(s.frames) + " frames of pattern '" + s.pattern + "' (seed 1), " +
+    const std::string what = "# " + std::to_string(s.frames) + " frames of " +
+                             (s.image.empty() ? "pattern '" + s.pattern + "' (seed 1), " : "image '" + s.pattern + "', ") +
                              s.size() + ", thesis formats\n";
     reads << "# made by: " << header_cmd << " (cycle model)\n" << what << "write,frame,x,y,value\n";
     maxima << "# made by: " << header_cmd << " (cycle model)\n" << what << "write,max\n";
@@ -69,10 +69,24 @@ StreamResult run_stream(const util::RegressionStream& s, bool with_stages) {
 
 /// The tiny streams whose every register is kept.
 std::vector<util::RegressionStream> tiny_streams() {
-    return {{"random", 10, 10, 2, 0}, {"extremes", 11, 11, 2, 0}};
+    return {{"random", 10, 10, 2, 0, {}, {}}, {"extremes", 11, 11, 2, 0, {}, {}}};
 }
 
 }  // namespace
+
+std::vector<Image> stream_frames(const util::RegressionStream& s) {
+    std::vector<Image> frames;
+    if (s.image.empty()) {
+        for (int k = 0; k < s.frames; ++k) frames.push_back(make_pattern(parse_pattern(s.pattern), s.width, s.height, k, 1));
+        return frames;
+    }
+    const Image im = read_pgm(s.image.string());
+    if (im.width != s.width || im.height != s.height)
+        throw InputError("regression stream image '" + s.image.string() + "' is " + std::to_string(im.width) + "x" +
+                         std::to_string(im.height) + ", the set says " + s.size());
+    frames.assign(static_cast<size_t>(s.frames), im);
+    return frames;
+}
 
 std::vector<GoldenFile> golden_files(const std::vector<util::RegressionStream>& set, const fs::path& dir) {
     std::vector<GoldenFile> files;

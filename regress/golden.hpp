@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/image/image.hpp"
 #include "util/util.hpp"
 
 namespace hc::regress {
@@ -21,6 +22,11 @@ struct GoldenFile {
     std::filesystem::path path;
     std::string text;
 };
+
+/// The frames of a regression stream: its pattern's frames 0..frames-1 (seed 1), or its
+/// image chained `frames` times. InputError naming the file when an image is unreadable or
+/// not the stream's size.
+std::vector<Image> stream_frames(const util::RegressionStream& s);
 
 /// Every golden file for the streams of `set` (reads and maxima) and the tiny streams
 /// (stages), under `dir`, made by the cycle model with the thesis's formats.

@@ -1,6 +1,7 @@
 // sweep.cpp: see sweep.hpp. Phases, each parallel over the cores:
 //   1. frames + OpenCV reference masks (once for all configurations)
-//   2. cost: synthesis of every configuration, `jobs` at a time (cache hits instant)
+//   2. cost: synthesis of every configuration, `jobs` at a time (cache hits instant);
+//      derived ranges of every configuration (ranges.hpp), cached by the synthesis key
 //   3. accuracy and overflow audit per configuration (frames in parallel, TBB); correct stereo
 //      matches of the landmark chain per configuration (configurations in parallel, TBB)
 //   4. Pareto front; RTL checks of its points, `jobs` simulator processes at a time
@@ -25,6 +26,7 @@
 #include "cosim/cosim.hpp"
 #include "cosim/verilator/verilate.hpp"
 #include "frames/frames.hpp"
+#include "regress/golden.hpp"
 #include "model/harris/formats_json.hpp"
 #include "util/util.hpp"
 #include "sweep/pareto.hpp"
@@ -228,6 +230,16 @@ PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& whic
     });
     res.seconds_cost = since(t);
 
+    // ---- 2b. derived ranges, cached under the synthesis key -------------------------
+    for (size_t i = 0; i < n; ++i) {
+        PointResult& p = res.points[i];
+        p.ranges = cached_ranges(p.config.formats, p.cost.key, o.cache / "ranges");
+        p.has_ranges = true;
+        progress(o.progress, fmt::format("[ranges {}/{}] {}: {} ({})", i + 1, n, p.config.name, p.ranges.summary(),
+                                         p.ranges.cached ? "cached" : fmt::format("{:.2f} s", p.ranges.seconds_interval +
+                                                                                                  p.ranges.seconds_search)));
+    }
+
     // ---- 3. accuracy and overflow ------------------------------------------------------
     t = Clock::now();
     for (size_t i = 0; i < n; ++i) {
@@ -378,9 +390,10 @@ CheckOutcome CheckRunner::run(const CheckTask& j, const Config& config, const st
     // one cache entry per passed simulator run, a GHDL run's named by its stream (not its
     // place in the set, which another set or an edit of it changes); the gate keeps its
     // own record (vl::run_gate_cached: formats, sources, tools)
-    const auto stream_tag = [&] {
+    const auto stream_tag = [&] {   // an image stream's entry also names its image's content
         const util::RegressionStream& s = rset[j.stream];
-        return fmt::format("{}-{}-{}-{}", s.pattern, s.size(), s.frames, s.idle_every);
+        const std::string image = s.image.empty() ? "" : "-" + util::hex64(util::fnv1a(util::read_file(s.image))).substr(0, 10);
+        return fmt::format("{}-{}-{}{}", s.stem(), s.frames, s.idle_every, image);
     };
     const fs::path entry = j.kind == CheckKind::ghdl        ? s_->trust_cache / fmt::format("{}-rtl-{}.json", key, stream_tag())
                            : j.kind == CheckKind::verilator ? s_->trust_cache / (key + "-verilator.json")
@@ -419,14 +432,12 @@ CheckOutcome CheckRunner::run(const CheckTask& j, const Config& config, const st
         }
     } else if (j.kind == CheckKind::ghdl) {
         const util::RegressionStream& s = rset[j.stream];
-        const std::string tag = fmt::format("rtl-{}-{}-{}", s.pattern, s.size(), s.idle_every);
+        const std::string tag = fmt::format("rtl-{}-{}", s.stem(), s.idle_every);
         c.log = rel / (tag + ".log");
         fs::remove(o.out / c.log);
         cosim::GhdlRun run;
-        for (int f = 0; f < s.frames; ++f) {
-            run.frames.push_back(make_pattern(parse_pattern(s.pattern), s.width, s.height, f, 1));
-            run.frame_names.push_back(s.pattern + "#" + std::to_string(f));
-        }
+        run.frames = regress::stream_frames(s);
+        for (int f = 0; f < s.frames; ++f) run.frame_names.push_back(s.stem() + "#" + std::to_string(f));
         run.formats = config.formats;
         run.backend = o.ghdl_backend;
         run.keep_going = true;

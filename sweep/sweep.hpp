@@ -18,6 +18,7 @@
 #include "landmarks/landmarks.hpp"
 #include "sweep/cost.hpp"
 #include "sweep/overflow.hpp"
+#include "sweep/ranges.hpp"
 #include "sweep/sweep_config.hpp"
 #include "util/util.hpp"
 
@@ -49,6 +50,8 @@ struct PointResult {
     bool has_cost_ghdl = false;
     long register_bits = 0;            ///< datapath_register_bits
     bool wraps = false;                ///< overflow.total_wrapped() > 0
+    RangeReport ranges;                ///< derived ranges for every input (ranges.hpp)
+    bool has_ranges = false;
     bool pareto = false;
     bool verify = false;               ///< RTL-checked: Pareto point, thesis, or a finding (sweep_report.hpp)
     double eval_seconds = 0, overflow_seconds = 0;
@@ -64,7 +67,7 @@ struct PointResult {
 struct SweepOptions {
     std::filesystem::path spec_file;
     std::filesystem::path out;
-    std::filesystem::path cache;       ///< synthesis + trust cache
+    std::filesystem::path cache;       ///< synthesis + range + trust cache
     std::filesystem::path kitti;       ///< KITTI root (holds sequences/NN)
     std::filesystem::path regression_set;   ///< golden/regression-set.txt: the GHDL checks' streams
     std::filesystem::path middlebury;  ///< Middlebury 2006 half-size folder of the landmark column ("" = no column)
@@ -123,7 +126,7 @@ struct PointsRun {
     std::string landmark_pairs;          ///< as SweepResult::landmark_pairs
     double seconds_landmarks = 0;
 };
-/// Synthesis cost, overflow audit, accuracy and the landmark column of the configurations `which` (indices into
+/// Synthesis cost, derived ranges (cached under the synthesis key), overflow audit, accuracy and the landmark column of the configurations `which` (indices into
 /// spec.configs; InputError for one out of range). Each point depends on its configuration
 /// only, so any split of the indices gives the same points.
 PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& which, const SweepOptions& o);

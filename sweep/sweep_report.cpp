@@ -31,6 +31,19 @@ std::string gate_cell(const TrustResult& t) {
 
 double pct(double a, double b) { return b ? 100.0 * (a - b) / b : 0.0; }
 
+std::string ranges_cell(const PointResult& p) {
+    if (!p.has_ranges) return "-";
+    switch (p.ranges.overall()) {
+        case Verdict::proven: return "proven safe";
+        case Verdict::wraps: {
+            const RegisterRange& w = *p.ranges.first_wrap();
+            return fmt::format("**wraps at {}** (witnesses/{}.pgm)", kRegNames[static_cast<int>(w.reg)],
+                               witness_stem(p.config.name, w.reg));
+        }
+        default: return p.ranges.summary();
+    }
+}
+
 }  // namespace
 
 Findings findings(const SweepResult& r) {
@@ -64,7 +77,7 @@ std::string to_csv(const SweepResult& r) {
         "wrap_sobel,wrap_m_resize,wrap_block_sum,wrap_k_term,wrap_response,pareto,"
         "rtl_runs,rtl_failed,rtl_mismatches,verilator_runs,verilator_failed,verilator_mismatches,synth_seconds,"
         "landmark_keypoints,landmark_matches,landmark_correct,landmark_truth_known,landmark_truth_correct,"
-        "gate_passed,gate_seconds\n";
+        "gate_passed,gate_seconds,ranges,ranges_first_wrap\n";
     for (const auto& p : r.points) {
         const Formats& f = p.config.formats;
         s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},", p.config.name, f.sobel_w, f.m_prod_w, f.m_drop, f.bf_sum_w,
@@ -81,7 +94,10 @@ std::string to_csv(const SweepResult& r) {
         const landmarks::Totals& l = p.landmarks;
         s += p.has_landmarks ? fmt::format("{},{},{},{},{},", l.keypoints, l.all, l.correct, l.truth_known, l.truth_correct)
                              : std::string(",,,,,");
-        s += p.gate.ran ? fmt::format("{},{:.1f}\n", p.gate.failed == 0 ? 1 : 0, p.gate.seconds) : std::string(",\n");
+        s += p.gate.ran ? fmt::format("{},{:.1f},", p.gate.failed == 0 ? 1 : 0, p.gate.seconds) : std::string(",,");
+        const RegisterRange* fw = p.has_ranges ? p.ranges.first_wrap() : nullptr;
+        s += fmt::format("{},{}\n", p.has_ranges ? verdict_name(p.ranges.overall()) : "",
+                         fw ? kRegNames[static_cast<int>(fw->reg)] : "");
     }
     return s;
 }
@@ -109,15 +125,19 @@ std::string to_markdown(const SweepResult& r) {
                "against GHDL.\n\n";
     s += fmt::format("Stereo matches downstream (columns *stereo correct*: pass the cross-check, ratio and epipolar tests; "
                      "*GT-correct*: of those, within 1 px of the ground-truth disparity): {}.\n\n", r.landmark_pairs);
-    s += "| configuration | recall | precision | F1 | stereo correct | GT-correct | LUT | FF | DSP | CARRY4 | reg. bits | wraps | P | GHDL | Gate | Verilator |\n";
-    s += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|:-:|---|---|---|\n";
+    s += "Ranges (every input, docs/derived-ranges.md): *proven safe* when the interval bound of every register fits "
+         "it; *wraps at R* with the pixel window (witnesses/) that wraps register R; *open* with the bound and the "
+         "values the witness search reached. The P column says whether a Pareto point is proven.\n\n";
+    s += "| configuration | recall | precision | F1 | stereo correct | GT-correct | LUT | FF | DSP | CARRY4 | reg. bits | wraps | ranges | P | GHDL | Gate | Verilator |\n";
+    s += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|:-:|---|---|---|\n";
     for (const auto& p : r.points) {
         const std::string lc = p.has_landmarks ? std::to_string(p.landmarks.correct) : "-";
         const std::string lt = p.has_landmarks ? std::to_string(p.landmarks.truth_correct) : "-";
-        s += fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", p.config.name,
+        const std::string pc = !p.pareto ? "" : p.has_ranges && p.ranges.overall() == Verdict::proven ? "**P** proven" : "**P** not proven";
+        s += fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", p.config.name,
                          p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(), lc, lt, p.cost.luts, p.cost.ffs, p.cost.dsps,
                          p.cost.carry4, p.register_bits, p.wraps ? "**" + p.overflow.summary() + "**" : std::string("none"),
-                         p.pareto ? "**P**" : "", trust_cell(p.rtl), gate_cell(p.gate), trust_cell(p.verilator));
+                         ranges_cell(p), pc, trust_cell(p.rtl), gate_cell(p.gate), trust_cell(p.verilator));
     }
     const Findings f = findings(r);
     if (f.thesis >= 0) {
@@ -181,6 +201,7 @@ std::string to_json(const SweepResult& r) {
                   {"cost", cost(p.cost)}, {"register_bits", p.register_bits}, {"wraps", p.wraps}, {"overflow", ovf},
                   {"pareto", p.pareto}, {"rtl", trust(p.rtl)}, {"gate", trust(p.gate)}, {"verilator", trust(p.verilator)},
                   {"eval_seconds", p.eval_seconds}, {"overflow_seconds", p.overflow_seconds}};
+        j["ranges"] = p.has_ranges ? range_report_to_json(p.ranges) : json(nullptr);
         if (p.has_cost_ghdl) j["cost_ghdl_verilog"] = cost(p.cost_ghdl);
         const landmarks::Totals& l = p.landmarks;
         j["landmarks"] = p.has_landmarks ? json{{"keypoints", l.keypoints}, {"matches", l.all}, {"correct", l.correct},
@@ -267,6 +288,9 @@ void write_reports(const SweepResult& r, const fs::path& dir) {
     util::write_file_atomic(dir / "sweep.csv", to_csv(r));
     util::write_file_atomic(dir / "sweep.json", to_json(r));
     util::write_file_atomic(dir / "sweep.md", to_markdown(r));
+    for (const auto& p : r.points)   // the windows that wrap a register, as images (ranges.hpp)
+        if (const RegisterRange* w = p.has_ranges ? p.ranges.first_wrap() : nullptr)
+            util::write_file_atomic(dir / "witnesses" / (witness_stem(p.config.name, w->reg) + ".pgm"), pgm_bytes(witness_image(w->witness)));
     if (const std::string e = write_plot(r, dir); !e.empty()) std::fprintf(stderr, "sweep: warning: no plot: %s\n", e.c_str());
 }
 

@@ -38,6 +38,7 @@ void add_mutate_command(CLI::App& app);     // mutation campaign (cmd_mutate.cpp
 void add_verilate_command(CLI::App& app);   // Verilator full-frame verification (cmd_verilate.cpp)
 void add_eval_command(CLI::App& app);       // precision/recall against OpenCV (cmd_eval.cpp)
 void add_sweep_command(CLI::App& app);      // bit-width exploration (cmd_sweep.cpp)
+void add_ranges_command(CLI::App& app);     // derived ranges of the registers (cmd_ranges.cpp)
 void add_calibrate_command(CLI::App& app);  // stereo calibration of a rig (cmd_calibrate.cpp)
 void add_slam_command(CLI::App& app);       // 2-D EKF-SLAM (cmd_slam.cpp)
 void add_landmarks_command(CLI::App& app);  // descriptors, stereo matches, landmarks (cmd_landmarks.cpp)

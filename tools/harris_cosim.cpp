@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
     hc::tools::add_verilate_command(app);
     hc::tools::add_eval_command(app);
     hc::tools::add_sweep_command(app);
+    hc::tools::add_ranges_command(app);
     hc::tools::add_calibrate_command(app);
     hc::tools::add_slam_command(app);
     hc::tools::add_landmarks_command(app);

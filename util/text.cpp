@@ -66,7 +66,9 @@ std::pair<int, int> parse_size(const std::string& s, const std::string& what) {
     }
 }
 
-std::string RegressionStream::stem() const { return pattern + "_" + size(); }
+std::string RegressionStream::stem() const {
+    return (image.empty() ? pattern : image.stem().string()) + "_" + size();
+}
 std::string RegressionStream::size() const { return std::to_string(width) + "x" + std::to_string(height); }
 
 std::vector<RegressionStream> read_regression_set(const std::filesystem::path& p) {
@@ -77,10 +79,19 @@ std::vector<RegressionStream> read_regression_set(const std::filesystem::path& p
         if (line.empty() || line[0] == '#') continue;
         std::istringstream ss(line);
         RegressionStream s;
-        std::string size;
+        std::string size, extra;
+        const std::string where = p.string() + ":" + std::to_string(n);
         if (!(ss >> s.pattern >> size >> s.frames >> s.idle_every) || s.frames <= 0 || s.idle_every < 0)
-            throw InputError(p.string() + ":" + std::to_string(n) + ": expected 'pattern WxH frames idle_every'");
-        std::tie(s.width, s.height) = parse_size(size, p.string() + ":" + std::to_string(n) + ": size");
+            throw InputError(where + ": expected 'pattern WxH frames idle_every' or 'FILE.pgm WxH frames idle_every [breaks=CONFIG.json]'");
+        std::tie(s.width, s.height) = parse_size(size, where + ": size");
+        const bool is_image = s.pattern.size() > 4 && s.pattern.substr(s.pattern.size() - 4) == ".pgm";
+        if (is_image) s.image = p.parent_path() / s.pattern;
+        if (ss >> extra) {
+            if (!is_image || extra.rfind("breaks=", 0) != 0 || extra.size() == 7)
+                throw InputError(where + ": unexpected '" + extra + "' (only an image stream takes breaks=CONFIG.json)");
+            s.breaks = p.parent_path() / extra.substr(7);
+        }
+        if (ss >> extra) throw InputError(where + ": unexpected '" + extra + "'");
         v.push_back(s);
     }
     if (v.empty()) throw InputError("regression set '" + p.string() + "' has no stream");

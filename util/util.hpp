@@ -79,15 +79,20 @@ Range parse_range(const std::string& s, const std::string& what, int open_end = 
 /// "WxH" -> (W, H), both positive. Throws InputError naming `what`.
 std::pair<int, int> parse_size(const std::string& s, const std::string& what = "--size");
 
-/// One stream of the synthetic regression set (golden/regression-set.txt), one a line:
-/// `pattern WxH frames idle_every`; '#' starts a comment line.
+/// One stream of the regression set (golden/regression-set.txt), one a line:
+/// `pattern WxH frames idle_every`; '#' starts a comment line. A stimulus image instead of a
+/// pattern: `FILE.pgm WxH frames idle_every [breaks=CONFIG.json]`, the image chained `frames`
+/// times; `breaks` names the formats (a --config file) the image is a witness against
+/// (it wraps a register of that configuration). Both paths are relative to the set's file.
 struct RegressionStream {
-    std::string pattern;
+    std::string pattern;               ///< a pattern name, or the image's path as written
     int width = 0;
     int height = 0;
     int frames = 0;
     int idle_every = 0;
-    /// "random_40x30": the stem of the stream's golden files.
+    std::filesystem::path image;       ///< the image (resolved), empty for a pattern
+    std::filesystem::path breaks;      ///< the formats file it is a witness against (resolved), or empty
+    /// "random_40x30" (an image: its file stem, "sobel_w-10_sobel_x_16x12"): the stem of the stream's golden files.
     std::string stem() const;
     /// "40x30"
     std::string size() const;

@@ -20,9 +20,15 @@ struct ResponseTermsT {
 };
 using ResponseTerms = ResponseTermsT<Word>;
 
+/// tr(M) = a + c in trace_w bits (bf_w + 1: no overflow).
+template <class T>
+inline T harris_trace(const T& a, const T& c, const Formats& f) {
+    return resize(a, f.trace_w()) + resize(c, f.trace_w());   // 16 -> 17 bits
+}
+
 template <class T>
 inline ResponseTermsT<T> harris_response_terms(const T& a, const T& b, const T& c, const Formats& f) {
-    const T trace = resize(a, f.trace_w()) + resize(c, f.trace_w());   // 16 -> 17 bits: no overflow
+    const T trace = harris_trace(a, c, f);
     const T tr2 = trace * trace;                                         // 34 bits, exact
     const int top = f.trace_sq_w() - 1;
     ResponseTermsT<T> t;

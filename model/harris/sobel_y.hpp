@@ -2,15 +2,15 @@
 //
 // iy = [+1 +2 +1; 0 0 0; -1 -2 -1] * a: top row minus bottom row (see the RTL's note on
 // the sign), every term resized to sobel_w and added in sobel_w bits.
-// Template over the number type T (Word by default), as sobel_x.
+// Templates over the number type T (Word by default) and the pixel matrix P, as sobel_x.
 #pragma once
 
 #include "model/harris/sobel_x.hpp"
 
 namespace hc {
 
-template <class T = Word>
-inline T sobel_y(const Pixels3& a, const Formats& f) {
+template <class T = Word, class P = Pixels3>
+inline T sobel_y(const P& a, const Formats& f) {
     const int w = f.sobel_w;
     const T p11 = pixel_term<T>(a[0][0], 9, false, false);
     const T p12 = pixel_term<T>(a[0][1], 10, false, true);

@@ -1,6 +1,8 @@
 #include "model/image/image.hpp"
 
+#include <fstream>
 #include <random>
+#include <sstream>
 
 #include "util/errors.hpp"
 
@@ -96,6 +98,25 @@ Image make_pattern(Pattern p, int width, int height, int index, std::uint32_t se
         }
     }
     return img;
+}
+
+std::string pgm_bytes(const Image& im) {
+    std::string b = "P5\n" + std::to_string(im.width) + " " + std::to_string(im.height) + "\n255\n";
+    b.append(reinterpret_cast<const char*>(im.pixels.data()), im.pixels.size());
+    return b;
+}
+
+Image read_pgm(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError("PGM image '" + path + "' cannot be read");
+    std::string magic;
+    int w = 0, h = 0, maxval = 0;
+    if (!(in >> magic >> w >> h >> maxval) || magic != "P5" || w <= 0 || h <= 0 || maxval != 255 || in.get() == EOF)
+        throw InputError("'" + path + "' is not a binary 8-bit PGM (P5, maxval 255)");
+    Image im(w, h);
+    if (!in.read(reinterpret_cast<char*>(im.pixels.data()), static_cast<std::streamsize>(im.pixels.size())))
+        throw InputError("PGM image '" + path + "' is shorter than " + std::to_string(w) + "x" + std::to_string(h) + " pixels");
+    return im;
 }
 
 }  // namespace hc

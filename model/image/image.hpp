@@ -38,4 +38,10 @@ std::string pattern_names();
 /// chained frames differ.
 Image make_pattern(Pattern p, int width, int height, int index, std::uint32_t seed = 1);
 
+/// Binary PGM (P5, maxval 255): the format of small committed stimuli (golden/witnesses/).
+/// read_pgm throws hc::InputError naming the file when it is not such a PGM.
+Image read_pgm(const std::string& path);
+/// The PGM bytes of an image.
+std::string pgm_bytes(const Image& im);
+
 }  // namespace hc

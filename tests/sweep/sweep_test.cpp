@@ -178,14 +178,24 @@ TEST_CASE("the sweep report shows each checked point's three-way gate in its Gat
                   .detail = "gate: translation fault: translation fault: 10x10 ..., write 5: mbm(1,1) (log g.log)"};
     unchecked.config.name = "unchecked";
     unchecked.config.formats.m_drop = 6;
-    r.points = {pass, fault, unchecked};
+    // the ranges column: a proven Pareto point, a point without ranges, one that wraps
+    pass.ranges = sweep::interval_ranges(pass.config.formats);
+    pass.has_ranges = true;
+    sweep::PointResult narrow;
+    narrow.config.name = "sobel_w=10";
+    narrow.config.formats.sobel_w = 10;
+    narrow.ranges = sweep::analyse_ranges(narrow.config.formats);
+    narrow.has_ranges = true;
+    r.points = {pass, fault, unchecked, narrow};
     const std::string md = sweep::to_markdown(r);
-    CHECK_THAT(md, Catch::Contains("| GHDL | Gate | Verilator |"));
-    CHECK_THAT(md, Catch::Contains("| **P** | - | pass (81 s) | - |"));
-    CHECK_THAT(md, Catch::Contains("| **P** | - | **gate: translation fault** | - |"));
-    CHECK_THAT(md, Catch::Contains("|  | - | - | - |"));
+    CHECK_THAT(md, Catch::Contains("| ranges | P | GHDL | Gate | Verilator |"));
+    CHECK_THAT(md, Catch::Contains("| proven safe | **P** proven | - | pass (81 s) | - |"));
+    CHECK_THAT(md, Catch::Contains("| - | **P** not proven | - | **gate: translation fault** | - |"));
+    CHECK_THAT(md, Catch::Contains("| - |  | - | - | - |"));
+    CHECK_THAT(md, Catch::Contains("| **wraps at sobel_x** (witnesses/sobel_w-10_sobel_x.pgm) |  | - | - | - |"));
     const std::string csv = sweep::to_csv(r);
-    CHECK_THAT(csv, Catch::Contains("gate_passed,gate_seconds\n"));
-    CHECK_THAT(csv, Catch::Contains(",1,81.0\n"));
-    CHECK_THAT(csv, Catch::Contains(",0,0.0\n"));
+    CHECK_THAT(csv, Catch::Contains("gate_passed,gate_seconds,ranges,ranges_first_wrap\n"));
+    CHECK_THAT(csv, Catch::Contains(",1,81.0,proven,\n"));
+    CHECK_THAT(csv, Catch::Contains(",0,0.0,,\n"));
+    CHECK_THAT(csv, Catch::Contains(",,,wraps,sobel_x\n"));
 }

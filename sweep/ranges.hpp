@@ -1,0 +1,128 @@
+// ranges.hpp: derived ranges of every datapath register of a configuration, for every
+// input: proven safe, wraps (with a pixel window that wraps it), or open.
+//
+// Purpose: the overflow audit (overflow.hpp) proves a wrap on data, never its absence. Here
+//   1. the interval bound: the shared stage functions (model/harris/*.hpp) run on
+//      RangeWord (model/fixed/range_word.hpp) from pixels anywhere in [0, pixel_max],
+//      giving a sound bound on the exact value of each register (on its narrowed inputs,
+//      as the audit defines it) and every narrowing in its stage where that bound does not
+//      fit. A register whose bound fits everywhere is proven: it cannot wrap for any input.
+//   2. where it does not fit, a search for a 5x5 pixel window that wraps it: structured
+//      seeds (the Sobel kernels' sign patterns, column and row stripes, diagonals, random
+//      vertices) improved by coordinate ascent on the register's exact value, evaluated by
+//      the same stage functions on Word. A window whose value leaves the register's range
+//      is a witness (checked again by the overflow audit on the window's image).
+//   3. otherwise the register is open: the bound and the best value the search reached.
+// The exact value of a register at the window (the audit's "exact"): Sobel and the
+// products are exact integers; block sum floor(sum of the nine M / 2^bf_drop); trace a+c;
+// det a*c and b*b (each resized to resp_w in the response); k-term floor(tr^2/2^k_shift1)
+// + floor(tr^2/2^k_shift2); response a*c - b*b - ktr2; maximum: a response (or the reset
+// value); threshold floor(max/2^thr_shift1) + floor(max/2^thr_shift2).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "model/fixed/range_word.hpp"
+#include "model/harris/harris_pkg.hpp"
+#include "model/image/image.hpp"
+#include "sweep/overflow.hpp"
+
+namespace hc::sweep {
+
+enum class Reg { sobel_x, sobel_y, m_a, m_b, m_c, block_a, block_b, block_c, trace, det, k_term, response, maximum, threshold, count };
+inline constexpr int kRegCount = static_cast<int>(Reg::count);
+inline constexpr std::array<const char*, kRegCount> kRegNames{
+    "sobel_x", "sobel_y", "m_a", "m_b", "m_c", "block_a", "block_b", "block_c",
+    "trace", "det", "k_term", "response", "maximum", "threshold"};
+/// The overflow audit's stage that counts a wrap of the register (stage_count: none;
+/// the trace and the threshold are not audited).
+Stage audit_stage(Reg r);
+
+enum class Verdict { proven, wraps, open };
+const char* verdict_name(Verdict v);   ///< "proven", "wraps", "open"
+
+/// A 5x5 pixel window, [row][col]: Sobel at its 3x3 interior, one block sum and one response at its centre.
+using Window5 = std::array<std::array<int, 5>, 5>;
+
+struct RegisterRange {
+    Reg reg = Reg::sobel_x;
+    Interval bound;            ///< sound bound on the register's exact value, any input
+    Interval held;             ///< what the register holds (its width and signedness)
+    int width = 0;
+    bool bound_fits = false;   ///< the bound fits every narrowing of the stage
+    Verdict verdict = Verdict::open;
+    bool searched = false;     ///< the witness search ran (only where the bound does not fit)
+    Interval reached;          ///< the exact values the search reached (searched only)
+    Window5 witness{};         ///< verdict wraps: a window that wraps the register
+};
+
+struct RangeReport {
+    Formats formats;
+    int pixel_max = 255;
+    std::vector<RegisterRange> regs;   ///< one per Reg, in Reg order
+    double seconds_interval = 0, seconds_search = 0;
+    bool cached = false;
+    std::string key;                   ///< cache key (the sweep's synthesis key), or ""
+    /// proven when every register is; wraps when one wraps; else open
+    Verdict overall() const;
+    /// The first register that wraps, or nullptr.
+    const RegisterRange* first_wrap() const;
+    /// "proven safe", "wraps at block_a", "open (response: bound [lo, hi], reached [lo, hi])"
+    std::string summary() const;
+    const RegisterRange& at(Reg r) const { return regs[static_cast<int>(r)]; }
+};
+
+struct RangeOptions {
+    int pixel_max = 255;          ///< pixels anywhere in [0, pixel_max] (8-bit: 255)
+    double search_seconds = 5;    ///< per register and side, at most
+    int seeds = 64;               ///< random 0/255 windows per register and side
+};
+
+/// Only the interval part: bounds and fits, every verdict proven or open (no search).
+RangeReport interval_ranges(const Formats& f, int pixel_max = 255);
+/// The whole analysis: interval bounds, then the witness search where they do not fit.
+RangeReport analyse_ranges(const Formats& f, const RangeOptions& o = {});
+
+/// The exact value and the hardware value of every register at the window's centre
+/// (Sobel and M: the extreme over the 3x3 positions), by the stage functions on Word.
+struct WindowValue {
+    std::int64_t exact = 0, narrowed = 0;
+};
+std::array<WindowValue, kRegCount> window_values(const Window5& w, const Formats& f, bool maximise);
+/// The witness window as an image the co-processor can take: the window at the centre of
+/// a width x height frame (at least 10x8), the rest replicating the window's nearest edge pixel.
+Image witness_image(const Window5& w, int width = 16, int height = 12);
+
+/// "sobel_w-10_sobel_x": a file stem for the witness of register `r` of configuration `config`
+/// (characters other than letters, digits, '-' and '_' become '-').
+std::string witness_stem(const std::string& config, Reg r);
+
+/// The report as Markdown: one row per register (bound, what it holds, verdict, search, witness).
+std::string ranges_markdown(const std::string& config, const RangeReport& r);
+
+/// A witness written as a stimulus: the window's image and the configuration it breaks.
+struct WitnessFile {
+    Reg reg = Reg::sobel_x;
+    std::filesystem::path image;     ///< <dir>/<witness_stem>.pgm, witness_image() of the window
+    std::filesystem::path formats;   ///< <dir>/<config>.json, the --config file of the configuration
+    /// The regression-set line of the stream (paths relative to `set_dir`): the image chained
+    /// twice (the second frame is thresholded with the first's maximum), breaks=the formats.
+    std::string regression_line(const std::filesystem::path& set_dir) const;
+};
+/// Writes every witness of `r` (one per register that wraps) under `dir`.
+std::vector<WitnessFile> write_witnesses(const std::string& config, const RangeReport& r, const std::filesystem::path& dir);
+
+nlohmann::json range_report_to_json(const RangeReport& r);
+RangeReport range_report_from_json(const nlohmann::json& j);   ///< throws on a malformed document
+
+/// analyse_ranges cached as <cache_dir>/<key>.json (key: the configuration's synthesis
+/// key, sweep/cost.hpp); an entry of another analysis version is recomputed.
+RangeReport cached_ranges(const Formats& f, const std::string& key, const std::filesystem::path& cache_dir,
+                          const RangeOptions& o = {});
+
+}  // namespace hc::sweep

@@ -1,0 +1,234 @@
+// ranges_test.cpp: the derived ranges (sweep/ranges.hpp): interval bounds against the exact
+// extremes of stages small enough to enumerate, verdicts of the sweep's configurations,
+// witnesses that wrap in the model (the overflow audit sees them), the report's JSON. That the RTL wraps alike is the cosim label's (tests/cosim/CMakeLists.txt).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "model/harris/formats_json.hpp"
+#include "model/harris/m_products.hpp"
+#include "model/harris/sobel_x.hpp"
+#include "model/harris/sobel_y.hpp"
+#include "regress/golden.hpp"
+#include "sweep/overflow.hpp"
+#include "sweep/ranges.hpp"
+#include "sweep/sweep_config.hpp"
+
+using namespace hc;
+using namespace hc::sweep;
+
+namespace {
+
+struct Extremes {
+    std::int64_t lo = std::numeric_limits<std::int64_t>::max(), hi = std::numeric_limits<std::int64_t>::min();
+    void add(std::int64_t v) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+    }
+};
+
+/// Every 3x3 window of pixels in [0, pmax] that the stage depends on: the Sobel kernels
+/// read 8 of the 9 (not the centre); `use` says which.
+template <class F>
+void every_window(int pmax, const std::array<bool, 9>& use, F&& fn) {
+    std::array<int, 9> v{};
+    for (;;) {
+        Pixels3 nb;
+        for (int k = 0; k < 9; ++k) nb[k / 3][k % 3] = static_cast<Pixel>(v[k]);
+        fn(nb);
+        int k = 0;
+        for (; k < 9; ++k) {
+            if (!use[k]) continue;
+            if (++v[k] <= pmax) break;
+            v[k] = 0;
+        }
+        if (k == 9) return;
+    }
+}
+
+const sweep::Config* find_config(const SweepSpec& spec, const std::string& name) {
+    for (const auto& c : spec.configs)
+        if (c.name == name) return &c;
+    return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("interval bounds of Sobel equal the exact extremes over every 3x3 window of 4-bit pixels", "[model][sweep][ranges]") {
+    const Formats f;
+    const RangeReport r = interval_ranges(f, 15);
+    Extremes ex, ey;
+    // x reads columns 0 and 2, y rows 0 and 2: each enumerated over its six pixels
+    every_window(15, {true, false, true, true, false, true, true, false, true}, [&](const Pixels3& nb) {
+        ex.add(sobel_x<Word>(nb, f).value());
+    });
+    every_window(15, {true, true, true, false, false, false, true, true, true}, [&](const Pixels3& nb) {
+        ey.add(sobel_y<Word>(nb, f).value());
+    });
+    CHECK(ex.lo == -60);
+    CHECK(ex.hi == 60);
+    CHECK(r.at(Reg::sobel_x).bound == Interval{ex.lo, ex.hi});
+    CHECK(r.at(Reg::sobel_y).bound == Interval{ey.lo, ey.hi});
+}
+
+TEST_CASE("interval bounds of M contain the exact extremes over every 3x3 window of 3-bit pixels; a and c are exact",
+          "[model][sweep][ranges]") {
+    Formats f;
+    f.m_drop = 0;   // the products themselves
+    const RangeReport r = interval_ranges(f, 7);
+    Extremes ea, eb, ec;
+    every_window(7, {true, true, true, true, false, true, true, true, true}, [&](const Pixels3& nb) {
+        const MProducts m = m_products(sobel_x<Word>(nb, f), sobel_y<Word>(nb, f), f);
+        ea.add(m.a.value());
+        eb.add(m.b.value());
+        ec.add(m.c.value());
+    });
+    CHECK(r.at(Reg::m_a).bound == Interval{ea.lo, ea.hi});   // a square: [0, 28^2]
+    CHECK(r.at(Reg::m_c).bound == Interval{ec.lo, ec.hi});
+    CHECK(ea.hi == 28 * 28);
+    // b = ix*iy: the interval is sound but not tight (x and y share the corner pixels)
+    CHECK(r.at(Reg::m_b).bound.lo <= eb.lo);
+    CHECK(r.at(Reg::m_b).bound.hi >= eb.hi);
+    CHECK(eb.hi < r.at(Reg::m_b).bound.hi);
+}
+
+TEST_CASE("the thesis configuration: every register proven by the interval bound alone", "[model][sweep][ranges]") {
+    const RangeReport r = analyse_ranges(Formats{});
+    INFO(r.summary());
+    CHECK(r.overall() == Verdict::proven);
+    for (const auto& x : r.regs) {
+        INFO(kRegNames[static_cast<int>(x.reg)]);
+        CHECK(x.bound_fits);
+        CHECK_FALSE(x.searched);
+        CHECK(x.bound.lo >= x.held.lo);
+        CHECK(x.bound.hi <= x.held.hi);
+    }
+    CHECK(r.at(Reg::sobel_x).bound == Interval{-1020, 1020});
+    CHECK(r.at(Reg::m_a).bound == Interval{0, 1020 * 1020 / 32});
+    CHECK(r.at(Reg::block_a).bound == Interval{0, 9 * (1020 * 1020 / 32) / 16});
+    CHECK(r.at(Reg::response).held == Interval{-(std::int64_t{1} << 31), (std::int64_t{1} << 31) - 1});
+}
+
+TEST_CASE("configs/bit-widths.json: the tight points are proven, each too-narrow point wraps with a witness the audit sees",
+          "[model][sweep][ranges]") {
+    const SweepSpec spec = load_sweep_spec(std::filesystem::path(HC_SOURCE_DIR) / "configs" / "bit-widths.json");
+    int tight = 0;
+    for (const auto& c : spec.configs) {
+        if (c.name.rfind("tight-", 0) != 0) continue;
+        ++tight;
+        INFO(c.name);
+        CHECK(interval_ranges(c.formats).overall() == Verdict::proven);
+    }
+    CHECK(tight >= 20);
+    const std::vector<std::pair<std::string, Reg>> narrow = {
+        {"sobel_w=10", Reg::sobel_x}, {"sobel_w=9", Reg::sobel_x}, {"m_prod_w=20", Reg::m_a}, {"bf_sum_w=19", Reg::block_a}};
+    for (const auto& [name, reg] : narrow) {
+        INFO(name);
+        const sweep::Config* c = find_config(spec, name);
+        REQUIRE(c);
+        const RangeReport r = analyse_ranges(c->formats);
+        REQUIRE(r.overall() == Verdict::wraps);
+        REQUIRE(r.first_wrap()->reg == reg);
+        const Window5& w = r.first_wrap()->witness;
+        // the window wraps the register in the model ...
+        const auto v = window_values(w, c->formats, r.first_wrap()->bound.hi > r.first_wrap()->held.hi);
+        CHECK(v[static_cast<int>(reg)].exact != v[static_cast<int>(reg)].narrowed);
+        // ... the overflow audit counts it on the witness image, and the thesis widths do not wrap there
+        const Image im = witness_image(w);
+        CHECK(count_overflows(im, c->formats).wrapped[audit_stage(reg)] > 0);
+        CHECK(count_overflows(im, Formats{}).total_wrapped() == 0);
+    }
+}
+
+TEST_CASE("a block sum narrowed by one bit is reachable, with the exact maximum at the interval bound", "[model][sweep][ranges]") {
+    Formats f;
+    f.bf_sum_w = 19;   // 9 * 32512 = 292608 needs 20 signed bits
+    const RangeReport r = analyse_ranges(f);
+    const RegisterRange& a = r.at(Reg::block_a);
+    CHECK(a.bound.hi == (9 * 32512) >> 4);
+    REQUIRE(a.verdict == Verdict::wraps);
+    const auto v = window_values(a.witness, f, true);
+    CHECK(v[static_cast<int>(Reg::block_a)].exact == a.bound.hi);   // the witness reaches the bound: it is exact
+}
+
+TEST_CASE("a response one bit too narrow for the interval bound: wraps or open, never proven", "[model][sweep][ranges]") {
+    Formats f;
+    f.resp_w = 29;   // the thesis's upper bound 18288^2 = 334,450,944 needs 30 signed bits
+    const RangeReport r = analyse_ranges(f);
+    const RegisterRange& x = r.at(Reg::response);
+    CHECK_FALSE(x.bound_fits);
+    CHECK(x.verdict != Verdict::proven);
+    if (x.verdict == Verdict::wraps) {
+        const auto v = window_values(x.witness, f, true);
+        const auto w = window_values(x.witness, f, false);
+        CHECK((v[static_cast<int>(Reg::response)].exact != v[static_cast<int>(Reg::response)].narrowed ||
+               w[static_cast<int>(Reg::response)].exact != w[static_cast<int>(Reg::response)].narrowed));
+        CHECK(count_overflows(witness_image(x.witness), f).wrapped[response] > 0);
+    }
+}
+
+TEST_CASE("a range report survives its JSON", "[model][sweep][ranges]") {
+    Formats f;
+    f.sobel_w = 10;
+    const RangeReport r = analyse_ranges(f);
+    const RangeReport back = range_report_from_json(range_report_to_json(r));
+    REQUIRE(back.regs.size() == r.regs.size());
+    for (size_t i = 0; i < r.regs.size(); ++i) {
+        CHECK(back.regs[i].bound == r.regs[i].bound);
+        CHECK(back.regs[i].held == r.regs[i].held);
+        CHECK(back.regs[i].verdict == r.regs[i].verdict);
+        CHECK(back.regs[i].witness == r.regs[i].witness);
+    }
+    CHECK(back.summary() == r.summary());
+    nlohmann::json bad = range_report_to_json(r);
+    bad["registers"][0]["verdict"] = "maybe";
+    CHECK_THROWS(range_report_from_json(bad));
+}
+
+TEST_CASE("each witness stream of the regression set wraps its configuration in the model (the audit counts it)",
+          "[model][sweep][ranges]") {
+    const auto set = util::read_regression_set(std::filesystem::path(HC_SOURCE_DIR) / "golden" / "regression-set.txt");
+    int witnesses = 0;
+    for (const auto& s : set) {
+        if (s.breaks.empty()) continue;
+        ++witnesses;
+        INFO(s.stem());
+        const Formats broken = formats_from_file(s.breaks.string());
+        const std::vector<Image> frames = regress::stream_frames(s);
+        // the register named by the file wraps: the overflow audit counts it at its stage
+        Reg reg = Reg::count;
+        for (int k = 0; k < kRegCount; ++k)
+            if (s.image.stem().string().ends_with(std::string("_") + kRegNames[k])) reg = static_cast<Reg>(k);
+        REQUIRE(reg != Reg::count);
+        const OverflowCounts c = count_overflows(frames.front(), broken);
+        INFO(c.summary());
+        CHECK(c.wrapped[audit_stage(reg)] > 0);
+        CHECK(count_overflows(frames.front(), Formats{}).total_wrapped() == 0);
+        // the range analysis agrees that the configuration wraps there
+        CHECK(analyse_ranges(broken).at(reg).verdict == Verdict::wraps);
+    }
+    CHECK(witnesses >= 4);
+}
+
+TEST_CASE("the range analysis is cached under the key it is given; an unreadable entry is analysed again",
+          "[model][sweep][ranges]") {
+    const util::ScratchDir d;
+    Formats f;
+    f.m_prod_w = 20;
+    f.m_drop = 4;
+    const RangeReport first = cached_ranges(f, "0123456789abcdef", d.path());
+    CHECK_FALSE(first.cached);
+    CHECK(first.key == "0123456789abcdef");
+    REQUIRE(std::filesystem::exists(d.path() / "0123456789abcdef.json"));
+    const RangeReport again = cached_ranges(f, "0123456789abcdef", d.path());
+    CHECK(again.cached);
+    CHECK(again.summary() == first.summary());
+    CHECK(again.at(Reg::m_a).witness == first.at(Reg::m_a).witness);
+    util::write_file_atomic(d.path() / "0123456789abcdef.json", "{ not json");
+    const RangeReport redone = cached_ranges(f, "0123456789abcdef", d.path());
+    CHECK_FALSE(redone.cached);
+    CHECK(redone.summary() == first.summary());
+}
