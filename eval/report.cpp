@@ -187,8 +187,9 @@ bool write_plot(const fs::path& out, const Report& r) {
                 frames.push_back(f.frame);
             }
     }
-    // framed on the data: the rates' extent with a margin (within 0..1), the frames' extent
-    const std::string axes = "set yrange " + util::axis_range(values, 0.08, 0.0, 1.0, 0.01).gnuplot() +
+    // framed on the data: the rates' extent with a margin (not below 0; a margin above 1 keeps
+    // rates of 1 off the frame), the frames' extent
+    const std::string axes = "set yrange " + util::axis_range(values, 0.08, 0.0, 1e300, 0.01).gnuplot() +
                              "\nset xrange " + util::axis_range(frames, 0.02, -1e300, 1e300, 1.0).gnuplot() + "\n";
     const fs::path gp = out / fmt::format(".plot.{}.gp", ::getpid());
     {
