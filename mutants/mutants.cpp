@@ -593,23 +593,35 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
           "step, outputs compared from step 2 on, induction up to 40 steps). *Proven equivalent* is that solver's verdict and\n"
           "nothing else. A mutant of `harris_response.vhd` or `threshold.vhd` whose proofs fail is proven once more\n"
           "under assumptions on its entity's inputs, each first proven on the netlist of the stage driving them\n"
-          "(docs/mutation-campaign.md, *Proofs under proven assumptions*); *proven equivalent under assumptions*\n"
+          "(docs/assume-guarantee.md); *proven equivalent under assumptions*\n"
           "is that proof's verdict, a verdict of its own, with the assumptions it took. A mutant whose proofs all\n"
           "fail is *surviving*, listed below with the last proof's output.\n"
           "GHDL 2.0's Verilog output can mistranslate signed right shifts; gold and gate go through the same\n"
           "translation, so a proof is about the two netlists as GHDL writes them.\n\n"
           "Mutation score = killed / (mutants - stillborn - proven equivalent - proven equivalent under assumptions).\n\n";
     md << fmt::format("**Score: {:.1f} %** ({} killed of {}; {} stillborn, {} proven equivalent, {} proven equivalent under "
-                      "assumptions, {} surviving). "
-                      "Time per mutant (wall time inside its shard, shards running side by side): {:.1f} s mean ({:.1f} s analysis, {:.1f} s co-simulation, "
-                      "{:.2f} co-simulations per mutant; proofs in the rest)",
+                      "assumptions, {} surviving). ",
                       100.0 * all.score(), all.killed, all.mutants - all.stillborn - all.equivalent - all.assuming,
-                      all.stillborn, all.equivalent, all.assuming, all.surviving, all.mutants ? all.seconds / all.mutants : 0.0,
-                      all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.analyse_seconds; return s / all.mutants; }() : 0.0,
-                      all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.sim_seconds; return s / all.mutants; }() : 0.0,
-                      all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.runs; return s / all.mutants; }() : 0.0);
-    if (!info.reused.empty()) md << " (the reused verdicts' times are those of the run that made them)";
-    if (info.wall_seconds > 0) md << fmt::format("; the run took {:.0f} s of wall time", info.wall_seconds);
+                      all.stillborn, all.equivalent, all.assuming, all.surviving);
+    auto mean = [&](auto field) {
+        double s = 0;
+        for (const auto& r : rs) s += field(r);
+        return all.mutants ? s / all.mutants : 0.0;
+    };
+    if (info.reused.empty()) {
+        md << fmt::format("Time per mutant (wall time inside its shard, shards running side by side): {:.1f} s mean ({:.1f} s "
+                          "analysis, {:.1f} s co-simulation, {:.2f} co-simulations per mutant; proofs in the rest)",
+                          mean([](const Result& r) { return r.seconds; }), mean([](const Result& r) { return r.analyse_seconds; }),
+                          mean([](const Result& r) { return r.sim_seconds; }),
+                          mean([](const Result& r) { return static_cast<double>(r.runs); }));
+        if (info.wall_seconds > 0) md << fmt::format("; the run took {:.0f} s of wall time", info.wall_seconds);
+    } else {
+        // the verdict list keeps a mutant's time, not its split into analysis and co-simulation
+        md << fmt::format("Time per mutant: {:.1f} s mean, {:.2f} co-simulations per mutant (a reused verdict's time is "
+                          "that of the run that made it; a proof run again here, its own)",
+                          mean([](const Result& r) { return r.seconds; }),
+                          mean([](const Result& r) { return static_cast<double>(r.runs); }));
+    }
     md << ".\n\n";
 
     const std::string head =

@@ -103,6 +103,7 @@ void write_report(const GeneratedFlags& f, const std::vector<mutants::Result>& r
                       : "Slurm job array, " + std::to_string(shards) + " shards";
     info.wall_seconds = wall;
     info.reused = reused;
+    if (!reused.empty()) info.runner.clear();   // the reuse text says what ran
     info.proofs_dir = "mutation-proofs";
     if (!f.report.empty()) {
         const fs::path md = f.report;
