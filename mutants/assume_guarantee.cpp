@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "mutants/mutants.hpp"
+#include "cosim/cosim.hpp"
 #include "mutants/proof_steps.hpp"
 #include "util/util.hpp"
 
@@ -147,6 +148,30 @@ Guarantee enable_guarantee() {
     return g;
 }
 
+std::string guarantee_script(const Guarantee& g) {
+    return fmt::format("read_verilog {}.v\nread_verilog -formal <<EOT\n{}EOT\nhierarchy -top chk\n"
+                       "proc\nflatten\nasync2sync\nopt -fast\n"
+                       "sat -verify -tempinduct -prove-asserts -set-assumes -set-init-zero -maxsteps 4\n",
+                       g.entity, g.checker);
+}
+
+std::vector<std::pair<std::string, std::string>> guarantee_files(const StageRanges& r) {
+    auto gs = response_guarantees(r);
+    gs.push_back(enable_guarantee());
+    std::string sources;
+    for (const auto& f : cosim::rtl_sources()) sources += " rtl/" + f.filename().string();
+    std::vector<std::pair<std::string, std::string>> out;
+    for (std::size_t k = 0; k < gs.size(); ++k) {
+        const Guarantee& g = gs[k];
+        std::string head = "# guarantee: " + g.name + "\n";
+        for (const auto& a : g.assumes) head += "# assuming (a guarantee of its own): " + a + "\n";
+        head += fmt::format("# {0}.v:\n#   ghdl --synth --std=08 --workdir={0} --out=verilog{1} -e {0} > {0}.v\n", g.entity,
+                            sources);
+        out.emplace_back(fmt::format("guarantee_{}_{}.ys", k + 1, g.entity), head + guarantee_script(g));
+    }
+    return out;
+}
+
 Proof prove_guarantee(const Guarantee& g, const fs::path& work, int timeout_s) {
     const auto t0 = Clock::now();
     Proof p;
@@ -156,12 +181,7 @@ Proof prove_guarantee(const Guarantee& g, const fs::path& work, int timeout_s) {
         p.seconds = since(t0);
         return p;
     }
-    const std::string script = fmt::format("read_verilog {}.v\nread_verilog -formal <<EOT\n{}EOT\nhierarchy -top chk\n"
-                                           "proc\nflatten\nasync2sync\nopt -fast\n"
-                                           "sat -verify -tempinduct -prove-asserts -set-assumes -set-init-zero "
-                                           "-maxsteps 4\n",
-                                           g.entity, g.checker);
-    p.equivalent = run_yosys("guarantee", script, work, timeout_s, p);
+    p.equivalent = run_yosys("guarantee", guarantee_script(g), work, timeout_s, p);
     p.seconds = since(t0);
     return p;
 }

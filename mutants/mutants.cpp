@@ -680,7 +680,7 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
     md << "\n## Proven equivalent under assumptions\n\n"
           "Each proof assumes the properties listed, every one proven first on the netlist of the stage that drives\n"
           "the entity's inputs (a proof whose guarantee fails is refused); the script is in `"
-       << info.proofs_dir << "/`.\n\n";
+       << info.proofs_dir << "/`, and so is each guarantee's (`guarantee_<k>_<entity>.ys`).\n\n";
     any = false;
     for (const auto& r : rs) {
         if (r.fate != "equivalent-assuming") continue;

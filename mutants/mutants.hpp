@@ -151,6 +151,12 @@ std::vector<Guarantee> response_guarantees(const StageRanges& r);
 /// write after the last reset (so threshold's enable, t(5) in harris_top, is 0 at the first
 /// write after reset).
 Guarantee enable_guarantee();
+/// The yosys script proving `g`, run beside `<entity>.v` (the checker inline).
+std::string guarantee_script(const Guarantee& g);
+/// Every guarantee of response_guarantees(r) and enable_guarantee() as a runnable script: file
+/// name (guarantee_<k>_<entity>.ys) and text (its name, what it assumes and the GHDL command
+/// that makes `<entity>.v` as comments).
+std::vector<std::pair<std::string, std::string>> guarantee_files(const StageRanges& r = derive_ranges());
 /// Proves `g` in `work` (its own folder); p.equivalent means proven.
 Proof prove_guarantee(const Guarantee& g, const fs::path& work, int timeout_s);
 

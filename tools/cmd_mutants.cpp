@@ -87,6 +87,9 @@ void write_proofs(const std::vector<mutants::Result>& rs, const fs::path& dir) {
         }
         util::write_file_atomic(dir / mutants::proof_file_name(r), s + r.proof.script);
     }
+    // the guarantees the proofs under assumptions assume, each a script of its own
+    if (std::any_of(rs.begin(), rs.end(), [](const mutants::Result& r) { return r.fate == "equivalent-assuming"; }))
+        for (const auto& [name, text] : mutants::guarantee_files()) util::write_file_atomic(dir / name, text);
 }
 
 /// Writes (or prints) the report, its CSV and the proven mutants' scripts.

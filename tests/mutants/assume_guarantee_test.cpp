@@ -52,6 +52,15 @@ TEST_CASE("every guarantee is proven on its stage's netlist", "[assume-guarantee
         CHECK(p.equivalent);
         CHECK(p.entity == gs[k].entity);
     }
+    // the scripts the report's folder gets: the same proofs, with the GHDL command as a comment
+    const auto files = mutants::guarantee_files();
+    REQUIRE(files.size() == gs.size());
+    for (std::size_t k = 0; k < gs.size(); ++k) {
+        CHECK(files[k].first == "guarantee_" + std::to_string(k + 1) + "_" + gs[k].entity + ".ys");
+        const std::string script = mutants::guarantee_script(gs[k]);
+        CHECK(files[k].second.substr(files[k].second.size() - script.size()) == script);
+        CHECK(files[k].second.find("-e " + gs[k].entity + " > " + gs[k].entity + ".v") != std::string::npos);
+    }
 }
 
 TEST_CASE("a range tighter than the netlist gives is refused and so is the proof assuming it", "[assume-guarantee]") {
