@@ -10,12 +10,7 @@ namespace hc::jobs {
 
 namespace {
 
-/// A hash over the RTL files' names and texts.
-std::string rtl_hash() {
-    std::uint64_t h = util::fnv1a("");
-    for (const auto& p : cosim::rtl_sources()) h = util::fnv1a(p.filename().string() + "\n" + util::read_file(p), h);
-    return util::hex64(h);
-}
+using mutants::rtl_hash;
 
 json stimuli_json(const std::vector<mutants::Stimulus>& v) {
     json a = json::array();

@@ -2,7 +2,10 @@
 #include "mutants/mutants.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <mutex>
+#include <thread>
 #include <map>
 #include <set>
 #include <sstream>
@@ -11,6 +14,7 @@
 
 #include "cosim/cosim.hpp"
 #include "model/harris/harris_pkg.hpp"
+#include "mutants/proof_steps.hpp"
 #include "util/util.hpp"
 
 namespace hc::mutants {
@@ -222,6 +226,7 @@ json to_json(const Result& r) {
               {"script", r.proof.script},
               {"synth", r.proof.synth},
               {"output", r.proof.output},
+              {"assumptions", r.proof.assumptions},
               {"seconds", r.proof.seconds}}}};
 }
 
@@ -251,6 +256,7 @@ Result result_from_json(const json& j) {
         r.proof.script = p.at("script").get<std::string>();
         r.proof.synth = p.at("synth").get<std::string>();
         r.proof.output = p.at("output").get<std::string>();
+        r.proof.assumptions = p.value("assumptions", std::vector<std::string>{});
         r.proof.seconds = p.at("seconds").get<double>();
         return r;
     } catch (const json::exception& e) {
@@ -258,38 +264,66 @@ Result result_from_json(const json& j) {
     }
 }
 
-Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s) {
-    const auto t0 = Clock::now();
-    Proof p;
+bool synthesise(const std::string& entity, const fs::path& gate_rtl, const fs::path& work, const std::string& side,
+                Proof& p) {
+    const std::vector<std::string> gens = proof_generics(cosim::rtl_dir() / (entity + ".vhd"));
+    std::vector<std::string> argv = {"ghdl", "--synth", "--std=08", "--workdir=" + (work / side).string()};
+    fs::create_directories(work / side);
+    argv.insert(argv.end(), gens.begin(), gens.end());
+    argv.push_back("--out=verilog");
+    for (const auto& f : cosim::rtl_sources(gate_rtl)) argv.push_back(f.string());
+    argv.insert(argv.end(), {"-e", entity});
+    std::string shown;
+    for (const auto& a : argv) {
+        std::string s = a;
+        if (s.rfind(cosim::rtl_dir().string(), 0) == 0) s = "rtl/" + fs::path(s).filename().string();
+        if (!gate_rtl.empty() && s.rfind(gate_rtl.string(), 0) == 0) s = "mutant-rtl/" + fs::path(s).filename().string();
+        if (s.rfind("--workdir=", 0) == 0) s = "--workdir=" + side;
+        shown += (shown.empty() ? "" : " ") + s;
+    }
+    p.synth += shown + " > " + side + ".v\n";
+    const fs::path log = work / (side + "-synth.log");
+    if (util::run_process(argv, {.log = log, .stdout_file = work / (side + ".v")}) != 0) {
+        p.output = "ghdl --synth of the " + side + " failed: " + util::log_tail(log, 1500);
+        return false;
+    }
+    return true;
+}
+
+bool synthesise_pair(const mutation::Mutant& m, const fs::path& work, Proof& p) {
     p.entity = proof_entity(m.file);
     fs::create_directories(work);
     const fs::path gate_rtl = mutated_copy(m, work);
-    const std::vector<std::string> gens = proof_generics(cosim::rtl_dir() / (p.entity + ".vhd"));
-    for (const char* side : {"gold", "gate"}) {
-        std::vector<std::string> argv = {"ghdl", "--synth", "--std=08", "--workdir=" + (work / side).string()};
-        fs::create_directories(work / side);
-        argv.insert(argv.end(), gens.begin(), gens.end());
-        argv.push_back("--out=verilog");
-        const bool gold = std::string(side) == "gold";
-        for (const auto& f : cosim::rtl_sources(gold ? fs::path{} : gate_rtl)) argv.push_back(f.string());
-        argv.insert(argv.end(), {"-e", p.entity});
-        std::string shown;
-        for (const auto& a : argv) {
-            std::string s = a;
-            if (s.rfind(cosim::rtl_dir().string(), 0) == 0) s = "rtl/" + fs::path(s).filename().string();
-            if (s.rfind(gate_rtl.string(), 0) == 0) s = "mutant-rtl/" + fs::path(s).filename().string();
-            if (s.rfind("--workdir=", 0) == 0) s = std::string("--workdir=") + side;
-            shown += (shown.empty() ? "" : " ") + s;
-        }
-        p.synth += shown + " > " + side + ".v\n";
-        const fs::path log = work / (std::string(side) + "-synth.log");
-        if (util::run_process(argv, {.log = log, .stdout_file = work / (std::string(side) + ".v")}) != 0) {
-            p.output = std::string("ghdl --synth of the ") + side + " failed: " + util::log_tail(log, 1500);
-            p.seconds = since(t0);
-            return p;
-        }
+    return synthesise(p.entity, {}, work, "gold", p) && synthesise(p.entity, gate_rtl, work, "gate", p);
+}
+
+std::string load_pair_script(const mutation::Mutant& m) {
+    const std::string e = proof_entity(m.file);
+    return load_script(e, m.file == e + ".vhd" && e == "harris_top");
+}
+
+bool run_yosys(const std::string& method, const std::string& script, const fs::path& work, int timeout_s, Proof& p) {
+    const fs::path ys = work / (method + ".ys");
+    const fs::path log = work / (method + ".log");
+    util::write_file_atomic(ys, script);
+    fs::remove(log);
+    const int rc = util::run_process({"timeout", std::to_string(timeout_s), "yosys", "-q", "-s", ys.filename().string()},
+                                     {.cwd = work, .log = log});
+    p.method = method;
+    p.script = script;
+    p.output = util::log_tail(log, 2500);
+    if (rc == 124) p.output += fmt::format("\n(yosys stopped after the {} s limit)", timeout_s);
+    return rc == 0;
+}
+
+Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s) {
+    const auto t0 = Clock::now();
+    Proof p;
+    if (!synthesise_pair(m, work, p)) {
+        p.seconds = since(t0);
+        return p;
     }
-    const std::string load = load_script(p.entity, m.file == p.entity + ".vhd" && p.entity == "harris_top");
+    const std::string load = load_pair_script(m);
     const std::string equiv_steps = "equiv_make gold gate equiv\nhierarchy -top equiv\nequiv_simple -seq 5\n"
                                     "equiv_induct -seq 5\nequiv_status -assert\n";
     const std::string equiv = load + equiv_steps;
@@ -302,17 +336,7 @@ Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s) {
                                      "sat -verify -tempinduct -prove trigger 0 -set-init-zero -seq 1 -maxsteps 40 miter\n";
     for (const auto& [method, script] : {std::pair{std::string("equiv"), equiv}, std::pair{std::string("equiv-named"), equiv_named},
                                          std::pair{std::string("miter"), miter}}) {
-        const fs::path ys = work / (method + ".ys");
-        const fs::path log = work / (method + ".log");
-        util::write_file_atomic(ys, script);
-        fs::remove(log);
-        const int rc = util::run_process({"timeout", std::to_string(timeout_s), "yosys", "-q", "-s", ys.filename().string()},
-                                         {.cwd = work, .log = log});
-        p.method = method;
-        p.script = script;
-        p.output = util::log_tail(log, 2500);
-        if (rc == 124) p.output += fmt::format("\n(yosys stopped after the {} s limit)", timeout_s);
-        if (rc == 0) {
+        if (run_yosys(method, script, work, timeout_s, p)) {
             p.equivalent = true;
             break;
         }
@@ -395,6 +419,11 @@ Result run_mutant_in(const mutation::Mutant& m, const Options& o, const fs::path
         say(o, r.name + ": survives every stimulus, proving ...");
         r.proof = prove(m, work / "proof", o.proof_timeout_s);
         if (r.proof.equivalent) r.fate = "equivalent";
+        else if (has_assumptions(m.file)) {
+            say(o, r.name + ": no proof of the entity alone, proving under proven assumptions ...");
+            r.proof = prove_assuming(m, work / "proof-assuming", o.proof_timeout_s);
+            if (r.proof.equivalent) r.fate = "equivalent-assuming";
+        }
     }
     r.seconds = since(t0);
     return r;
@@ -419,8 +448,63 @@ Result run_mutant(const mutation::Mutant& m, const Options& o) {
     return r;
 }
 
+Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<mutation::Mutant>& sel, int jobs, int timeout_s,
+                     const std::function<void(const std::string&)>& progress) {
+    Reuse u;
+    std::vector<const mutation::Mutant*> again;
+    // the CSV keeps a name's line breaks (a mutant of an expression over lines) as spaces
+    auto one_line = [](std::string s) {
+        std::replace(s.begin(), s.end(), '\n', ' ');
+        return s;
+    };
+    std::set<std::string> seen;
+    for (const auto& m : sel) {
+        const std::string key = one_line(m.name());
+        if (!seen.insert(key).second) throw InputError("two mutants are named '" + key + "' on one line: verdicts not reusable");
+        const auto it = std::find_if(old.begin(), old.end(), [&](const Result& r) { return one_line(r.name) == key; });
+        if (it == old.end()) throw InputError("the reused verdicts have none for '" + m.name() + "'");
+        u.results.push_back(*it);
+        u.results.back().name = m.name();
+        if (it->fate == "surviving" || it->fate == "equivalent-assuming") again.push_back(&m);
+    }
+    u.reused = static_cast<int>(sel.size() - again.size());
+    if (progress)
+        progress(fmt::format("{} verdicts reused, {} proven again under proven assumptions", u.reused, again.size()));
+    const auto t0 = Clock::now();
+    std::atomic<std::size_t> next{0};
+    std::mutex lock;
+    std::exception_ptr error;
+    auto worker = [&] {
+        try {
+            for (std::size_t k; (k = next++) < again.size();) {
+                const mutation::Mutant& m = *again[k];
+                const auto t = Clock::now();
+                util::ScratchDir scratch("harris-mutant-ag");
+                Proof p = prove_assuming(m, scratch.path(), timeout_s);
+                p.output = replace_path(p.output, scratch.path().string(), "<scratch>");
+                const std::lock_guard<std::mutex> g(lock);
+                Result& r = *std::find_if(u.results.begin(), u.results.end(), [&](const Result& x) { return x.name == m.name(); });
+                r.proof = p;
+                r.fate = p.equivalent ? "equivalent-assuming" : "surviving";
+                r.seconds = since(t);
+                if (progress) progress(fmt::format("{}: {} ({:.1f} s)", m.name(), r.fate, r.seconds));
+            }
+        } catch (...) {
+            const std::lock_guard<std::mutex> g(lock);
+            error = std::current_exception();
+            next = again.size();
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int j = 0; j < std::max(1, jobs); ++j) pool.emplace_back(worker);
+    for (auto& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
+    u.wall_seconds = since(t0);
+    return u;
+}
+
 double Tally::score() const {
-    const int left = mutants - stillborn - equivalent;
+    const int left = mutants - stillborn - equivalent - assuming;
     return left > 0 ? static_cast<double>(killed) / left : 1.0;
 }
 
@@ -431,6 +515,7 @@ Tally tally(const std::vector<Result>& rs) {
         t.stillborn += r.fate == "stillborn";
         t.killed += r.fate == "killed";
         t.equivalent += r.fate == "equivalent";
+        t.assuming += r.fate == "equivalent-assuming";
         t.surviving += r.fate == "surviving";
         t.seconds += r.seconds;
     }
@@ -457,8 +542,8 @@ std::string name_cell(const std::string& name) {
 }
 
 void tally_row(std::ostringstream& md, const std::string& label, const Tally& t) {
-    md << fmt::format("| {} | {} | {} | {} | {} | {} | {:.1f} % | {:.1f} |\n", label, t.mutants, t.stillborn, t.killed,
-                      t.equivalent, t.surviving, 100.0 * t.score(), t.mutants ? t.seconds / t.mutants : 0.0);
+    md << fmt::format("| {} | {} | {} | {} | {} | {} | {} | {:.1f} % | {:.1f} |\n", label, t.mutants, t.stillborn, t.killed,
+                      t.equivalent, t.assuming, t.surviving, 100.0 * t.score(), t.mutants ? t.seconds / t.mutants : 0.0);
 }
 
 std::string stimulus_text(const Stimulus& s) {
@@ -478,7 +563,9 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
     const Tally all = tally(rs);
     md << "# Mutation campaign: generated mutants\n\n"
        << "Made by `" << info.command << "`" << (info.runner.empty() ? "" : " (" + info.runner + ")")
-       << "; every figure below comes from that run.\n\n";
+       << "; every figure below comes from that run" << (info.reused.empty() ? "" : ", with the reused verdicts it names")
+       << ".\n\n";
+    if (!info.reused.empty()) md << info.reused << "\n\n";
     if (all.mutants < info.generated)
         md << fmt::format("**PARTIAL: {} of the {} generated mutants have a verdict.** The others were not run (a "
                           "selection) or had not finished when this report was rendered; every count below is over "
@@ -504,23 +591,42 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
           "if that fails, a miter (`miter -equiv -flatten`) and\n"
           "`sat -tempinduct -prove trigger 0` (registers zero in step 1, every input, the reset too, free in every\n"
           "step, outputs compared from step 2 on, induction up to 40 steps). *Proven equivalent* is that solver's verdict and\n"
-          "nothing else; a mutant whose proofs fail is *surviving*, listed below with the proof's output.\n"
+          "nothing else. A mutant of `harris_response.vhd` or `threshold.vhd` whose proofs fail is proven once more\n"
+          "under assumptions on its entity's inputs, each first proven on the netlist of the stage driving them\n"
+          "(docs/assume-guarantee.md); *proven equivalent under assumptions*\n"
+          "is that proof's verdict, a verdict of its own, with the assumptions it took. A mutant whose proofs all\n"
+          "fail is *surviving*, listed below with the last proof's output.\n"
           "GHDL 2.0's Verilog output can mistranslate signed right shifts; gold and gate go through the same\n"
           "translation, so a proof is about the two netlists as GHDL writes them.\n\n"
-          "Mutation score = killed / (mutants - stillborn - proven equivalent).\n\n";
-    md << fmt::format("**Score: {:.1f} %** ({} killed of {}; {} stillborn, {} proven equivalent, {} surviving). "
-                      "Time per mutant (wall time inside its shard, shards running side by side): {:.1f} s mean ({:.1f} s analysis, {:.1f} s co-simulation, "
-                      "{:.2f} co-simulations per mutant; proofs in the rest)",
-                      100.0 * all.score(), all.killed, all.mutants - all.stillborn - all.equivalent, all.stillborn,
-                      all.equivalent, all.surviving, all.mutants ? all.seconds / all.mutants : 0.0,
-                      all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.analyse_seconds; return s / all.mutants; }() : 0.0,
-                      all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.sim_seconds; return s / all.mutants; }() : 0.0,
-                      all.mutants ? [&] { double s = 0; for (auto& r : rs) s += r.runs; return s / all.mutants; }() : 0.0);
-    if (info.wall_seconds > 0) md << fmt::format("; the run took {:.0f} s of wall time", info.wall_seconds);
+          "Mutation score = killed / (mutants - stillborn - proven equivalent - proven equivalent under assumptions).\n\n";
+    md << fmt::format("**Score: {:.1f} %** ({} killed of {}; {} stillborn, {} proven equivalent, {} proven equivalent under "
+                      "assumptions, {} surviving). ",
+                      100.0 * all.score(), all.killed, all.mutants - all.stillborn - all.equivalent - all.assuming,
+                      all.stillborn, all.equivalent, all.assuming, all.surviving);
+    auto mean = [&](auto field) {
+        double s = 0;
+        for (const auto& r : rs) s += field(r);
+        return all.mutants ? s / all.mutants : 0.0;
+    };
+    if (info.reused.empty()) {
+        md << fmt::format("Time per mutant (wall time inside its shard, shards running side by side): {:.1f} s mean ({:.1f} s "
+                          "analysis, {:.1f} s co-simulation, {:.2f} co-simulations per mutant; proofs in the rest)",
+                          mean([](const Result& r) { return r.seconds; }), mean([](const Result& r) { return r.analyse_seconds; }),
+                          mean([](const Result& r) { return r.sim_seconds; }),
+                          mean([](const Result& r) { return static_cast<double>(r.runs); }));
+        if (info.wall_seconds > 0) md << fmt::format("; the run took {:.0f} s of wall time", info.wall_seconds);
+    } else {
+        // the verdict list keeps a mutant's time, not its split into analysis and co-simulation
+        md << fmt::format("Time per mutant: {:.1f} s mean, {:.2f} co-simulations per mutant (a reused verdict's time is "
+                          "that of the run that made it; a proof run again here, its own)",
+                          mean([](const Result& r) { return r.seconds; }),
+                          mean([](const Result& r) { return static_cast<double>(r.runs); }));
+    }
     md << ".\n\n";
 
-    const std::string head = "| mutants | stillborn | killed | proven equivalent | surviving | score | s per mutant |\n";
-    md << "## Per class\n\n| class " << head << "|---|---|---|---|---|---|---|---|\n";
+    const std::string head =
+        "| mutants | stillborn | killed | proven equivalent | proven under assumptions | surviving | score | s per mutant |\n";
+    md << "## Per class\n\n| class " << head << "|---|---|---|---|---|---|---|---|---|\n";
     for (auto c : mutation::all_classes()) {
         std::vector<Result> g;
         for (const auto& r : rs)
@@ -528,7 +634,7 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
         if (!g.empty()) tally_row(md, mutation::class_name(c), tally(g));
     }
     tally_row(md, "**all**", all);
-    md << "\n## Per entity\n\n| entity (file) " << head << "|---|---|---|---|---|---|---|---|\n";
+    md << "\n## Per entity\n\n| entity (file) " << head << "|---|---|---|---|---|---|---|---|---|\n";
     std::vector<std::string> order;
     for (const auto& r : rs)
         if (std::find(order.begin(), order.end(), r.file) == order.end()) order.push_back(r.file);
@@ -571,6 +677,22 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
     }
     if (!any) md << "None.\n";
 
+    md << "\n## Proven equivalent under assumptions\n\n"
+          "Each proof assumes the properties listed, every one proven first on the netlist of the stage that drives\n"
+          "the entity's inputs (a proof whose guarantee fails is refused); the script is in `"
+       << info.proofs_dir << "/`, and so is each guarantee's (`guarantee_<k>_<entity>.ys`).\n\n";
+    any = false;
+    for (const auto& r : rs) {
+        if (r.fate != "equivalent-assuming") continue;
+        if (!any) md << "| mutant | entity proven | assumptions (each proven) | script |\n|---|---|---|---|\n";
+        any = true;
+        std::string a;
+        for (const auto& x : r.proof.assumptions) a += (a.empty() ? "" : "; ") + x;
+        md << "| " << name_cell(r.name) << " | " << r.proof.entity << " | " << md_cell(a) << " | `" << proof_file_name(r)
+           << "` |\n";
+    }
+    if (!any) md << "None.\n";
+
     md << "\n## Stillborn mutants\n\n";
     any = false;
     for (const auto& r : rs) {
@@ -585,7 +707,40 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
     return md.str();
 }
 
-std::string csv(const std::vector<Result>& rs) {
+std::string rtl_hash() {
+    std::uint64_t h = util::fnv1a("");
+    for (const auto& p : cosim::rtl_sources()) h = util::fnv1a(p.filename().string() + "\n" + util::read_file(p), h);
+    return util::hex64(h);
+}
+
+namespace {
+constexpr const char* csv_header =
+    "name,file,line,column,class,entity,fate,detail,killed_by,stage,signal,write,runs,seconds,proof_method,assumptions,"
+    "rtl_hash";
+
+/// The fields of one CSV line (quoted fields with "" for a quote; no line breaks inside).
+std::vector<std::string> csv_fields(const std::string& line) {
+    std::vector<std::string> out(1);
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') out.back() += '"', ++i;
+            else if (c == '"') quoted = false;
+            else out.back() += c;
+        } else if (c == '"') {
+            quoted = true;
+        } else if (c == ',') {
+            out.emplace_back();
+        } else {
+            out.back() += c;
+        }
+    }
+    return out;
+}
+}  // namespace
+
+std::string csv(const std::vector<Result>& rs, const std::string& rtl) {
     auto q = [](std::string s) {
         std::string o = "\"";
         for (char c : s) {
@@ -595,12 +750,52 @@ std::string csv(const std::vector<Result>& rs) {
         return o + "\"";
     };
     std::ostringstream out;
-    out << "name,file,line,column,class,entity,fate,detail,killed_by,stage,signal,write,runs,seconds,proof_method\n";
-    for (const auto& r : rs)
+    out << csv_header << '\n';
+    for (const auto& r : rs) {
+        std::string a;
+        for (const auto& x : r.proof.assumptions) a += (a.empty() ? "" : ";") + x;
         out << q(r.name) << ',' << r.file << ',' << r.line << ',' << r.column << ',' << r.cls << ',' << r.entity << ','
             << r.fate << ',' << q(r.detail) << ',' << r.killed_by << ',' << r.stage << ',' << q(r.signal) << ','
-            << r.write << ',' << r.runs << ',' << fmt::format("{:.2f}", r.seconds) << ',' << r.proof.method << '\n';
+            << r.write << ',' << r.runs << ',' << fmt::format("{:.2f}", r.seconds) << ',' << r.proof.method << ','
+            << q(a) << ',' << rtl << '\n';
+    }
     return out.str();
+}
+
+std::vector<Result> results_from_csv(const std::string& text, const std::string& source, const std::string& rtl) {
+    std::istringstream in(text);
+    std::string line;
+    if (!std::getline(in, line) || line != csv_header)
+        throw InputError(source + ": not a verdict list of `mutate --generate` (its first line must be: " + csv_header + ")");
+    std::vector<Result> rs;
+    for (int n = 2; std::getline(in, line); ++n) {
+        const auto f = csv_fields(line);
+        const std::string at = fmt::format("{} line {}", source, n);
+        if (f.size() != 17) throw InputError(at + fmt::format(": {} fields, not 17", f.size()));
+        if (f[16] != rtl)
+            throw InputError(at + ": a verdict about RTL of hash " + f[16] + ", not about rtl/ as it is (" + rtl +
+                             "): verdicts about other RTL are not reused");
+        Result r;
+        try {
+            r.name = f[0], r.file = f[1], r.line = std::stoi(f[2]), r.column = std::stoi(f[3]), r.cls = f[4];
+            r.entity = f[5], r.fate = f[6], r.detail = f[7], r.killed_by = f[8], r.stage = f[9], r.signal = f[10];
+            r.write = std::stol(f[11]), r.runs = std::stoi(f[12]), r.seconds = std::stod(f[13]);
+        } catch (const std::exception&) {
+            throw InputError(at + ": a number field is not a number");
+        }
+        static const std::set<std::string> fates = {"stillborn", "killed", "equivalent", "equivalent-assuming", "surviving"};
+        if (!fates.count(r.fate)) throw InputError(at + ": unknown verdict '" + r.fate + "'");
+        r.proof.method = f[14];
+        r.proof.equivalent = r.fate == "equivalent" || r.fate == "equivalent-assuming";
+        if (!r.proof.method.empty()) r.proof.entity = proof_entity(r.file);
+        for (std::size_t a = 0, b; a < f[15].size(); a = b + 1) {
+            b = f[15].find(';', a);
+            if (b == std::string::npos) b = f[15].size();
+            r.proof.assumptions.push_back(f[15].substr(a, b - a));
+        }
+        rs.push_back(std::move(r));
+    }
+    return rs;
 }
 
 }  // namespace hc::mutants

@@ -9,6 +9,10 @@
 //               harris_top) at small geometry generics to Verilog, both sides, and yosys
 //               proves them equal (equiv_make/equiv_simple/equiv_induct, else a miter and
 //               sat -tempinduct from all registers zero, every input free)
+//   equivalent-assuming
+//               every stimulus passes, the proofs above fail, and yosys proves mutant and
+//               original equal under assumptions on the entity's inputs that are themselves
+//               proven on the netlists of the stages driving them (prove_assuming)
 //   surviving   every stimulus passes and no proof succeeds (the proof's output is kept)
 // The stimuli run in order and stop at the first kill: a quick stream first, then the
 // longer ones (streams of the synthetic regression set, more chained frames, idle cycles,
@@ -26,6 +30,7 @@
 #include <nlohmann/json.hpp>
 
 #include "frames/frames.hpp"
+#include "model/harris/harris_pkg.hpp"
 #include "mutation/vhdl_mutants.hpp"
 
 namespace hc::mutants {
@@ -77,6 +82,7 @@ struct Proof {
     std::string script;      ///< the yosys script that gave the verdict (the last one tried)
     std::string synth;       ///< the GHDL commands that made gold.v and gate.v
     std::string output;      ///< the tail of the last attempt's yosys (or GHDL) output
+    std::vector<std::string> assumptions;   ///< method "assume-guarantee": the proven guarantees it assumes
     double seconds = 0;
 };
 
@@ -84,7 +90,7 @@ struct Proof {
 struct Result {
     std::string name, file, entity, cls;
     int line = 0, column = 0;
-    std::string fate;        ///< "stillborn", "killed", "equivalent", "surviving"
+    std::string fate;        ///< "stillborn", "killed", "equivalent", "equivalent-assuming", "surviving"
     std::string detail;      ///< stillborn: why; killed: "mismatch", "metavalue" or "simulator failed"
     std::string killed_by;   ///< the stimulus that killed it
     std::string stage, signal;
@@ -109,11 +115,81 @@ Result run_mutant(const mutation::Mutant& m, const Options& o);
 /// The proof of a mutant alone (`work`: a directory for the netlists and scripts).
 Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s);
 
+/// A closed interval of integers.
+struct Interval {
+    long long lo = 0, hi = 0;
+};
+/// What the stages upstream of harris_response produce for every 8-bit pixel window, by
+/// interval arithmetic on the stage functions at formats `f` (a Sobel gradient is at most
+/// four pixels' worth; ix*ix and ix*iy cut by 2^m_drop; nine of those summed and cut by
+/// 2^bf_drop; each cut a floor). Each is then proven on the stage's netlist (guarantees).
+struct StageRanges {
+    Interval sobel;          ///< ix, iy
+    Interval m_square;       ///< M's a, c
+    Interval m_cross;        ///< M's b
+    Interval bf_square;      ///< block sums of a and c: harris_response's a, c
+    Interval bf_cross;       ///< block sums of b: harris_response's b
+};
+/// InputError when a range does not fit the register holding it (then no range is proven).
+StageRanges derive_ranges(const Formats& f = {});
+
+/// A property of one entity's outputs, proven on its GHDL netlist (default generics) by yosys:
+/// a Verilog module `chk` instantiates the entity, assumes the properties of its inputs that
+/// the guarantees named in `assumes` prove for the stages driving them, and asserts the
+/// property; `sat -tempinduct -prove-asserts -set-assumes` from all registers zero.
+struct Guarantee {
+    std::string name;                   ///< "m_products: a, c in [0, 32512], b in [-32513, 32512]"
+    std::string entity;
+    std::vector<std::string> assumes;
+    std::string checker;                ///< the Verilog of `chk`
+};
+/// The guarantees harris_response's proofs assume, upstream first: sobel_x, sobel_y (no
+/// assumption: every 8-bit window), m_products (under the Sobel range), block_filter on the
+/// M ranges of a and c and on that of b. The ranges are `r`'s, proven or refused as given.
+std::vector<Guarantee> response_guarantees(const StageRanges& r);
+/// The guarantee threshold's proofs assume: control_shift_register's t is all zero until a
+/// write after the last reset (so threshold's enable, t(5) in harris_top, is 0 at the first
+/// write after reset).
+Guarantee enable_guarantee();
+/// The yosys script proving `g`, run beside `<entity>.v` (the checker inline).
+std::string guarantee_script(const Guarantee& g);
+/// Every guarantee of response_guarantees(r) and enable_guarantee() as a runnable script: file
+/// name (guarantee_<k>_<entity>.ys) and text (its name, what it assumes and the GHDL command
+/// that makes `<entity>.v` as comments).
+std::vector<std::pair<std::string, std::string>> guarantee_files(const StageRanges& r = derive_ranges());
+/// Proves `g` in `work` (its own folder); p.equivalent means proven.
+Proof prove_guarantee(const Guarantee& g, const fs::path& work, int timeout_s);
+
+/// Whether prove_assuming has assumptions for the entity of `file` (harris_response, threshold).
+bool has_assumptions(const std::string& file);
+/// The proof of `m` under assumptions on its entity's inputs: first every guarantee they come
+/// from is proven (any that fails refuses the proof, p.output naming it), then a miter of gold
+/// and gate with the assumptions as $assume cells, `opt` sharing the cells both sides have in
+/// common, and `sat -tempinduct` proving the outputs equal together with invariants that make
+/// the induction close (harris_response: the step-1 products' top bits zero, the k-terms
+/// equal; threshold: r0_delay equal once a write followed the reset). Method "assume-guarantee".
+Proof prove_assuming(const mutation::Mutant& m, const fs::path& work, int timeout_s,
+                     const StageRanges& r = derive_ranges());
+
+/// Verdicts of the mutants `sel` from `old` (results_from_csv of an earlier run on this rtl/):
+/// killed, stillborn and unconditionally proven ones stand; a surviving one, or one proven
+/// under assumptions, is proven again by prove_assuming (`jobs` at a time, `timeout_s` per
+/// yosys run) and is "equivalent-assuming" or "surviving" by that proof alone. InputError when
+/// `old` has no verdict for a mutant of `sel`.
+struct Reuse {
+    std::vector<Result> results;   ///< in the order of `sel`
+    int reused = 0;                ///< verdicts taken as they were
+    double wall_seconds = 0;       ///< of the proofs run again
+};
+Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<mutation::Mutant>& sel, int jobs, int timeout_s,
+                     const std::function<void(const std::string&)>& progress);
+
 /// Counts of a group of results.
 struct Tally {
     int mutants = 0, stillborn = 0, killed = 0, equivalent = 0, surviving = 0;
+    int assuming = 0;        ///< proven equivalent under proven assumptions (not in `equivalent`)
     double seconds = 0;
-    /// killed / (mutants - stillborn - equivalent); 1 when nothing is left to kill.
+    /// killed / (mutants - stillborn - equivalent - assuming); 1 when nothing is left to kill.
     double score() const;
 };
 Tally tally(const std::vector<Result>& rs);
@@ -127,12 +203,20 @@ struct ReportInfo {
     std::string runner;             ///< "local, 2 jobs, 74 shards"
     double wall_seconds = 0;
     std::string proofs_dir;         ///< where the proven mutants' scripts are written (relative)
+    std::string reused;             ///< how verdicts of an earlier run were reused (empty: none were)
 };
 /// The Markdown report: per class and per entity, the score, time per mutant, the survivors
 /// with their proof output, the proven ones with their script's file.
 std::string markdown(const std::vector<Result>& rs, const ReportInfo& info);
-/// One line per mutant: name,file,line,column,class,entity,fate,detail,killed_by,stage,signal,write,seconds.
-std::string csv(const std::vector<Result>& rs);
+/// A hash over the names and texts of the RTL files (cosim::rtl_sources()): the RTL a verdict is about.
+std::string rtl_hash();
+/// One line per mutant: name,file,line,column,class,entity,fate,detail,killed_by,stage,signal,write,runs,
+/// seconds,proof_method,assumptions (';'-separated),rtl_hash (`rtl`: the RTL the verdicts are about).
+std::string csv(const std::vector<Result>& rs, const std::string& rtl);
+/// The verdicts of a CSV that csv() wrote (`source` names it in errors): every field csv()
+/// keeps; a proof's script and output are not in it. InputError for a malformed line or a
+/// line whose rtl_hash is not `rtl` (verdicts about other RTL are not reused).
+std::vector<Result> results_from_csv(const std::string& text, const std::string& source, const std::string& rtl);
 /// The file name of a proven mutant's script in ReportInfo::proofs_dir.
 std::string proof_file_name(const Result& r);
 

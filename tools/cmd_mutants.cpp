@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "frames/frames.hpp"
 #include "jobs/jobs.hpp"
 #include "mutants/mutants.hpp"
@@ -33,6 +35,11 @@ void add_generated_flags(CLI::App* cmd, GeneratedFlags& f) {
         ->check(CLI::Range(1, 100000))->capture_default_str()->group(g);
     cmd->add_flag("--render", f.render, "with --generate and --run-dir: render the report from the shards of that run "
                                         "that have finished, without running any (marked partial when shards are missing)")->group(g);
+    cmd->add_option("--reuse-verdicts", f.reuse,
+                    "with --generate: a verdict CSV of an earlier run on the same rtl/ (checked by its rtl_hash):\n"
+                    "its killed, stillborn and unconditionally proven verdicts stand; its surviving mutants and those\n"
+                    "proven under assumptions are proven again under proven assumptions (no co-simulation runs:\n"
+                    "they passed every stimulus on this rtl/); the report says which were reused")->group(g);
     add_runner_flags(cmd, f.runner);
 }
 
@@ -56,6 +63,7 @@ std::string command_line(const GeneratedFlags& f) {
     if (f.runner.runner == "local") c += " --jobs " + std::to_string(f.runner.jobs);
     if (!f.report.empty()) c += " --report " + f.report;
     if (f.render) c += " --run-dir RUN --render";
+    if (!f.reuse.empty()) c += " --reuse-verdicts " + f.reuse;
     return c;
 }
 
@@ -63,9 +71,11 @@ std::string command_line(const GeneratedFlags& f) {
 /// commands in their first lines write.
 void write_proofs(const std::vector<mutants::Result>& rs, const fs::path& dir) {
     for (const auto& r : rs) {
-        if (r.fate != "equivalent") continue;
-        std::string s = "# " + r.name + ": proven equivalent by yosys (" + r.proof.method + ")\n"
-                        "# gold.v and gate.v (mutant-rtl/: rtl/ with the mutant applied):\n";
+        // a reused verdict has no script here: its file from the run that proved it stays
+        if ((r.fate != "equivalent" && r.fate != "equivalent-assuming") || r.proof.script.empty()) continue;
+        std::string s = "# " + r.name + ": proven equivalent by yosys (" + r.proof.method + ")\n";
+        for (const auto& a : r.proof.assumptions) s += "# assuming (proven first): " + a + "\n";
+        s += "# gold.v and gate.v (mutant-rtl/: rtl/ with the mutant applied):\n";
         std::string line;
         for (char c : r.proof.synth) {
             if (c == '\n') {
@@ -77,11 +87,15 @@ void write_proofs(const std::vector<mutants::Result>& rs, const fs::path& dir) {
         }
         util::write_file_atomic(dir / mutants::proof_file_name(r), s + r.proof.script);
     }
+    // the guarantees the proofs under assumptions assume, each a script of its own
+    if (std::any_of(rs.begin(), rs.end(), [](const mutants::Result& r) { return r.fate == "equivalent-assuming"; }))
+        for (const auto& [name, text] : mutants::guarantee_files()) util::write_file_atomic(dir / name, text);
 }
 
 /// Writes (or prints) the report, its CSV and the proven mutants' scripts.
 void write_report(const GeneratedFlags& f, const std::vector<mutants::Result>& rs, const mutants::Stimulus& quick,
-                  const std::vector<mutants::Stimulus>& longer, int generated, std::size_t shards, double wall) {
+                  const std::vector<mutants::Stimulus>& longer, int generated, std::size_t shards, double wall,
+                  const std::string& reused = {}) {
     mutants::ReportInfo info;
     info.command = command_line(f);
     info.quick = quick;
@@ -91,12 +105,14 @@ void write_report(const GeneratedFlags& f, const std::vector<mutants::Result>& r
                       ? "local runner, " + std::to_string(f.runner.jobs) + " jobs, " + std::to_string(shards) + " shards"
                       : "Slurm job array, " + std::to_string(shards) + " shards";
     info.wall_seconds = wall;
+    info.reused = reused;
+    if (!reused.empty()) info.runner.clear();   // the reuse text says what ran
     info.proofs_dir = "mutation-proofs";
     if (!f.report.empty()) {
         const fs::path md = f.report;
         info.proofs_dir = (md.parent_path().filename() / "mutation-proofs").string();
         write_proofs(rs, md.parent_path() / "mutation-proofs");
-        util::write_file_atomic(fs::path(md).replace_extension(".csv"), mutants::csv(rs));
+        util::write_file_atomic(fs::path(md).replace_extension(".csv"), mutants::csv(rs, mutants::rtl_hash()));
         util::write_file_atomic(md, mutants::markdown(rs, info));
     } else {
         std::printf("%s", mutants::markdown(rs, info).c_str());
@@ -126,11 +142,40 @@ std::vector<mutants::Result> finished_results(const fs::path& dir, mutants::Stim
     return jobs::mutants_results(jobs::registry().at("mutants").merge(m.common, data));
 }
 
+/// --reuse-verdicts: the verdicts of `f.reuse` for the selection, the surviving ones and those
+/// proven under assumptions proven again under proven assumptions, `jobs` at a time.
+void run_reusing(const GeneratedFlags& f, const std::vector<mutation::Mutant>& sel, int generated) {
+    const auto old = mutants::results_from_csv(util::read_file(f.reuse, "--reuse-verdicts"), f.reuse, mutants::rtl_hash());
+    const mutants::Reuse u = mutants::reuse_verdicts(old, sel, std::max(1, f.runner.jobs), f.proof_timeout,
+                                                     [](const std::string& l) { std::fprintf(stderr, "[mutate] %s\n", l.c_str()); });
+    const auto& rs = u.results;
+    const std::string how = fmt::format(
+        "**Verdicts reused.** {} of these {} verdicts (every killed, stillborn and unconditionally proven one) are read "
+        "from `{}`, the verdict list of an earlier complete run of this campaign, reused because its rtl_hash equals "
+        "that of rtl/ as it is (a hash over every rtl/ file's name and text): the same mutants of the same RTL, "
+        "co-simulated against the same cycle model. The other {} (surviving or proven under assumptions there: they "
+        "passed every stimulus and their unconditional proofs failed on this RTL) were proven again under proven "
+        "assumptions by this command, {} at a time, in {:.0f} s of wall time.",
+        u.reused, rs.size(), f.reuse, rs.size() - u.reused, std::max(1, f.runner.jobs), u.wall_seconds);
+    write_report(f, rs, mutants::quick_stimulus(), mutants::long_stimuli(frames::data_dir(f.data).value_or(fs::path{})),
+                 generated, 0, 0, how);
+    const mutants::Tally t = mutants::tally(rs);
+    std::printf("harris-cosim mutate --generate --reuse-verdicts: %d mutants: %d stillborn, %d killed, %d proven "
+                "equivalent, %d proven equivalent under assumptions, %d surviving; score %.1f %%\n",
+                t.mutants, t.stillborn, t.killed, t.equivalent, t.assuming, t.surviving, 100.0 * t.score());
+    if (t.surviving) throw MismatchError(std::to_string(t.surviving) + " generated mutant(s) survive");
+}
+
 }  // namespace
 
 void run_generated(const GeneratedFlags& f) {
     const auto all = mutants::generate_all();
     const auto sel = mutants::select(all, {f.only, f.classes, f.files});
+    if (!f.reuse.empty() && !f.list) {
+        if (f.render) throw InputError("--reuse-verdicts and --render do not go together (--render reads a run directory)");
+        run_reusing(f, sel, static_cast<int>(all.size()));
+        return;
+    }
     if (f.list) {
         for (const auto& m : sel) std::printf("%s\n", m.name().c_str());
         std::printf("harris-cosim mutate --generate --list: %zu of %zu generated mutants\n", sel.size(), all.size());
@@ -146,8 +191,9 @@ void run_generated(const GeneratedFlags& f) {
         write_report(f, rs, quick, longer, static_cast<int>(all.size()), shards, wall);
         const mutants::Tally t = mutants::tally(rs);
         std::printf("harris-cosim mutate --generate --render: %d of %zu mutants have a verdict: %d stillborn, %d killed, "
-                    "%d proven equivalent, %d surviving; score %.1f %%\n", t.mutants, all.size(), t.stillborn, t.killed,
-                    t.equivalent, t.surviving, 100.0 * t.score());
+                    "%d proven equivalent, %d proven equivalent under assumptions, %d surviving; score %.1f %%\n",
+                    t.mutants, all.size(), t.stillborn, t.killed, t.equivalent, t.assuming, t.surviving,
+                    100.0 * t.score());
         return;
     }
     jobs::MutantsJob job;
@@ -182,8 +228,8 @@ void run_generated(const GeneratedFlags& f) {
     write_report(f, rs, job.quick, job.longer, static_cast<int>(all.size()), m.shards.size(), wall);
     const mutants::Tally t = mutants::tally(rs);
     std::printf("harris-cosim mutate --generate: %d mutants: %d stillborn, %d killed, %d proven equivalent, "
-                "%d surviving; score %.1f %%\n", t.mutants, t.stillborn, t.killed, t.equivalent, t.surviving,
-                100.0 * t.score());
+                "%d proven equivalent under assumptions, %d surviving; score %.1f %%\n", t.mutants, t.stillborn, t.killed,
+                t.equivalent, t.assuming, t.surviving, 100.0 * t.score());
     if (t.surviving) throw MismatchError(std::to_string(t.surviving) + " generated mutant(s) survive");
 }
 

@@ -22,6 +22,7 @@ struct GeneratedFlags {
     int proof_timeout = 120;
     int per_shard = 8;
     bool render = false;          ///< only render the report from --run-dir's finished shards
+    std::string reuse;            ///< a verdict CSV whose killed, stillborn and proven verdicts stand
     RunnerFlags runner;
 };
 
