@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# slam_cli_sequence.sh: `harris-cosim slam --sequence 01` writes its report and one pose a
+# slam_cli_sequence.sh: `harris-cosim slam --sequences 01` writes its report and one pose a
 # line in the KITTI and TUM trajectory files. Exits 77 (skipped) without poses/01.txt.
 # usage: slam_cli_sequence.sh HARRIS_COSIM DATA_DIR WORK_DIR
 set -u
