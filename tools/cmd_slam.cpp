@@ -35,7 +35,8 @@ struct SlamOptions {
     uint64_t seed = 1;
     bool seed_given = false;
     double half_size = 5, radius = 3.75, step = 0.1, sigma_range = 0.05, sigma_bearing_deg = 1, fov_deg = 180,
-           max_range = 6, gate = 0.99, joint_gate = 0.99, max_hamming_fraction = 0.25, vo_hamming_fraction = 0.25;
+           max_range = 6, gate = 0.99, joint_gate = 0.99, max_hamming_fraction = 0.25, vo_hamming_fraction = 0.25,
+           vo_max_range = slam::VisualOdometryConfig{}.max_range;
     std::optional<double> sigma_dx, sigma_dtheta_deg;
     double sigma_dy = 0.02;
     bool descriptor = true;
@@ -154,6 +155,7 @@ slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::
     slam::VisualOdometryConfig vc;
     vc.max_hamming_fraction = o.vo_hamming_fraction;
     vc.min_inliers = o.vo_min_inliers;
+    vc.max_range = o.vo_max_range;
     vc.validate();
     slam::SyntheticOdometry so;
     so.sigma_dx = o.sigma_dx.value_or(0.1);
@@ -183,7 +185,7 @@ slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::
     if (o.odometry == "visual") {
         run = slam::run_visual_sequence(frames, truth, vc, ac, &vo);
         odo_args = " --vo-hamming-fraction " + num(vc.max_hamming_fraction) + " --vo-min-inliers " +
-                   std::to_string(vc.min_inliers);
+                   std::to_string(vc.min_inliers) + " --vo-max-range " + num(vc.max_range);
     } else {
         run = slam::run_sequence(poses, frames, so, ac, o.seed);
         odo_args = " --sigma-dx " + num(so.sigma_dx) + " --sigma-dy " + num(so.sigma_dy) + " --sigma-dtheta " +
@@ -293,6 +295,8 @@ void add_slam_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--vo-min-inliers", o->vo_min_inliers,
                     "visual odometry: fewer RANSAC inliers and the frame's estimate counts as failed")
+        ->capture_default_str();
+    cmd->add_option("--vo-max-range", o->vo_max_range, "visual odometry: points farther than this (m) are not used")
         ->capture_default_str();
     cmd->add_option("--association", o->association, "KITTI: jcbb (joint compatibility) or nearest (individual gating)")
         ->capture_default_str();
