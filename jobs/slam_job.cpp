@@ -21,7 +21,6 @@ json config_json(const slam::SimConfig& c) {
             {"fov", c.sensor.fov},
             {"sigma_dx", c.odometry.sigma_dx},
             {"sigma_dtheta", c.odometry.sigma_dtheta},
-            {"sigma_lateral", c.odometry.sigma_lateral},
             {"filter_sigma_scale", c.filter_sigma_scale}};
 }
 
@@ -39,7 +38,6 @@ slam::SimConfig config_from(const json& j) {
     c.sensor.fov = j.at("fov");
     c.odometry.sigma_dx = j.at("sigma_dx");
     c.odometry.sigma_dtheta = j.at("sigma_dtheta");
-    c.odometry.sigma_lateral = j.at("sigma_lateral");
     c.filter_sigma_scale = j.at("filter_sigma_scale");
     return c;
 }

@@ -2,6 +2,7 @@
 // motion, observation and inverse observation, each with its Jacobians) and the filter
 // itself: prediction, correction in three covariance forms, landmark initialisation and
 // removal (thesis section 2.5, Figure 8).
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -76,6 +77,21 @@ Vec2 inv_observe(const Pose& r, const Vec2& y, Mat23* P_r, Mat2* P_y) {
     return p;
 }
 
+Pose compose(const Pose& r, const Motion& u, Mat3* R_r, Mat3* R_u) {
+    const double c = std::cos(r(2)), s = std::sin(r(2));
+    if (R_r) *R_r << 1, 0, -s * u(0) - c * u(1),   //
+                     0, 1, c * u(0) - s * u(1),    //
+                     0, 0, 1;
+    if (R_u) *R_u << c, -s, 0, s, c, 0, 0, 0, 1;
+    return {r(0) + c * u(0) - s * u(1), r(1) + s * u(0) + c * u(1), wrap_angle(r(2) + u(2))};
+}
+
+Motion between(const Pose& a, const Pose& b) {
+    const double c = std::cos(a(2)), s = std::sin(a(2));
+    const Vec2 d = b.head<2>() - a.head<2>();
+    return {c * d.x() + s * d.y(), -s * d.x() + c * d.y(), wrap_angle(b(2) - a(2))};
+}
+
 // ---- the filter ---------------------------------------------------------------------------
 
 Ekf::Ekf(const Pose& r0, const Mat3& P0, int capacity)
@@ -124,20 +140,35 @@ void Ekf::symmetric_columns(int j, int k, Eigen::Ref<Eigen::MatrixXd> out) const
     }
 }
 
-void Ekf::predict(const Vec2& u, const Mat2& N, double lateral_variance) {
+void Ekf::predict(const Vec2& u, const Mat2& N) {
     Mat3 R_r;
     Mat32 R_n;
     const Mat3 Prr = pose_covariance();
-    const double chord = x_(2) + u(1) / 2;
     x_.head<3>() = move(x_.head<3>(), u, Vec2::Zero(), &R_r, &R_n);
-    Mat3 Q = R_r * Prr * R_r.transpose() + R_n * N * R_n.transpose();
-    if (lateral_variance > 0) {
-        const Eigen::Vector3d s(-std::sin(chord), std::cos(chord), 0);
-        Q += lateral_variance * s * s.transpose();
-    }
+    const Mat3 Q = R_r * Prr * R_r.transpose() + R_n * N * R_n.transpose();
     P_.topLeftCorner<3, 3>() = (Q + Q.transpose()) / 2;
     // P_mr = P_rmᵀ ← (R_r P_rm)ᵀ = P_mr R_rᵀ (the product is evaluated into a temporary)
     if (n_ > 3) P_.block(3, 0, n_ - 3, 3) = P_.block(3, 0, n_ - 3, 3) * R_r.transpose();
+}
+
+void Ekf::predict_motion(const Motion& u, const Mat3& Q) {
+    Mat3 R_r, R_u;
+    const Mat3 Prr = pose_covariance();
+    x_.head<3>() = compose(x_.head<3>(), u, &R_r, &R_u);
+    const Mat3 Pn = R_r * Prr * R_r.transpose() + R_u * Q * R_u.transpose();
+    P_.topLeftCorner<3, 3>() = (Pn + Pn.transpose()) / 2;
+    if (n_ > 3) P_.block(3, 0, n_ - 3, 3) = P_.block(3, 0, n_ - 3, 3) * R_r.transpose();
+}
+
+Eigen::MatrixXd Ekf::covariance_of(const std::vector<int>& idx) const {
+    const int m = static_cast<int>(idx.size());
+    Eigen::MatrixXd S(m, m);
+    for (int a = 0; a < m; ++a)
+        for (int b = 0; b <= a; ++b) {
+            const int i = std::max(idx[a], idx[b]), j = std::min(idx[a], idx[b]);
+            S(a, b) = S(b, a) = P_(i, j);
+        }
+    return S;
 }
 
 Innovation Ekf::innovation(int id, const Vec2& y, const Mat2& R) const {

@@ -66,28 +66,30 @@ Mat34 kitti_pose(const Pose& r) {
     return T;
 }
 
-Vec2 odometry_between(const Pose& a, const Pose& b) {
-    const double dth = wrap_angle(b(2) - a(2));
-    const double h = a(2) + dth / 2;
-    const Vec2 d = b.head<2>() - a.head<2>();
-    return {d.x() * std::cos(h) + d.y() * std::sin(h), dth};
+Mat3 SyntheticOdometry::covariance() const {
+    return Eigen::Vector3d(sigma_dx * sigma_dx, sigma_dy * sigma_dy, sigma_dtheta * sigma_dtheta).asDiagonal();
 }
 
-std::vector<Vec2> noisy_odometry(const std::vector<Pose>& truth, const OdometryModel& model, uint64_t seed) {
+void SyntheticOdometry::validate() const {
+    if (!(sigma_dx > 0) || !(sigma_dy > 0) || !(sigma_dtheta > 0))
+        throw InputError("the synthetic odometry noise (--sigma-dx, --sigma-dy, --sigma-dtheta) must be positive");
+}
+
+std::vector<Motion> noisy_odometry(const std::vector<Pose>& truth, const SyntheticOdometry& model, uint64_t seed) {
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> g(0.0, 1.0);
-    std::vector<Vec2> u;
+    std::vector<Motion> u;
     for (size_t k = 1; k < truth.size(); ++k) {
-        const Vec2 e = odometry_between(truth[k - 1], truth[k]);
-        const double nx = g(rng), nt = g(rng);
-        u.emplace_back(e(0) + model.sigma_dx * nx, e(1) + model.sigma_dtheta * nt);
+        const Motion e = between(truth[k - 1], truth[k]);
+        const double nx = g(rng), ny = g(rng), nt = g(rng);
+        u.emplace_back(e(0) + model.sigma_dx * nx, e(1) + model.sigma_dy * ny, e(2) + model.sigma_dtheta * nt);
     }
     return u;
 }
 
-std::vector<Pose> dead_reckoning(const Pose& start, const std::vector<Vec2>& odometry) {
+std::vector<Pose> dead_reckoning(const Pose& start, const std::vector<Motion>& motions) {
     std::vector<Pose> out{start};
-    for (const auto& u : odometry) out.push_back(move(out.back(), u, Vec2::Zero()));
+    for (const auto& u : motions) out.push_back(compose(out.back(), u));
     return out;
 }
 
@@ -133,40 +135,44 @@ int hamming_distance(const std::vector<uint8_t>& a, const std::vector<uint8_t>& 
 void AssociationConfig::validate() const {
     if (!(gate_probability > 0 && gate_probability < 1))
         throw InputError("the gate probability must be in (0, 1), got " + std::to_string(gate_probability));
-    if (max_hamming < 0) throw InputError("--max-hamming must not be negative");
+    if (!(joint_probability > 0 && joint_probability < 1))
+        throw InputError("the joint gate probability must be in (0, 1), got " + std::to_string(joint_probability));
+    if (max_nodes < 1) throw InputError("the JCBB node limit must be at least 1");
+    if (!(max_hamming_fraction >= 0 && max_hamming_fraction <= 1))
+        throw InputError("--max-hamming-fraction must be in [0, 1], got " + std::to_string(max_hamming_fraction));
     if (forget_after < 0) throw InputError("--forget-after must not be negative");
     if (max_observations < 0) throw InputError("--max-observations must not be negative");
     if (!(min_range >= 0 && max_range > min_range)) throw InputError("the observation range limits are not 0 <= min < max");
 }
 
-LandmarkSlam::LandmarkSlam(const Pose& start, const OdometryModel& odometry, const AssociationConfig& association)
-    : ekf_(start, Mat3::Zero(), 256), N_(odometry.covariance()),
-      lateral_variance_(odometry.sigma_lateral * odometry.sigma_lateral), cfg_(association),
-      gate_(chi2_quantile(association.gate_probability, 2)) {
+int hamming_threshold(double fraction, size_t bytes) {
+    return static_cast<int>(std::floor(fraction * 8.0 * static_cast<double>(bytes) + 1e-9));
+}
+
+LandmarkSlam::LandmarkSlam(const Pose& start, const AssociationConfig& association)
+    : ekf_(start, Mat3::Zero(), 256), cfg_(association), gate_(chi2_quantile(association.gate_probability, 2)) {
     cfg_.validate();
-    if (!(odometry.sigma_dx > 0) || !(odometry.sigma_dtheta > 0))
-        throw InputError("the odometry noise must be positive");
-    if (!(odometry.sigma_lateral >= 0)) throw InputError("the lateral slip must not be negative");
 }
 
 FrameStats LandmarkSlam::first_frame(const StereoFrame& frame) { return observe(frame); }
 
-FrameStats LandmarkSlam::next_frame(const Vec2& odometry, const StereoFrame& frame) {
+FrameStats LandmarkSlam::next_frame(const Motion& u, const Mat3& Q, const StereoFrame& frame) {
     ++frame_;
-    ekf_.predict(odometry, N_, lateral_variance_);
+    ekf_.predict_motion(u, Q);
     return observe(frame);
 }
 
 FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
     FrameStats st;
     std::vector<RangeBearing> obs;
-    std::vector<const StereoLandmarkObs*> src;
-    for (const auto& o : frame) {
+    std::vector<int> src;   // index in the frame
+    for (int k = 0; k < static_cast<int>(frame.size()); ++k) {
+        const auto& o = frame[k];
         if (!(o.p_cam.z() > 0)) continue;
         const RangeBearing rb = camera_to_range_bearing(o.p_cam, o.cov);
         if (rb.y(0) < cfg_.min_range || rb.y(0) > cfg_.max_range) continue;
         obs.push_back(rb);
-        src.push_back(&o);
+        src.push_back(k);
     }
     if (cfg_.max_observations > 0 && static_cast<int>(obs.size()) > cfg_.max_observations) {
         std::vector<int> order(obs.size());
@@ -176,7 +182,7 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
         order.resize(cfg_.max_observations);
         std::sort(order.begin(), order.end());
         std::vector<RangeBearing> kept_obs;
-        std::vector<const StereoLandmarkObs*> kept_src;
+        std::vector<int> kept_src;
         for (int i : order) {
             kept_obs.push_back(obs[i]);
             kept_src.push_back(src[i]);
@@ -185,52 +191,51 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
         src.swap(kept_src);
     }
     st.observed = static_cast<int>(obs.size());
-    struct Pair {
-        double d2;
-        int obs, id;
-    };
-    std::vector<Pair> pairs;
+    // candidates: inside the individual gate, and the descriptor check passed
+    std::vector<std::vector<int>> candidates(obs.size());
     std::vector<char> descriptor_failed(obs.size(), 0);
     for (int i = 0; i < static_cast<int>(obs.size()); ++i) {
+        const auto& desc = frame[src[i]].descriptor;
         for (int id : ekf_.landmark_ids()) {
             const double d2 = ekf_.innovation(id, obs[i].y, obs[i].R).mahalanobis2;
             if (!(d2 <= gate_)) continue;
             const auto& stored = descriptors_[id];
-            if (cfg_.check_descriptor && !stored.empty() && !src[i]->descriptor.empty() &&
-                hamming_distance(stored, src[i]->descriptor) > cfg_.max_hamming) {
+            if (cfg_.check_descriptor && !stored.empty() && !desc.empty() &&
+                hamming_distance(stored, desc) >
+                    hamming_threshold(cfg_.max_hamming_fraction, std::max(stored.size(), desc.size()))) {
                 descriptor_failed[i] = 1;
                 continue;
             }
-            pairs.push_back({d2, i, id});
+            candidates[i].push_back(id);
         }
     }
-    std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.d2 < b.d2; });
-    std::vector<char> obs_used(obs.size(), 0);
-    std::unordered_map<int, char> id_used;
-    std::vector<std::pair<int, int>> matches;
-    for (const auto& p : pairs) {
-        if (obs_used[p.obs] || id_used[p.id]) continue;
-        obs_used[p.obs] = 1;
-        id_used[p.id] = 1;
-        matches.emplace_back(p.obs, p.id);
-    }
-    for (const auto& [i, id] : matches) {
+    const Association a = cfg_.method == AssociationMethod::Jcbb
+                              ? associate_jcbb(ekf_, obs, candidates, cfg_.joint_probability, cfg_.max_nodes)
+                              : associate_nearest(ekf_, obs, candidates);
+    st.jcbb_complete = a.complete;
+    last_matches_.clear();
+    for (int i = 0; i < static_cast<int>(obs.size()); ++i) {
+        const int id = a.landmark[i];
+        if (id < 0) continue;
         ekf_.correct(id, obs[i].y, obs[i].R);
         last_seen_[id] = frame_;
-        if (src[i]->id_hint >= 0 && hints_[id] >= 0) {
+        last_matches_.emplace_back(src[i], id);
+        const int hint = frame[src[i]].id_hint;
+        if (hint >= 0 && hints_[id] >= 0) {
             ++st.matched_with_hints;
-            st.matched_agreeing += src[i]->id_hint == hints_[id];
+            st.matched_agreeing += hint == hints_[id];
         }
     }
-    st.matched = static_cast<int>(matches.size());
+    st.matched = a.pairings;
     for (int i = 0; i < static_cast<int>(obs.size()); ++i) {
-        if (obs_used[i]) continue;
+        if (a.landmark[i] >= 0) continue;
         st.rejected_by_descriptor += descriptor_failed[i];
         const int id = next_id_++;
         ekf_.add_landmark(id, obs[i].y, obs[i].R);
-        descriptors_[id] = src[i]->descriptor;
-        hints_[id] = src[i]->id_hint;
+        descriptors_[id] = frame[src[i]].descriptor;
+        hints_[id] = frame[src[i]].id_hint;
         last_seen_[id] = frame_;
+        origin_[id] = {frame_, src[i]};
         ++st.added;
     }
     if (cfg_.forget_after > 0) {
@@ -241,6 +246,7 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
                 descriptors_.erase(id);
                 last_seen_.erase(id);
                 hints_.erase(id);
+                origin_.erase(id);
                 ++st.removed;
             }
         }
@@ -249,32 +255,84 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
     return st;
 }
 
-SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<StereoFrame>& frames,
-                         const OdometryModel& odometry, const AssociationConfig& association, uint64_t seed) {
-    if (poses.size() < 2) throw InputError("a sequence needs at least 2 poses, got " + std::to_string(poses.size()));
-    if (frames.size() != poses.size())
+namespace {
+/// A frame's observation placed in the world with the true pose: top-view point, covariance.
+std::pair<Vec2, Mat2> world_point(const StereoLandmarkObs& o, const Pose& truth) {
+    const auto [q, C] = top_view(o);
+    const double c = std::cos(truth(2)), s = std::sin(truth(2));
+    Mat2 R;
+    R << c, -s, s, c;
+    return {truth.head<2>() + R * q, R * C * R.transpose()};
+}
+}  // namespace
+
+SequenceRun run_filter(const std::vector<StereoFrame>& frames, const std::vector<Motion>& motions,
+                       const std::vector<Mat3>& motion_cov, const Pose& start, const AssociationConfig& association,
+                       const std::vector<Pose>& truth) {
+    if (frames.size() < 2) throw InputError("a sequence needs at least 2 frames, got " + std::to_string(frames.size()));
+    if (motions.size() + 1 != frames.size() || motion_cov.size() != motions.size())
+        throw InputError("a sequence needs one motion and covariance between consecutive frames");
+    if (truth.size() != frames.size())
         throw InputError("a sequence needs one landmark frame per pose: " + std::to_string(frames.size()) +
-                         " frames, " + std::to_string(poses.size()) + " poses");
+                         " frames, " + std::to_string(truth.size()) + " poses");
     SequenceRun run;
-    for (const auto& T : poses) run.truth.push_back(planar_pose(T));
-    run.odometry = noisy_odometry(run.truth, odometry, seed);
-    run.dead_reckoning = slam::dead_reckoning(run.truth[0], run.odometry);
-    LandmarkSlam slam(run.truth[0], odometry, association);
-    run.frames.push_back(slam.first_frame(frames[0]));
-    run.estimate.push_back(slam.filter().pose());
-    run.pose_cov.push_back(slam.filter().pose_covariance());
-    for (size_t k = 1; k < frames.size(); ++k) {
-        run.frames.push_back(slam.next_frame(run.odometry[k - 1], frames[k]));
+    run.odometry = motions;
+    run.odometry_cov = motion_cov;
+    run.dead_reckoning = slam::dead_reckoning(start, motions);
+    // the run: frames and motions only
+    LandmarkSlam slam(start, association);
+    std::vector<std::vector<std::pair<int, int>>> matches;   // per frame: (obs index, landmark id)
+    std::unordered_map<int, std::pair<int, int>> origins;
+    const auto after_frame = [&](const FrameStats& st) {
+        run.frames.push_back(st);
         run.estimate.push_back(slam.filter().pose());
         run.pose_cov.push_back(slam.filter().pose_covariance());
-    }
-    run.ate_slam = absolute_trajectory_error(run.estimate, run.truth);
-    run.ate_dead_reckoning = absolute_trajectory_error(run.dead_reckoning, run.truth);
+        matches.push_back(slam.last_matches());
+        for (const auto& [i, id] : slam.last_matches()) origins.emplace(id, slam.origin(id));
+    };
+    after_frame(slam.first_frame(frames[0]));
+    for (size_t k = 1; k < frames.size(); ++k) after_frame(slam.next_frame(motions[k - 1], motion_cov[k - 1], frames[k]));
     for (int id : slam.filter().landmark_ids()) {
         run.map.push_back(slam.filter().landmark(id));
         run.map_cov.push_back(slam.filter().landmark_covariance(id));
     }
+    // scoring against the ground truth, after the run
+    run.truth = truth;
+    run.slam_metrics = score_trajectory(run.estimate, truth, run.pose_cov);
+    std::vector<Mat3> dr_cov{Mat3::Zero()};
+    for (size_t k = 0; k < motions.size(); ++k) {
+        Mat3 R_r, R_u;
+        compose(run.dead_reckoning[k], motions[k], &R_r, &R_u);
+        dr_cov.push_back(R_r * dr_cov.back() * R_r.transpose() + R_u * motion_cov[k] * R_u.transpose());
+    }
+    run.odometry_metrics = score_trajectory(run.dead_reckoning, truth, dr_cov);
+    run.ate_slam = run.slam_metrics.ape;
+    run.ate_dead_reckoning = run.odometry_metrics.ape;
+    const double gate = chi2_quantile(0.999, 2);
+    for (size_t k = 0; k < frames.size(); ++k) {
+        for (const auto& [i, id] : matches[k]) {
+            const auto [f0, i0] = origins.at(id);
+            const auto [p, C] = world_point(frames[k][i], truth[k]);
+            const auto [p0, C0] = world_point(frames[f0][i0], truth[f0]);
+            const Vec2 e = p - p0;
+            ++run.frames[k].matched_checked;
+            run.frames[k].matched_wrong += e.dot((C + C0).ldlt().solve(e)) > gate;
+        }
+    }
     return run;
+}
+
+SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<StereoFrame>& frames,
+                         const SyntheticOdometry& odometry, const AssociationConfig& association, uint64_t seed) {
+    if (poses.size() < 2) throw InputError("a sequence needs at least 2 poses, got " + std::to_string(poses.size()));
+    if (frames.size() != poses.size())
+        throw InputError("a sequence needs one landmark frame per pose: " + std::to_string(frames.size()) +
+                         " frames, " + std::to_string(poses.size()) + " poses");
+    odometry.validate();
+    std::vector<Pose> truth;
+    for (const auto& T : poses) truth.push_back(planar_pose(T));
+    const std::vector<Motion> u = noisy_odometry(truth, odometry, seed);
+    return run_filter(frames, u, std::vector<Mat3>(u.size(), odometry.covariance()), truth[0], association, truth);
 }
 
 StereoLandmarkObs triangulate(const StereoCamera& cam, double u, double v, double d) {

@@ -1,6 +1,7 @@
 // report.cpp: the Markdown/CSV/JSON/PNG reports of the simulation, the sequence runs and
 // the update timing. Plots are drawn by gnuplot from inline data blocks; every file is
 // written to a temporary beside its target, then renamed.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -217,20 +218,50 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
     save(dir / "report.md", md.str());
 }
 
-void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std::string& title, const std::string& command) {
+namespace {
+struct SequenceTotals {
+    int matched = 0, observed = 0, peak = 0, hinted = 0, agreeing = 0, checked = 0, wrong = 0, jcbb_cut = 0;
+};
+SequenceTotals totals(const SequenceRun& r) {
+    SequenceTotals t;
+    for (const auto& f : r.frames) {
+        t.matched += f.matched;
+        t.observed += f.observed;
+        t.peak = std::max(t.peak, f.map_size);
+        t.hinted += f.matched_with_hints;
+        t.agreeing += f.matched_agreeing;
+        t.checked += f.matched_checked;
+        t.wrong += f.matched_wrong;
+        t.jcbb_cut += f.jcbb_complete ? 0 : 1;
+    }
+    return t;
+}
+nlohmann::json metrics_json(const TrajectoryMetrics& m) {
+    return {{"ape_m", m.ape},          {"ape_se2_m", m.ape_se2},   {"ape_percent_of_path", m.ape_percent()},
+            {"rpe_m", m.rpe},          {"rpe_heading_rad", m.rpe_heading}, {"final_error_m", m.final_error},
+            {"nees_mean", m.nees_frames ? nlohmann::json(m.nees_mean) : nlohmann::json(nullptr)},
+            {"nees_frames", m.nees_frames}};
+}
+}  // namespace
+
+void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std::string& title, const std::string& command,
+                           const std::string& odometry_label) {
     make_dir(dir);
     std::ostringstream st;
-    st << "frame,true_x,true_y,true_theta,est_x,est_y,est_theta,sigma_x,sigma_y,sigma_theta,dr_x,dr_y,dr_theta,"
-          "observed,matched,added,rejected_by_descriptor,removed,map_size,matched_agreeing\n";
+    st << "frame,true_x,true_y,true_theta,est_x,est_y,est_theta,sigma_x,sigma_y,sigma_theta,odo_x,odo_y,odo_theta,"
+          "nees_slam,nees_odometry,observed,matched,added,rejected_by_descriptor,removed,map_size,matched_agreeing,"
+          "matched_checked,matched_wrong\n";
     for (size_t k = 0; k < r.truth.size(); ++k) {
         st << k;
         for (int i = 0; i < 3; ++i) st << ',' << num(r.truth[k](i));
         for (int i = 0; i < 3; ++i) st << ',' << num(r.estimate[k](i));
         for (int i = 0; i < 3; ++i) st << ',' << num(std::sqrt(r.pose_cov[k](i, i)));
         for (int i = 0; i < 3; ++i) st << ',' << num(r.dead_reckoning[k](i));
+        st << ',' << num(r.slam_metrics.nees[k]) << ',' << num(r.odometry_metrics.nees[k]);
         const FrameStats& f = r.frames[k];
         st << ',' << f.observed << ',' << f.matched << ',' << f.added << ',' << f.rejected_by_descriptor << ','
-           << f.removed << ',' << f.map_size << ',' << f.matched_agreeing << '\n';
+           << f.removed << ',' << f.map_size << ',' << f.matched_agreeing << ',' << f.matched_checked << ','
+           << f.matched_wrong << '\n';
     }
     save(dir / "states.csv", st.str());
     save(dir / "estimate_kitti.txt", kitti_trajectory(r.estimate));
@@ -240,22 +271,21 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
     for (size_t k = 0; k < r.estimate.size(); ++k) ts.push_back(0.1 * k);   // KITTI: 10 frames/s
     save(dir / "estimate_tum.txt", tum_trajectory(r.estimate, ts));
 
-    int matched = 0, observed = 0, peak = 0, hinted = 0, agreeing = 0;
-    for (const auto& f : r.frames) {
-        matched += f.matched;
-        observed += f.observed;
-        peak = std::max(peak, f.map_size);
-        hinted += f.matched_with_hints;
-        agreeing += f.matched_agreeing;
-    }
+    const SequenceTotals t = totals(r);
     nlohmann::json j;
     j["command"] = command;
     j["frames"] = r.truth.size();
+    j["odometry"] = odometry_label;
     j["ate_m"] = {{"slam", r.ate_slam}, {"dead_reckoning", r.ate_dead_reckoning}};
-    j["observations"] = observed;
-    j["matched"] = matched;
-    j["map_size"] = {{"final", r.frames.back().map_size}, {"peak", peak}};
-    j["matches_with_id_hints"] = {{"total", hinted}, {"agreeing", agreeing}};
+    j["slam"] = metrics_json(r.slam_metrics);
+    j["odometry_alone"] = metrics_json(r.odometry_metrics);
+    j["path_length_m"] = r.slam_metrics.path_length;
+    j["observations"] = t.observed;
+    j["matched"] = t.matched;
+    j["map_size"] = {{"final", r.frames.back().map_size}, {"peak", t.peak}};
+    j["matches_with_id_hints"] = {{"total", t.hinted}, {"agreeing", t.agreeing}};
+    j["matches_checked_against_truth"] = {{"total", t.checked}, {"wrong", t.wrong}};
+    j["jcbb_frames_cut_at_node_limit"] = t.jcbb_cut;
     save(dir / "summary.json", j.dump(2) + "\n");
 
     std::string ell;
@@ -266,7 +296,7 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
         "set size ratio -1\nset grid\nset key outside right\nset xlabel 'forward x (m)'\nset ylabel 'left y (m)'\n"
         "set title '" + title + ": top view, final map with 3-sigma ellipses'\n"
         "plot $ell w l lc rgb '#cc8888' t 'landmark 3{/Symbol s}', $truth w l lw 2 lc rgb 'black' t 'ground truth',"
-        " $est w l lw 2 lc rgb 'blue' t 'EKF-SLAM', $dr w l lw 2 dt 2 lc rgb 'orange' t 'dead reckoning'\n");
+        " $est w l lw 2 lc rgb 'blue' t 'EKF-SLAM', $dr w l lw 2 dt 2 lc rgb 'orange' t '" + odometry_label + "'\n");
     std::string ms;
     for (size_t k = 0; k < r.frames.size(); ++k)
         ms += std::to_string(k) + ' ' + std::to_string(r.frames[k].map_size) + ' ' + std::to_string(r.frames[k].matched) +
@@ -275,21 +305,58 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
         "set grid\nset xlabel 'frame'\nset ylabel 'landmarks'\nset title '" + title + ": map size and associations'\n"
         "plot $ms u 1:2 w l lw 2 t 'map size', $ms u 1:3 w l t 'matched', $ms u 1:4 w l t 'added'\n");
 
+    const auto row = [](const std::string& name, const TrajectoryMetrics& m) {
+        std::ostringstream o;
+        o << std::setprecision(4) << "| " << name << " | " << m.ape << " | " << m.ape_percent() << " | " << m.ape_se2
+          << " | " << m.rpe << " | " << m.rpe_heading * 180 / std::numbers::pi << " | " << m.final_error << " | "
+          << (m.nees_frames ? num(m.nees_mean) : std::string("-")) << " |\n";
+        return o.str();
+    };
     std::ostringstream md;
     md << std::setprecision(4);
     md << "# EKF-SLAM on " << title << "\n\nCommand: `" << command << "`\n\n"
-       << "| trajectory | ATE (RMS planar position error, m) |\n|---|---|\n"
-       << "| EKF-SLAM | " << r.ate_slam << " |\n| dead reckoning (same noisy odometry) | " << r.ate_dead_reckoning << " |\n\n"
-       << r.truth.size() << " frames, " << observed << " observations, " << matched << " associated; map size final "
-       << r.frames.back().map_size << ", peak " << peak << ".\n\n";
-    if (hinted > 0)
-        md << "Matches whose observation and landmark carry id hints: " << hinted << ", of which " << agreeing
-           << " agree (" << 100.0 * agreeing / hinted << " %).\n\n";
+       << "Ground truth is used only to score: the trajectories below were computed without it, then compared "
+          "with it (evo's APE and RPE on the top view, pose NEES with 3 dof).\n\n"
+       << "| trajectory | APE (m) | APE % of path | APE SE(2)-aligned (m) | RPE per frame (m) | RPE heading (°) | "
+          "final error (m) | mean pose NEES |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
+       << row("EKF-SLAM", r.slam_metrics) << row(odometry_label, r.odometry_metrics) << "\n"
+       << r.truth.size() << " frames, path length " << r.slam_metrics.path_length << " m; " << t.observed
+       << " observations, " << t.matched << " associated; map size final " << r.frames.back().map_size << ", peak "
+       << t.peak << ".\n\n";
+    if (t.checked > 0)
+        md << "Associations checked against the ground truth (observation and the landmark's first observation "
+              "placed in the world with the true poses, χ²(2) 0.999): " << t.wrong << " of " << t.checked
+           << " wrong (" << 100.0 * t.wrong / t.checked << " %).\n\n";
+    if (t.hinted > 0)
+        md << "Matches whose observation and landmark carry id hints: " << t.hinted << ", of which " << t.agreeing
+           << " agree (" << 100.0 * t.agreeing / t.hinted << " %).\n\n";
+    if (t.jcbb_cut > 0) md << "JCBB stopped at its node limit in " << t.jcbb_cut << " frames (best hypothesis so far kept).\n\n";
     if (traj_png) md << "![trajectory](trajectory.png)\n\n";
     if (map_png) md << "![map size](map_size.png)\n\n";
-    md << "Files: `states.csv`, `summary.json`, `estimate_kitti.txt` and `estimate_tum.txt` (estimate), "
-          "`dead_reckoning_kitti.txt`, `truth_kitti.txt` (KITTI camera frame, height 0).\n";
+    md << "Files: `states.csv` (per frame, with the pose NEES), `summary.json`, `estimate_kitti.txt` and "
+          "`estimate_tum.txt` (estimate), `dead_reckoning_kitti.txt` (" << odometry_label << "), `truth_kitti.txt` "
+          "(KITTI camera frame, height 0).\n";
     save(dir / "report.md", md.str());
+}
+
+std::string sequences_markdown(const std::vector<std::pair<std::string, SequenceRun>>& runs,
+                               const std::string& odometry_label) {
+    std::ostringstream md;
+    md << std::setprecision(4)
+       << "| sequence | frames | path (m) | APE EKF-SLAM (m) | % of path | APE SE(2) (m) | RPE (m) | mean NEES | APE "
+       << odometry_label << " (m) | % of path | RPE (m) | mean NEES | matched | wrong vs truth |\n"
+       << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const auto& [name, r] : runs) {
+        const SequenceTotals t = totals(r);
+        const auto& s = r.slam_metrics;
+        const auto& o = r.odometry_metrics;
+        md << "| " << name << " | " << r.truth.size() << " | " << s.path_length << " | " << s.ape << " | "
+           << s.ape_percent() << " | " << s.ape_se2 << " | " << s.rpe << " | "
+           << (s.nees_frames ? num(s.nees_mean) : std::string("-")) << " | " << o.ape << " | " << o.ape_percent()
+           << " | " << o.rpe << " | " << (o.nees_frames ? num(o.nees_mean) : std::string("-")) << " | " << t.matched
+           << " | " << t.wrong << " of " << t.checked << " |\n";
+    }
+    return md.str();
 }
 
 void write_timing_report(const fs::path& dir, const std::vector<TimingRow>& rows) {

@@ -67,6 +67,14 @@ Vec2 observe(const Pose& r, const Vec2& p, Mat23* Y_r = nullptr, Mat2* Y_p = nul
 /// Inverse observation: the world point seen at y from pose r: from_frame(r, inv_scan(y)).
 Vec2 inv_observe(const Pose& r, const Vec2& y, Mat23* P_r = nullptr, Mat2* P_y = nullptr);
 
+/// A relative motion u = (dx, dy, dθ): the pose of the new robot frame in the old one.
+using Motion = Eigen::Vector3d;
+/// r ⊕ u: position r + R(θ)·(dx, dy), heading θ + dθ (wrapped). R_r = ∂/∂r, R_u = ∂/∂u.
+/// The 3-DoF motion model of sequences (stereo odometry); exact for any planar motion.
+Pose compose(const Pose& r, const Motion& u, Mat3* R_r = nullptr, Mat3* R_u = nullptr);
+/// The motion u with compose(a, u) = b: u = (R(θa)ᵀ(b − a), wrap(θb − θa)).
+Motion between(const Pose& a, const Pose& b);
+
 // ---- the filter ---------------------------------------------------------------------------
 
 /// How correct() updates the covariance. All give the same state and covariance up to
@@ -93,10 +101,11 @@ public:
     explicit Ekf(const Pose& r0 = Pose::Zero(), const Mat3& P0 = Mat3::Zero(), int capacity = 64);
 
     /// Prediction (eqs. 2.12, 2.13): r ← move(r, u, 0), P_rr ← R_r P_rr R_rᵀ + R_n N R_nᵀ,
-    /// P_rm ← R_r P_rm. N is the covariance of the perturbation of u. `lateral_variance`
-    /// (m²) adds a sideways slip across the chord, which (dx, dθ) cannot express:
-    /// P_rr += lateral_variance · s sᵀ, s = (−sin, cos, 0)(θ + dθ/2).
-    void predict(const Vec2& u, const Mat2& N, double lateral_variance = 0);
+    /// P_rm ← R_r P_rm. N is the covariance of the perturbation of u.
+    void predict(const Vec2& u, const Mat2& N);
+    /// Prediction with a 3-DoF motion u and its covariance Q: r ← compose(r, u),
+    /// P_rr ← R_r P_rr R_rᵀ + R_u Q R_uᵀ, P_rm ← R_r P_rm.
+    void predict_motion(const Motion& u, const Mat3& Q);
 
     /// The innovation of observing landmark `id` at y with noise covariance R, without
     /// changing the filter (for gating). Throws std::out_of_range for an unknown id.
@@ -128,6 +137,9 @@ public:
     Eigen::VectorXd mean() const { return x_.head(n_); }
     /// The full symmetric covariance (n×n).
     Eigen::MatrixXd covariance() const;
+    /// The symmetric sub-matrix P(idx, idx) of the given state indices (read from the lower
+    /// triangle), e.g. robot and candidate landmarks for a joint compatibility test.
+    Eigen::MatrixXd covariance_of(const std::vector<int>& idx) const;
 
 private:
     void reserve(int dim);
@@ -156,9 +168,6 @@ struct SensorModel {
 struct OdometryModel {
     double sigma_dx = 0.01;       ///< m per step
     double sigma_dtheta = 0.005;  ///< rad per step
-    /// m per step: sideways slip the filter allows for (0 in the simulator, whose robot
-    /// moves exactly as move() says; real vehicles' top-view poses do not).
-    double sigma_lateral = 0;
     Mat2 covariance() const;
 };
 
@@ -319,13 +328,19 @@ std::vector<Mat34> read_kitti_poses(const std::filesystem::path& file);
 Pose planar_pose(const Mat34& T);
 /// A KITTI pose from a top-view pose (height 0, rotation about the camera's y axis).
 Mat34 kitti_pose(const Pose& r);
-/// The odometry (dx, dθ) that move() turns a into b with, up to a's lateral offset:
-/// dθ = wrap(θb − θa), dx = (b − a)·(cos, sin)(θa + dθ/2).
-Vec2 odometry_between(const Pose& a, const Pose& b);
-/// Odometry between consecutive poses with Gaussian noise of `model` added (seeded).
-std::vector<Vec2> noisy_odometry(const std::vector<Pose>& truth, const OdometryModel& model, uint64_t seed);
-/// Dead reckoning: the poses that move() integrates from `start` with `odometry`.
-std::vector<Pose> dead_reckoning(const Pose& start, const std::vector<Vec2>& odometry);
+/// Synthetic odometry on a real trajectory: the exact relative pose between consecutive
+/// ground-truth poses (between()) with Gaussian noise of these standard deviations added.
+struct SyntheticOdometry {
+    double sigma_dx = 0.1;        ///< m per frame, forward
+    double sigma_dy = 0.02;       ///< m per frame, sideways
+    double sigma_dtheta = 0.002;  ///< rad per frame
+    Mat3 covariance() const;
+    void validate() const;        ///< InputError unless every σ is positive
+};
+/// between(truth[k-1], truth[k]) plus noise of `model` (seeded), one motion per step.
+std::vector<Motion> noisy_odometry(const std::vector<Pose>& truth, const SyntheticOdometry& model, uint64_t seed);
+/// Dead reckoning: the poses that compose() integrates from `start` with `motions`.
+std::vector<Pose> dead_reckoning(const Pose& start, const std::vector<Motion>& motions);
 
 /// Trajectory files: KITTI (12 numbers a line) and TUM ("t tx ty tz qx qy qz qw"), in
 /// the KITTI camera frame (x right, y down, z forward), height 0.
@@ -335,10 +350,41 @@ std::string tum_trajectory(const std::vector<Pose>& poses, const std::vector<dou
 /// alignment (both start at the same pose). Throws std::invalid_argument on size mismatch.
 double absolute_trajectory_error(const std::vector<Pose>& estimate, const std::vector<Pose>& truth);
 
+/// Trajectory scores against ground truth, as evo computes them on the top view.
+struct TrajectoryMetrics {
+    double ape = 0;              ///< APE, translation RMSE, no alignment (m) (= absolute_trajectory_error)
+    double ape_se2 = 0;          ///< APE after the least-squares SE(2) alignment of estimate to truth (m)
+    double rpe = 0;              ///< RPE per frame (delta 1), translation RMSE (m)
+    double rpe_heading = 0;      ///< RPE per frame, heading RMSE (rad)
+    double path_length = 0;      ///< length of the ground-truth path (m)
+    double final_error = 0;      ///< position error of the last pose (m)
+    std::vector<double> nees;    ///< per frame, pose NEES (3 dof) against truth; NaN where P is singular
+    double nees_mean = 0;        ///< mean over the frames with a defined NEES (NaN if none)
+    int nees_frames = 0;         ///< frames with a defined NEES
+    double ape_percent() const { return path_length > 0 ? 100 * ape / path_length : 0; }
+};
+/// The metrics of `estimate` against `truth` (same length ≥ 1); `cov` (empty or one per pose)
+/// gives the NEES. Throws std::invalid_argument on size mismatch.
+TrajectoryMetrics score_trajectory(const std::vector<Pose>& estimate, const std::vector<Pose>& truth,
+                                   const std::vector<Mat3>& cov = {});
+/// The rigid motion (x, y, θ) that maps `estimate`'s positions onto `truth`'s with least
+/// squares (Umeyama without scale, in 2-D). Throws std::invalid_argument on size mismatch.
+Pose se2_alignment(const std::vector<Pose>& estimate, const std::vector<Pose>& truth);
+
+/// How the observations of a frame are assigned to mapped landmarks.
+enum class AssociationMethod {
+    Jcbb,      ///< joint compatibility branch and bound (Neira & Tardós 2001) over the gated candidates
+    Nearest,   ///< individual gating: pairs taken greedily by increasing Mahalanobis distance
+};
+
 /// Data association and map management for stereo landmark frames.
 struct AssociationConfig {
-    double gate_probability = 0.99;   ///< Mahalanobis gate: χ²(2) quantile of this probability
-    int max_hamming = 64;             ///< descriptor check: Hamming distance ≤ this (bits)
+    AssociationMethod method = AssociationMethod::Jcbb;
+    double gate_probability = 0.99;   ///< individual gate: χ²(2) quantile of this probability
+    double joint_probability = 0.99;  ///< JCBB's joint gate: χ²(2k) quantile for k pairings
+    long max_nodes = 20000;           ///< JCBB: nodes searched at most (the best hypothesis so far is kept)
+    /// Descriptor check: Hamming distance ≤ this fraction of the descriptor's bits.
+    double max_hamming_fraction = 0.25;
     bool check_descriptor = true;
     int forget_after = 10;            ///< remove landmarks unseen for this many frames (0 = keep)
     double min_range = 1.0, max_range = 60.0;   ///< m: observations outside are ignored
@@ -348,56 +394,78 @@ struct AssociationConfig {
     void validate() const;
 };
 
+/// The largest Hamming distance (bits) the check accepts for descriptors of `bytes` bytes:
+/// floor(fraction · 8 · bytes).
+int hamming_threshold(double fraction, size_t bytes);
+
 /// Counts of one frame.
 struct FrameStats {
     int observed = 0, matched = 0, added = 0, rejected_by_descriptor = 0, removed = 0, map_size = 0;
     int matched_with_hints = 0, matched_agreeing = 0;   ///< matches where both id hints are set / equal
+    /// Scored against ground truth after the run (never used by it): matches whose observation
+    /// and the landmark's first observation, placed in the world with the true poses, are
+    /// farther apart than their covariances allow (χ²(2) 0.999).
+    int matched_checked = 0, matched_wrong = 0;
+    bool jcbb_complete = true;   ///< false when JCBB stopped at max_nodes
 };
 
-/// EKF-SLAM on stereo landmark frames: prediction with odometry, association of each
-/// observation to the mapped landmark of smallest Mahalanobis distance inside the gate
-/// whose descriptor passes the check (one observation per landmark a frame), correction
-/// with the matched ones, initialisation of the unmatched ones, removal of landmarks
-/// unseen for `forget_after` frames.
+/// EKF-SLAM on stereo landmark frames: prediction with a 3-DoF motion and its covariance,
+/// association of the frame's observations to mapped landmarks (individual Mahalanobis gate
+/// and descriptor check give the candidates; JCBB or nearest neighbour picks among them),
+/// correction with the matched ones, initialisation of the unmatched ones, removal of
+/// landmarks unseen for `forget_after` frames.
 class LandmarkSlam {
 public:
-    LandmarkSlam(const Pose& start, const OdometryModel& odometry, const AssociationConfig& association);
+    LandmarkSlam(const Pose& start, const AssociationConfig& association);
     /// The first frame: observations only (no motion before it).
     FrameStats first_frame(const StereoFrame& frame);
-    /// A later frame: the odometry from the previous frame, then its observations.
-    FrameStats next_frame(const Vec2& odometry, const StereoFrame& frame);
+    /// A later frame: the motion from the previous frame and its covariance, then its observations.
+    FrameStats next_frame(const Motion& u, const Mat3& Q, const StereoFrame& frame);
     const Ekf& filter() const { return ekf_; }
+    /// The last frame's matches: (index of the observation in the frame, landmark id).
+    const std::vector<std::pair<int, int>>& last_matches() const { return last_matches_; }
+    /// Where landmark `id` was first observed: (frame number, index in that frame).
+    std::pair<int, int> origin(int id) const { return origin_.at(id); }
 
 private:
     FrameStats observe(const StereoFrame& frame);
     Ekf ekf_;
-    Mat2 N_;
-    double lateral_variance_;
     AssociationConfig cfg_;
     double gate_;
     int frame_ = 0, next_id_ = 0;
     std::unordered_map<int, std::vector<uint8_t>> descriptors_;
     std::unordered_map<int, int> last_seen_, hints_;
+    std::unordered_map<int, std::pair<int, int>> origin_;
+    std::vector<std::pair<int, int>> last_matches_;
 };
 
 /// Number of differing bits; descriptors of different lengths differ in every extra bit.
 int hamming_distance(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
 
-/// A run on a sequence: the filter and dead reckoning with the same noisy odometry.
+/// A run on a sequence: the filter, and the same motions integrated alone (dead reckoning
+/// of the odometry: synthetic odometry, or visual odometry alone).
 struct SequenceRun {
     std::vector<Pose> truth, estimate, dead_reckoning;
     std::vector<Mat3> pose_cov;
     std::vector<FrameStats> frames;
-    std::vector<Vec2> odometry;
-    double ate_slam = 0, ate_dead_reckoning = 0;
+    std::vector<Motion> odometry;
+    std::vector<Mat3> odometry_cov;
+    double ate_slam = 0, ate_dead_reckoning = 0;   ///< APE without alignment (m)
+    TrajectoryMetrics slam_metrics, odometry_metrics;
     std::vector<Vec2> map;   ///< final landmark positions
     std::vector<Mat2> map_cov;
 };
-/// Runs LandmarkSlam over frames[k] seen at ground-truth poses[k] (poses.size() ==
-/// frames.size() ≥ 2), with odometry from noisy_odometry(truth, odometry, seed).
-/// Throws InputError on a size mismatch or fewer than 2 poses.
+/// The filter over frames with the given motions (motions.size() == frames.size() − 1),
+/// started at `start`, then scored against `truth` (one pose per frame; used only after the
+/// run, for the metrics and the wrong-association counts). Throws InputError on size mismatch.
+SequenceRun run_filter(const std::vector<StereoFrame>& frames, const std::vector<Motion>& motions,
+                       const std::vector<Mat3>& motion_cov, const Pose& start, const AssociationConfig& association,
+                       const std::vector<Pose>& truth);
+/// Synthetic odometry on a real trajectory: run_filter over frames[k] seen at ground-truth
+/// poses[k] (poses.size() == frames.size() ≥ 2) with noisy_odometry(truth, odometry, seed),
+/// started at the first true pose. Throws InputError on a size mismatch or fewer than 2 poses.
 SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<StereoFrame>& frames,
-                         const OdometryModel& odometry, const AssociationConfig& association, uint64_t seed);
+                         const SyntheticOdometry& odometry, const AssociationConfig& association, uint64_t seed);
 
 /// Stereo camera for synthetic landmarks (KITTI's rectified camera 0/1 by default).
 struct StereoCamera {
@@ -426,10 +494,16 @@ StereoLandmarkObs triangulate(const StereoCamera& camera, double u, double v, do
 void write_simulation_report(const std::filesystem::path& dir, const SimConfig& config, const MonteCarlo& mc,
                              const std::string& command);
 
-/// Writes the sequence report: report.md, states.csv, summary.json, estimate_kitti.txt,
-/// estimate_tum.txt, dead_reckoning_kitti.txt, trajectory.png, map_size.png.
+/// Writes the sequence report: report.md (metrics of EKF-SLAM and of the odometry alone,
+/// wrong associations against truth), states.csv (per frame, with the pose NEES),
+/// summary.json, estimate_kitti.txt, estimate_tum.txt, dead_reckoning_kitti.txt (the
+/// odometry alone), truth_kitti.txt, trajectory.png, map_size.png. `odometry_label` names
+/// the odometry-alone trajectory ("visual odometry alone", "synthetic odometry alone").
 void write_sequence_report(const std::filesystem::path& dir, const SequenceRun& run, const std::string& title,
-                           const std::string& command);
+                           const std::string& command, const std::string& odometry_label);
+/// A Markdown table with one row per (sequence name, run).
+std::string sequences_markdown(const std::vector<std::pair<std::string, SequenceRun>>& runs,
+                               const std::string& odometry_label);
 
 /// One point of the update timing: landmarks, milliseconds per step, per form.
 struct TimingRow {
@@ -442,3 +516,8 @@ struct TimingRow {
 void write_timing_report(const std::filesystem::path& dir, const std::vector<TimingRow>& rows);
 
 }  // namespace hc::slam
+
+// Stereo visual odometry and joint-compatibility association: their own headers, part of
+// this library's public interface.
+#include "slam/association.hpp"
+#include "slam/odometry.hpp"

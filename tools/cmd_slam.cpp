@@ -1,7 +1,8 @@
 // cmd_slam.cpp: `harris-cosim slam`, 2-D EKF-SLAM (slam/slam.hpp): a Monte-Carlo
-// consistency run in the simulator (--simulate), or a KITTI sequence's ground-truth
-// trajectory with noisy odometry and stereo landmarks (--sequence). Parses flags, calls
-// hc::slam, prints; hc::slam::InputError becomes exit status 2. Docs: docs/slam.md.
+// consistency run in the simulator (--simulate), or KITTI sequences (--sequences) with
+// stereo landmarks and visual odometry (or synthetic odometry on the real trajectory),
+// scored against the ground-truth poses. Parses flags, calls hc::slam, prints;
+// hc::slam::InputError becomes exit status 2. Docs: docs/slam.md.
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -16,6 +17,7 @@
 #include "model/harris/formats_json.hpp"
 #include "util/util.hpp"
 #include "landmarks/landmarks.hpp"
+#include "slam/landmark_frames.hpp"
 #include "slam/slam.hpp"
 
 namespace hc::tools {
@@ -26,14 +28,17 @@ constexpr double deg = std::numbers::pi / 180;
 
 struct SlamOptions {
     bool simulate = false;
-    std::string sequence, kitti, data, out = "slam-report", world = "cloister", landmarks_from = "synthetic";
-    int landmarks = 40, steps = 236, runs = 50, synthetic_count = 1000, flip_bits = 8, max_hamming = 64,
-        forget_after = 10, max_observations = 60;
+    std::string sequences, kitti, data, out = "slam-report", world = "cloister", landmarks_from = "synthetic",
+                odometry = "visual", association = "jcbb";
+    int landmarks = 40, steps = 236, runs = 50, synthetic_count = 1000, flip_bits = 8, forget_after = 10,
+        max_observations = 60, vo_min_inliers = 8;
     uint64_t seed = 1;
+    bool seed_given = false;
     double half_size = 5, radius = 3.75, step = 0.1, sigma_range = 0.05, sigma_bearing_deg = 1, fov_deg = 180,
-           max_range = 6, gate = 0.99;
+           max_range = 6, gate = 0.99, joint_gate = 0.99, max_hamming_fraction = 0.25, vo_hamming_fraction = 0.25,
+           vo_max_range = slam::VisualOdometryConfig{}.max_range;
     std::optional<double> sigma_dx, sigma_dtheta_deg;
-    double sigma_lateral = 0.03;
+    double sigma_dy = 0.02;
     bool descriptor = true;
     // --landmarks-from stereo: the landmark pipeline's options
     std::string corners = "opencv", descriptor_name = "grid", config;
@@ -99,101 +104,147 @@ void run_simulate(const SlamOptions& o) {
 }
 
 /// The landmark pipeline on the sequence's stereo pairs, one frame per pose (a sequence with
-/// fewer pairs than poses is cut to its pairs): camera-frame points with their covariance
-/// and descriptor, as the filter's front end takes them.
+/// fewer pairs than poses is cut to its pairs).
 std::vector<slam::StereoFrame> stereo_landmark_frames(const SlamOptions& o, const std::filesystem::path& kitti,
-                                                      const std::vector<slam::Mat34>& poses) {
+                                                      const std::string& sequence, size_t poses) {
     landmarks::PipelineOptions po;
     po.detector = landmarks::parse_detector(o.corners);
     po.descriptor = landmarks::parse_descriptor(o.descriptor_name);
     po.grid = {o.g, o.h};
     landmarks::validate(po.grid);
     landmarks::check_combination(po.descriptor, po.detector, landmarks::Norm::automatic);
-    if (o.descriptor && landmarks::make_descriptor(po.descriptor, po.grid)->descriptorType() != CV_8U)
+    if (landmarks::make_descriptor(po.descriptor, po.grid)->descriptorType() != CV_8U)
         throw InputError("--descriptor " + o.descriptor_name +
-                         " is not binary: the association's descriptor check compares Hamming distances "
-                         "(use a binary descriptor or --no-descriptor)");
+                         " is not binary: visual odometry and the association compare Hamming distances");
     po.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
     po.corners.progress = true;
-    const auto ds = landmarks::kitti_dataset(kitti, o.sequence, 0, static_cast<int>(poses.size()));
-    if (ds.pairs.size() < 2) throw InputError("KITTI sequence " + o.sequence + " has fewer than 2 stereo pairs");
-    std::fprintf(stderr, "slam: landmarks of %zu stereo pairs (%s corners, %s descriptor)\n", ds.pairs.size(),
-                 o.corners.c_str(), o.descriptor_name.c_str());
-    const auto lms = landmarks::acquire_dataset(ds, po);
-    std::vector<slam::StereoFrame> frames;
-    for (const auto& frame : lms) {
-        slam::StereoFrame f;
-        for (const auto& l : frame) {
-            slam::StereoLandmarkObs obs;
-            obs.p_cam = Eigen::Vector3d(l.p_cam[0], l.p_cam[1], l.p_cam[2]);
-            for (int r = 0; r < 3; ++r)
-                for (int c = 0; c < 3; ++c) obs.cov(r, c) = l.cov(r, c);
-            if (o.descriptor) obs.descriptor = l.descriptor;
-            f.push_back(std::move(obs));
-        }
-        frames.push_back(std::move(f));
-    }
-    return frames;
+    const auto ds = landmarks::kitti_dataset(kitti, sequence, 0, static_cast<int>(poses));
+    if (ds.pairs.size() < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
+    std::fprintf(stderr, "slam: landmarks of %zu stereo pairs of %s (%s corners, %s descriptor)\n", ds.pairs.size(),
+                 sequence.c_str(), o.corners.c_str(), o.descriptor_name.c_str());
+    return slam::landmark_frames(ds, po);
 }
 
-void run_sequence(const SlamOptions& o) {
+std::vector<std::string> split_sequences(const std::string& list) {
+    std::vector<std::string> out;
+    std::stringstream ss(list);
+    std::string item;
+    while (std::getline(ss, item, ','))
+        if (!item.empty()) out.push_back(item);
+    if (out.empty()) throw InputError("--sequences '" + list + "' names no sequence");
+    return out;
+}
+
+std::string odometry_label(const SlamOptions& o) {
+    return o.odometry == "visual" ? "visual odometry alone" : "synthetic odometry alone";
+}
+
+slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::path& kitti, const std::string& sequence,
+                                   const std::filesystem::path& out) {
+    auto poses = slam::read_kitti_poses(kitti / "poses" / (sequence + ".txt"));
+    if (poses.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
+    slam::AssociationConfig ac;
+    ac.method = o.association == "nearest" ? slam::AssociationMethod::Nearest : slam::AssociationMethod::Jcbb;
+    ac.gate_probability = o.gate;
+    ac.joint_probability = o.joint_gate;
+    ac.max_hamming_fraction = o.max_hamming_fraction;
+    ac.check_descriptor = o.descriptor;
+    ac.forget_after = o.forget_after;
+    ac.max_observations = o.max_observations;
+    ac.validate();
+    slam::VisualOdometryConfig vc;
+    vc.max_hamming_fraction = o.vo_hamming_fraction;
+    vc.min_inliers = o.vo_min_inliers;
+    vc.max_range = o.vo_max_range;
+    vc.validate();
+    slam::SyntheticOdometry so;
+    so.sigma_dx = o.sigma_dx.value_or(0.1);
+    so.sigma_dy = o.sigma_dy;
+    so.sigma_dtheta = o.sigma_dtheta_deg.value_or(0.002 / deg) * deg;
+    if (o.odometry == "synthetic") so.validate();
+    std::vector<slam::StereoFrame> frames;
+    std::string source_args, title;
+    if (o.landmarks_from == "stereo") {
+        frames = stereo_landmark_frames(o, kitti, sequence, poses.size());
+        poses.resize(frames.size());
+        source_args = " --corners " + o.corners + " --descriptor " + o.descriptor_name + " --g " + std::to_string(o.g) +
+                      " --h " + std::to_string(o.h) + (o.config.empty() ? "" : " --config " + o.config);
+        title = "KITTI " + sequence + " (stereo landmarks: " + o.descriptor_name + " on " + o.corners + " corners, " +
+                o.odometry + " odometry)";
+    } else {
+        if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
+        frames = slam::synthesize_stereo_frames(poses, slam::StereoCamera{}, o.synthetic_count, o.flip_bits, o.seed);
+        source_args = " --synthetic-count " + std::to_string(o.synthetic_count) + " --flip-bits " + std::to_string(o.flip_bits);
+        title = "KITTI " + sequence + " (synthetic landmarks on the real trajectory, " + o.odometry + " odometry)";
+    }
+    std::vector<slam::Pose> truth;
+    for (const auto& T : poses) truth.push_back(slam::planar_pose(T));
+    slam::SequenceRun run;
+    slam::VisualOdometry vo;
+    std::string odo_args;
+    if (o.odometry == "visual") {
+        run = slam::run_visual_sequence(frames, truth, vc, ac, &vo);
+        odo_args = " --vo-hamming-fraction " + num(vc.max_hamming_fraction) + " --vo-min-inliers " +
+                   std::to_string(vc.min_inliers) + " --vo-max-range " + num(vc.max_range);
+    } else {
+        run = slam::run_sequence(poses, frames, so, ac, o.seed);
+        odo_args = " --sigma-dx " + num(so.sigma_dx) + " --sigma-dy " + num(so.sigma_dy) + " --sigma-dtheta " +
+                   num(so.sigma_dtheta / deg);
+    }
+    const bool seeded = o.odometry == "synthetic" || o.landmarks_from == "synthetic";
+    const std::string command = "harris-cosim slam --sequences " + sequence + " --landmarks-from " + o.landmarks_from +
+                                source_args + " --odometry " + o.odometry + odo_args + " --association " +
+                                o.association + " --gate " + num(o.gate) + " --joint-gate " + num(o.joint_gate) +
+                                " --max-hamming-fraction " + num(o.max_hamming_fraction) +
+                                (o.descriptor ? "" : " --no-descriptor") + " --forget-after " +
+                                std::to_string(o.forget_after) + " --max-observations " +
+                                std::to_string(o.max_observations) +
+                                (seeded ? " --seed " + std::to_string(o.seed) : std::string()) + " --out " + out.string();
+    slam::write_sequence_report(out, run, title, command, odometry_label(o));
+    std::printf("%s: %zu frames, path %.1f m; APE: EKF-SLAM %.3f m (%.2f %%), %s %.3f m (%.2f %%)", sequence.c_str(),
+                run.truth.size(), run.slam_metrics.path_length, run.slam_metrics.ape, run.slam_metrics.ape_percent(),
+                odometry_label(o).c_str(), run.odometry_metrics.ape, run.odometry_metrics.ape_percent());
+    if (o.odometry == "visual") std::printf("; odometry failed in %d of %zu steps", vo.failures, vo.motions.size());
+    std::printf("\nreport: %s/report.md\n", out.c_str());
+    return run;
+}
+
+void run_sequences(const SlamOptions& o) {
     std::filesystem::path kitti = o.kitti;
     if (kitti.empty()) {
         const auto d = frames::data_dir(o.data);
         if (!d) throw InputError("no data directory: give --kitti or --data, or set HARRIS_COSIM_DATA");
         kitti = *d / "kitti";
     }
-    auto poses = slam::read_kitti_poses(kitti / "poses" / (o.sequence + ".txt"));
-    if (poses.size() < 2) throw InputError("sequence " + o.sequence + " has fewer than 2 poses");
-    slam::OdometryModel om;
-    om.sigma_dx = o.sigma_dx.value_or(0.1);
-    om.sigma_dtheta = o.sigma_dtheta_deg.value_or(0.002 / deg) * deg;
-    om.sigma_lateral = o.sigma_lateral;
-    if (!(om.sigma_dx > 0) || !(om.sigma_dtheta > 0)) throw InputError("--sigma-dx and --sigma-dtheta must be positive");
-    slam::AssociationConfig ac;
-    ac.gate_probability = o.gate;
-    ac.max_hamming = o.max_hamming;
-    ac.check_descriptor = o.descriptor;
-    ac.forget_after = o.forget_after;
-    ac.max_observations = o.max_observations;
-    ac.validate();
-    std::vector<slam::StereoFrame> frames;
-    std::string source_args, title;
-    if (o.landmarks_from == "stereo") {
-        frames = stereo_landmark_frames(o, kitti, poses);
-        poses.resize(frames.size());
-        source_args = " --corners " + o.corners + " --descriptor " + o.descriptor_name + " --g " + std::to_string(o.g) +
-                      " --h " + std::to_string(o.h) + (o.config.empty() ? "" : " --config " + o.config);
-        title = "KITTI " + o.sequence + " (ground-truth trajectory, stereo landmarks: " + o.descriptor_name + " on " +
-                o.corners + " corners)";
-    } else {
-        if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
-        frames = slam::synthesize_stereo_frames(poses, slam::StereoCamera{}, o.synthetic_count, o.flip_bits, o.seed);
-        source_args = " --synthetic-count " + std::to_string(o.synthetic_count) + " --flip-bits " + std::to_string(o.flip_bits);
-        title = "KITTI " + o.sequence + " (ground-truth trajectory, synthetic landmarks)";
+    if (o.odometry != "visual" && o.odometry != "synthetic")
+        throw InputError("--odometry '" + o.odometry + "' is neither visual nor synthetic");
+    if (o.association != "jcbb" && o.association != "nearest")
+        throw InputError("--association '" + o.association + "' is neither jcbb nor nearest");
+    if (o.seed_given && o.odometry == "visual" && o.landmarks_from == "stereo")
+        throw InputError("--seed: visual odometry on stereo landmarks is deterministic, nothing is drawn");
+    const auto list = split_sequences(o.sequences);
+    if (list.size() == 1) {
+        run_one_sequence(o, kitti, list[0], o.out);
+        return;
     }
-    const auto run = slam::run_sequence(poses, frames, om, ac, o.seed);
-    const std::string command = "harris-cosim slam --sequence " + o.sequence + " --landmarks-from " + o.landmarks_from +
-                                source_args + " --sigma-dx " + num(om.sigma_dx) + " --sigma-dtheta " +
-                                num(om.sigma_dtheta / deg) + " --sigma-lateral " + num(om.sigma_lateral) + " --gate " + num(o.gate) + " --max-hamming " +
-                                std::to_string(o.max_hamming) + (o.descriptor ? "" : " --no-descriptor") +
-                                " --forget-after " + std::to_string(o.forget_after) + " --max-observations " +
-                                std::to_string(o.max_observations) + " --seed " +
-                                std::to_string(o.seed) + " --out " + o.out;
-    slam::write_sequence_report(o.out, run, title, command);
-    std::printf("%zu frames; ATE: EKF-SLAM %.3f m, dead reckoning %.3f m; final map %d landmarks\n", run.truth.size(),
-                run.ate_slam, run.ate_dead_reckoning, run.frames.back().map_size);
-    std::printf("report: %s/report.md\n", o.out.c_str());
+    std::vector<std::pair<std::string, slam::SequenceRun>> runs;
+    for (const auto& s : list) runs.emplace_back(s, run_one_sequence(o, kitti, s, std::filesystem::path(o.out) / s));
+    const std::string md = "# EKF-SLAM per sequence\n\nGround truth is used only to score.\n\n" +
+                           slam::sequences_markdown(runs, odometry_label(o));
+    landmarks::write_atomic(std::filesystem::path(o.out) / "sequences.md", md);
+    std::printf("%s", md.c_str());
+    std::printf("table: %s/sequences.md\n", o.out.c_str());
 }
 
 void run_slam(const SlamOptions& o) {
-    if (o.simulate == !o.sequence.empty()) throw InputError("give exactly one of --simulate and --sequence NN");
+    if (o.simulate == !o.sequences.empty())
+        throw InputError("give exactly one of --simulate and --sequences NN[,NN...]");
     if (o.world != "cloister" && o.world != "random")
         throw InputError("--world '" + o.world + "' is neither cloister nor random");
     if (o.landmarks_from != "synthetic" && o.landmarks_from != "stereo")
         throw InputError("--landmarks-from '" + o.landmarks_from + "' is neither stereo nor synthetic");
     try {
-        o.simulate ? run_simulate(o) : run_sequence(o);
+        o.simulate ? run_simulate(o) : run_sequences(o);
     } catch (const slam::InputError& e) {
         throw InputError(e.what());
     } catch (const landmarks::InputError& e) {
@@ -208,11 +259,16 @@ void add_slam_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "slam", "2-D EKF-SLAM (thesis 2.5, 5.4): Monte-Carlo consistency in the simulator, or a KITTI trajectory");
     cmd->add_flag("--simulate", o->simulate, "Monte-Carlo runs in the simulator (NEES, RMSE, plots)");
-    cmd->add_option("--sequence", o->sequence, "KITTI sequence whose poses/NN.txt is the trajectory, e.g. 01");
+    cmd->add_option("--sequences,--sequence", o->sequences,
+                    "KITTI sequences, comma-separated (e.g. 01 or 01,02): stereo pairs of sequences/NN, "
+                    "ground truth poses/NN.txt (read only to score)");
     cmd->add_option("--kitti", o->kitti, "KITTI odometry root holding poses/ (default: <data>/kitti)");
     cmd->add_option("--data", o->data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");
     cmd->add_option("--out", o->out, "output directory")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "first seed (runs use seed, seed+1, ...)")->capture_default_str();
+    cmd->add_option("--seed", o->seed,
+                    "first seed (runs use seed, seed+1, ...); KITTI: the synthetic world or odometry (refused with "
+                    "visual odometry on stereo landmarks, which draws nothing)")
+        ->capture_default_str();
     cmd->add_option("--world", o->world, "simulated world layout: cloister or random")->capture_default_str();
     cmd->add_option("--landmarks", o->landmarks, "simulated world landmarks")->capture_default_str();
     cmd->add_option("--half-size", o->half_size, "world half size (m)")->capture_default_str();
@@ -224,11 +280,28 @@ void add_slam_command(CLI::App& app) {
     cmd->add_option("--sigma-bearing", o->sigma_bearing_deg, "bearing noise (deg)")->capture_default_str();
     cmd->add_option("--fov", o->fov_deg, "sensor field of view, full angle (deg)")->capture_default_str();
     cmd->add_option("--max-range", o->max_range, "sensor range limit (m)")->capture_default_str();
-    cmd->add_option("--sigma-dx", o->sigma_dx, "odometry noise on dx (m per step; default 0.01 simulated, 0.1 KITTI)");
+    cmd->add_option("--sigma-dx", o->sigma_dx,
+                    "odometry noise on dx (m per step; default 0.01 simulated, 0.1 KITTI --odometry synthetic)");
+    cmd->add_option("--sigma-dy", o->sigma_dy, "KITTI --odometry synthetic: noise on dy (m per frame)")
+        ->capture_default_str();
     cmd->add_option("--sigma-dtheta", o->sigma_dtheta_deg,
-                    "odometry noise on dθ (deg per step; default 0.286 simulated, 0.115 KITTI)");
-    cmd->add_option("--sigma-lateral", o->sigma_lateral,
-                    "KITTI: sideways slip per frame the filter allows for (m)")->capture_default_str();
+                    "odometry noise on dθ (deg per step; default 0.286 simulated, 0.115 KITTI --odometry synthetic)");
+    cmd->add_option("--odometry", o->odometry,
+                    "KITTI: visual (stereo visual odometry from the landmarks; no ground truth) or synthetic "
+                    "(the ground-truth relative poses plus noise of --sigma-dx/dy/dtheta)")
+        ->capture_default_str();
+    cmd->add_option("--vo-hamming-fraction", o->vo_hamming_fraction,
+                    "visual odometry: frame-to-frame matches up to this fraction of the descriptor's bits")
+        ->capture_default_str();
+    cmd->add_option("--vo-min-inliers", o->vo_min_inliers,
+                    "visual odometry: fewer RANSAC inliers and the frame's estimate counts as failed")
+        ->capture_default_str();
+    cmd->add_option("--vo-max-range", o->vo_max_range, "visual odometry: points farther than this (m) are not used")
+        ->capture_default_str();
+    cmd->add_option("--association", o->association, "KITTI: jcbb (joint compatibility) or nearest (individual gating)")
+        ->capture_default_str();
+    cmd->add_option("--joint-gate", o->joint_gate, "JCBB: joint gate probability (chi-square, 2k dof)")
+        ->capture_default_str();
     cmd->add_option("--landmarks-from", o->landmarks_from,
                     "landmark source of a KITTI run: stereo (the landmark pipeline on the sequence's stereo pairs) "
                     "or synthetic (points laid along the ground-truth trajectory)")
@@ -244,14 +317,18 @@ void add_slam_command(CLI::App& app) {
     cmd->add_option("--synthetic-count", o->synthetic_count, "synthetic world points along the trajectory")->capture_default_str();
     cmd->add_option("--flip-bits", o->flip_bits, "bits flipped in each synthetic descriptor observation")->capture_default_str();
     cmd->add_option("--gate", o->gate, "Mahalanobis gate probability (chi-square, 2 dof)")->capture_default_str();
-    cmd->add_option("--max-hamming", o->max_hamming, "descriptor check: largest Hamming distance (bits)")->capture_default_str();
-    cmd->add_flag("!--no-descriptor", o->descriptor, "associate by the Mahalanobis gate alone");
+    cmd->add_option("--max-hamming-fraction", o->max_hamming_fraction,
+                    "association's descriptor check: largest Hamming distance as a fraction of the descriptor's bits")
+        ->capture_default_str();
+    cmd->add_flag("!--no-descriptor", o->descriptor,
+                  "associate by the Mahalanobis gates alone (visual odometry still matches descriptors)");
     cmd->add_option("--forget-after", o->forget_after, "remove landmarks unseen for this many frames (0: keep)")->capture_default_str();
     cmd->add_option("--max-observations", o->max_observations,
                     "observations used per frame, the most precise first (0: all)")->capture_default_str();
     add_runner_flags(cmd, o->runner);
     cmd->callback([o, cmd] {
         o->sharded = cmd->count("--runner") + cmd->count("--shards") > 0;
+        o->seed_given = cmd->count("--seed") > 0;
         if (o->sharded && !o->simulate) throw InputError("--runner and --shards shard the Monte-Carlo seeds of --simulate only");
         run_slam(*o);
     });

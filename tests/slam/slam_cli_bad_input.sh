@@ -29,6 +29,11 @@ expect2 "empty world" "world is empty" --simulate --landmarks 0
 expect2 "sequence without poses" "holds no pose" --sequence 07 --kitti "$work/kitti"
 expect2 "missing poses file" "cannot read the poses file" --sequence 99 --kitti "$work/kitti"
 expect2 "neither mode" "exactly one of" --runs 3
+mkdir -p "$work/kitti1/poses" && printf '1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1 0 0 0 0 1 1\n' > "$work/kitti1/poses/05.txt"
+expect2 "unknown odometry" "neither visual nor synthetic" --sequences 05 --kitti "$work/kitti1" --odometry wheels
+expect2 "unknown association" "neither jcbb nor nearest" --sequences 05 --kitti "$work/kitti1" --association greedy
+expect2 "a seed for deterministic visual odometry" "deterministic" --sequences 05 --kitti "$work/kitti1" --landmarks-from stereo --seed 3
+expect2 "Hamming fraction above 1" "max-hamming-fraction" --sequences 05 --kitti "$work/kitti1" --max-hamming-fraction 2
 expect2 "unknown world" "neither cloister nor random" --simulate --world maze
 expect2 "negative runs" "--runs" --simulate --runs -1
 out_dir=/proc/slam-report expect2 "unwritable output" "cannot create the output directory" --simulate --runs 1 --steps 2

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# slam_cli_sequence.sh: `harris-cosim slam --sequence 01` writes its report and one pose a
+# slam_cli_sequence.sh: `harris-cosim slam --sequences 01` writes its report and one pose a
 # line in the KITTI and TUM trajectory files. Exits 77 (skipped) without poses/01.txt.
 # usage: slam_cli_sequence.sh HARRIS_COSIM DATA_DIR WORK_DIR
 set -u
@@ -9,7 +9,7 @@ out=$3
 poses=$data/kitti/poses/01.txt
 [ -f "$poses" ] || { echo "SKIPPED: no $poses"; exit 77; }
 rm -rf "$out"
-"$exe" slam --sequence 01 --kitti "$data/kitti" --out "$out" || exit 1
+"$exe" slam --sequences 01 --kitti "$data/kitti" --out "$out" || exit 1
 n=$(wc -l < "$poses")
 for f in estimate_kitti.txt dead_reckoning_kitti.txt truth_kitti.txt estimate_tum.txt; do
     lines=$(wc -l < "$out/$f")

@@ -147,14 +147,31 @@ TEST_CASE("a one-landmark scenario gives the values computed by hand", "[slam]")
     }
 }
 
-TEST_CASE("a lateral slip variance widens the pose covariance across the chord only", "[slam]") {
-    Ekf a(Pose(1, 2, 0.4), Mat3::Identity() * 1e-3), b = a;
-    const Mat2 N = Eigen::Vector2d(0.01, 1e-4).asDiagonal();
-    a.predict(Vec2(1, 0.2), N);
-    b.predict(Vec2(1, 0.2), N, 0.03 * 0.03);
-    const Eigen::Vector3d s(-std::sin(0.5), std::cos(0.5), 0);   // chord heading 0.4 + 0.2/2
-    CHECK((b.pose_covariance() - a.pose_covariance() - 9e-4 * s * s.transpose()).norm() < 1e-15);
-    CHECK(b.pose() == a.pose());
+TEST_CASE("compose's Jacobians equal finite differences and between() inverts it", "[slam]") {
+    const std::vector<Motion> us = {Motion(0.1, 0.02, 0.05), Motion(1.2, -0.4, -0.3), Motion(-0.4, 0.3, 3.0)};
+    for (const auto& r : poses)
+        for (const auto& u : us) {
+            Mat3 R_r, R_u;
+            const Pose r1 = compose(r, u, &R_r, &R_u);
+            CHECK(r1(2) > -pi);
+            CHECK(r1(2) <= pi);
+            CHECK((R_r - numeric_jacobian<3, 3>([&](const Pose& x) { return compose(x, u); }, r, {2})).norm() < tol);
+            CHECK((R_u - numeric_jacobian<3, 3>([&](const Motion& x) { return compose(r, x); }, u, {2})).norm() < tol);
+            const Motion b = between(r, r1);
+            CHECK((b.head<2>() - u.head<2>()).norm() < 1e-12);
+            CHECK(std::abs(wrap_angle(b(2) - u(2))) < 1e-12);
+        }
+}
+
+TEST_CASE("a 3-DoF prediction moves the pose by compose and adds R_u Q R_u'", "[slam]") {
+    const Pose r0(1, 2, 0.4);
+    Ekf a(r0, Mat3::Zero());
+    const Motion u(1.0, 0.1, 0.2);
+    const Mat3 Q = Eigen::Vector3d(0.01, 0.004, 1e-4).asDiagonal();
+    a.predict_motion(u, Q);
+    Mat3 R_u;
+    CHECK((a.pose() - compose(r0, u, nullptr, &R_u)).norm() < 1e-15);
+    CHECK((a.pose_covariance() - R_u * Q * R_u.transpose()).norm() < 1e-15);
 }
 
 TEST_CASE("the structured, P-KZK' and (I-KH)P updates give the same state and covariance", "[slam]") {

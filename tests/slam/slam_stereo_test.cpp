@@ -24,6 +24,8 @@ fs::path temp_file(const std::string& name, const std::string& text) {
     return p;
 }
 
+const Mat3 Q0 = Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal();   // a small motion covariance
+
 // KITTI-like poses: straight ahead 1 m a frame, turning left by `turn` rad a frame.
 std::vector<Mat34> arc_poses(int count, double turn) {
     std::vector<Mat34> out;
@@ -66,19 +68,20 @@ TEST_CASE("a top-view pose survives the round trip through a KITTI pose", "[slam
     CHECK(T.col(2).dot(Eigen::Vector3d(-1, 0, 0)) == Approx(1));   // heading π/2 = the camera looks left
 }
 
-TEST_CASE("odometry between poses on an arc reproduces them through move", "[slam]") {
-    const auto poses = arc_poses(20, 0.05);
-    std::vector<Pose> truth;
-    for (const auto& T : poses) truth.push_back(planar_pose(T));
-    std::vector<Vec2> u;
+TEST_CASE("exact synthetic odometry on a trajectory gives exact dead reckoning", "[slam]") {
+    // a drive with sideways slip as well as turns: (dx, dθ) alone could not follow it
+    std::vector<Pose> truth{Pose(0, 0, 0)};
+    for (int k = 1; k < 20; ++k) truth.push_back(compose(truth.back(), Motion(1.0, 0.03 * std::sin(k), 0.05)));
+    std::vector<Motion> u;
     for (size_t k = 1; k < truth.size(); ++k) {
-        u.push_back(odometry_between(truth[k - 1], truth[k]));
+        u.push_back(between(truth[k - 1], truth[k]));
         CHECK(u.back()(0) == Approx(1.0));
-        CHECK(u.back()(1) == Approx(0.05));
+        CHECK(u.back()(1) == Approx(0.03 * std::sin(k)));
+        CHECK(u.back()(2) == Approx(0.05));
     }
     const auto dr = dead_reckoning(truth[0], u);
     CHECK(absolute_trajectory_error(dr, truth) < 1e-12);
-    OdometryModel m;
+    SyntheticOdometry m;
     m.sigma_dx = 0.1;
     const auto noisy = noisy_odometry(truth, m, 1);
     REQUIRE(noisy.size() == 19);
@@ -115,10 +118,9 @@ TEST_CASE("the Hamming distance counts differing bits and extra bytes", "[slam]"
 }
 
 TEST_CASE("association matches inside the gate and refuses a descriptor that differs", "[slam]") {
-    OdometryModel om;
     AssociationConfig ac;
     ac.forget_after = 0;
-    LandmarkSlam s(Pose::Zero(), om, ac);
+    LandmarkSlam s(Pose::Zero(), ac);
     StereoFrame f0;
     const StereoCamera cam;
     StereoLandmarkObs a = triangulate(cam, 700, 200, 30), b = triangulate(cam, 400, 200, 25);
@@ -130,34 +132,34 @@ TEST_CASE("association matches inside the gate and refuses a descriptor that dif
     CHECK(s0.added == 2);
     CHECK(s0.matched == 0);
     // the same two points after no motion: both matched
-    const FrameStats s1 = s.next_frame(Vec2(0, 0), f0);
+    const FrameStats s1 = s.next_frame(Motion::Zero(), Q0, f0);
     CHECK(s1.matched == 2);
     CHECK(s1.added == 0);
     CHECK(s1.map_size == 2);
     // point a with b's descriptor: inside the gate, refused by the descriptor, added as new
     StereoLandmarkObs a2 = a;
     a2.descriptor = b.descriptor;
-    const FrameStats s2 = s.next_frame(Vec2(0, 0), {a2});
+    const FrameStats s2 = s.next_frame(Motion::Zero(), Q0, {a2});
     CHECK(s2.matched == 0);
     CHECK(s2.rejected_by_descriptor == 1);
     CHECK(s2.added == 1);
     CHECK(s2.map_size == 3);
     // without the descriptor check the same observation is matched
     ac.check_descriptor = false;
-    LandmarkSlam t(Pose::Zero(), om, ac);
+    LandmarkSlam t(Pose::Zero(), ac);
     t.first_frame(f0);
-    CHECK(t.next_frame(Vec2(0, 0), {a2}).matched == 1);
+    CHECK(t.next_frame(Motion::Zero(), Q0, {a2}).matched == 1);
 }
 
 TEST_CASE("landmarks unseen for forget_after frames are removed", "[slam]") {
     AssociationConfig ac;
     ac.forget_after = 2;
-    LandmarkSlam s(Pose::Zero(), OdometryModel{}, ac);
+    LandmarkSlam s(Pose::Zero(), ac);
     const StereoCamera cam;
     StereoLandmarkObs a = triangulate(cam, 700, 200, 30);
     s.first_frame({a});
-    CHECK(s.next_frame(Vec2(0, 0), {}).removed == 0);
-    const FrameStats f = s.next_frame(Vec2(0, 0), {});
+    CHECK(s.next_frame(Motion::Zero(), Q0, {}).removed == 0);
+    const FrameStats f = s.next_frame(Motion::Zero(), Q0, {});
     CHECK(f.removed == 1);
     CHECK(f.map_size == 0);
 }
@@ -166,13 +168,16 @@ TEST_CASE("bad association settings and sequences are refused with InputError", 
     AssociationConfig ac;
     ac.gate_probability = 1.5;
     CHECK_THROWS_AS(ac.validate(), InputError);
-    OdometryModel om;
-    om.sigma_dx = 0;
-    CHECK_THROWS_AS(LandmarkSlam(Pose::Zero(), om, AssociationConfig{}), InputError);
+    SyntheticOdometry om;
+    om.sigma_dy = 0;
+    CHECK_THROWS_AS(om.validate(), InputError);
+    ac = AssociationConfig{};
+    ac.max_hamming_fraction = 1.5;
+    CHECK_THROWS_AS(LandmarkSlam(Pose::Zero(), ac), InputError);
     const auto poses = arc_poses(3, 0);
-    CHECK_THROWS_WITH(run_sequence(poses, std::vector<StereoFrame>(2), OdometryModel{}, AssociationConfig{}, 1),
+    CHECK_THROWS_WITH(run_sequence(poses, std::vector<StereoFrame>(2), SyntheticOdometry{}, AssociationConfig{}, 1),
                       Catch::Contains("one landmark frame per pose"));
-    CHECK_THROWS_AS(run_sequence({poses[0]}, std::vector<StereoFrame>(1), OdometryModel{}, AssociationConfig{}, 1),
+    CHECK_THROWS_AS(run_sequence({poses[0]}, std::vector<StereoFrame>(1), SyntheticOdometry{}, AssociationConfig{}, 1),
                     InputError);
     CHECK_THROWS_AS(synthesize_stereo_frames(poses, StereoCamera{}, 0, 0, 1), InputError);
 }
@@ -180,8 +185,9 @@ TEST_CASE("bad association settings and sequences are refused with InputError", 
 TEST_CASE("on a synthetic curved drive EKF-SLAM beats dead reckoning with the same odometry", "[slam]") {
     const auto poses = arc_poses(80, 0.01);
     const auto frames = synthesize_stereo_frames(poses, StereoCamera{}, 300, 8, 3);
-    OdometryModel om;
+    SyntheticOdometry om;
     om.sigma_dx = 0.05;
+    om.sigma_dy = 0.01;
     om.sigma_dtheta = 0.005;
     const SequenceRun r = run_sequence(poses, frames, om, AssociationConfig{}, 7);
     int matched = 0, observed = 0;
