@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/slam.hpp"
+#include "util/util.hpp"
 
 namespace fs = std::filesystem;
 
@@ -55,13 +56,14 @@ bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") =
 
 // Runs gnuplot on `script` (which draws to the file named by the variable `out`), writing
 // `png` atomically. Returns false (with a warning) when gnuplot is absent or fails.
-bool plot(const fs::path& png, const std::string& script) {
+bool plot(const fs::path& png, const std::string& script, int width = 1000, int height = 700) {
     if (!have_gnuplot()) {
         std::fprintf(stderr, "slam report: warning: gnuplot not found, %s not drawn\n", png.filename().c_str());
         return false;
     }
     const fs::path tmp_png = temp_beside(png), gp = temp_beside(png.string() + ".gp");
-    save(gp, "set terminal pngcairo size 1000,700 font ',11'\nset output '" + tmp_png.string() + "'\n" + script);
+    save(gp, "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) +
+                 " font ',11'\nset output '" + tmp_png.string() + "'\n" + script);
     const int rc = std::system(("gnuplot '" + gp.string() + "' 2>/dev/null").c_str());
     fs::remove(gp);
     if (rc != 0 || !fs::exists(tmp_png)) {
@@ -103,6 +105,42 @@ std::string poses_xy(const std::vector<Pose>& v) {
     std::string s;
     for (const auto& p : v) s += num(p.x()) + ' ' + num(p.y()) + '\n';
     return s;
+}
+
+// A top view framed on what it shows: the axes span `xy` (trajectories, landmark means) with
+// a margin at equal scale, the canvas takes the data's shape (so the map fills it, ellipses
+// reaching beyond are clipped), the key sits beside the map and the title, two lines, is
+// centred on the canvas rather than on the plot, so a narrow map does not clip it.
+struct TopView {
+    std::string script;   ///< the set commands before `plot`
+    int width = 1000, height = 700;
+};
+TopView top_view(const std::vector<Vec2>& xy, const std::string& title, const std::string& subtitle,
+                 const std::string& xlabel, const std::string& ylabel) {
+    std::vector<double> xs, ys;
+    for (const auto& p : xy) xs.push_back(p.x()), ys.push_back(p.y());
+    util::AxisRange x = util::axis_range(xs, 0.05, -1e300, 1e300, 2.0), y = util::axis_range(ys, 0.05, -1e300, 1e300, 2.0);
+    // the plot area (about 700 px on its long side) in the data's aspect, within 1:3 either way
+    const double aspect = std::clamp((y.hi - y.lo) / (x.hi - x.lo), 1.0 / 3, 3.0);
+    const int long_side = 700;
+    const int pw = aspect >= 1 ? static_cast<int>(long_side / aspect) : long_side;
+    const int ph = aspect >= 1 ? long_side : static_cast<int>(long_side * aspect);
+    TopView v;
+    v.width = std::max(800, pw + 330);    // axis labels and the key beside the map
+    v.height = ph + 150;                  // the two-line title and the x label
+    std::ostringstream o;
+    o << "set size ratio -1\nset grid\nset key outside right top\nset xlabel '" << xlabel << "'\nset ylabel '" << ylabel
+      << "'\nset xrange " << x.gnuplot() << "\nset yrange " << y.gnuplot() << "\nset tmargin 4\n"
+      << "set label 1 \"" << title << "\\n" << subtitle << "\" at screen 0.5, screen 0.975 center front\n";
+    v.script = o.str();
+    return v;
+}
+
+std::vector<Vec2> positions(std::initializer_list<const std::vector<Pose>*> trajectories, const std::vector<Vec2>& points) {
+    std::vector<Vec2> v(points);
+    for (const auto* t : trajectories)
+        for (const auto& p : *t) v.push_back(p.head<2>());
+    return v;
 }
 
 const char* layout_name(Layout l) { return l == Layout::Cloister ? "cloister" : "random"; }
@@ -157,28 +195,35 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
     std::string robot_ell;
     for (size_t k = 0; k < t.estimate.size(); k += std::max<size_t>(1, t.estimate.size() / 12))
         robot_ell += ellipse(t.estimate[k].head<2>(), t.pose_cov[k].topLeftCorner<2, 2>(), 3);
+    const TopView sim_view = top_view(positions({&t.truth, &t.estimate}, t.world.landmarks), "Run of seed 1",
+                                      "trajectory and map, 3-sigma ellipses", "x (m)", "y (m)");
     const bool traj_png = plot(dir / "trajectory.png",
         block("lm", lm) + block("truth", poses_xy(t.truth)) + block("est", poses_xy(t.estimate)) +
-        block("ell", est_lm) + block("rell", robot_ell) +
-        "set size ratio -1\nset key outside right\nset grid\nset xlabel 'x (m)'\nset ylabel 'y (m)'\n"
-        "set title 'Run of seed 1: trajectory and map, 3-sigma ellipses'\n"
+        block("ell", est_lm) + block("rell", robot_ell) + sim_view.script +
         "plot $lm w p pt 7 ps 0.8 lc rgb 'black' t 'true landmarks', $ell w l lc rgb 'red' t 'landmark 3{/Symbol s}',"
         " $truth w l lw 2 lc rgb 'black' t 'true trajectory', $est w l lw 2 lc rgb 'blue' t 'estimate',"
-        " $rell w l lc rgb 'blue' dt 2 t 'robot 3{/Symbol s}'\n");
+        " $rell w l lc rgb 'blue' dt 2 t 'robot 3{/Symbol s}'\n", sim_view.width, sim_view.height);
 
     std::string pn, mn;
     for (int k = 0; k < T; ++k) {
         pn += std::to_string(k) + ' ' + num(mc.pose_nees[k]) + '\n';
         mn += std::to_string(k) + ' ' + num(mc.map_nees_per_dof[k]) + ' ' + num(mc.map_lo[k]) + ' ' + num(mc.map_hi[k]) + '\n';
     }
+    // each panel framed on its curve and its bounds (and the expected value)
+    std::vector<double> pose_y(mc.pose_nees.begin(), mc.pose_nees.end()), map_y(mc.map_nees_per_dof.begin(),
+                                                                                  mc.map_nees_per_dof.end());
+    pose_y.insert(pose_y.end(), {mc.pose_lo, mc.pose_hi, 3.0});
+    map_y.insert(map_y.end(), mc.map_lo.begin(), mc.map_lo.end());
+    map_y.insert(map_y.end(), mc.map_hi.begin(), mc.map_hi.end());
+    map_y.push_back(1.0);
     std::ostringstream ns;
     ns << block("pn", pn) << block("mn", mn) << "set multiplot layout 2,1\nset grid\nset key top right\n"
        << "set title 'Robot pose NEES, mean of " << mc.runs << " runs, " << 100 * mc.confidence << " % bounds'\n"
-       << "set xlabel 'step'\nset ylabel 'NEES (3 dof)'\nset yrange [0:" << std::max(2 * mc.pose_hi, 6.0) << "]\n"
+       << "set xlabel 'step'\nset ylabel 'NEES (3 dof)'\nset yrange " << util::axis_range(pose_y, 0.08, 0.0).gnuplot() << "\n"
        << "plot $pn u 1:2 w l lw 2 t 'mean NEES', " << mc.pose_lo << " w l dt 2 lc rgb 'red' t 'bounds', " << mc.pose_hi
        << " w l dt 2 lc rgb 'red' notitle, 3 w l lc rgb 'gray' t 'dof'\n"
        << "set title 'Map NEES per degree of freedom (all mapped landmarks jointly)'\nset ylabel 'NEES / dof'\n"
-       << "set yrange [0.5:1.5]\nplot $mn u 1:2 w l lw 2 t 'mean NEES / dof', $mn u 1:3 w l dt 2 lc rgb 'red' t 'bounds',"
+       << "set yrange " << util::axis_range(map_y, 0.08, 0.0).gnuplot() << "\nplot $mn u 1:2 w l lw 2 t 'mean NEES / dof', $mn u 1:3 w l dt 2 lc rgb 'red' t 'bounds',"
        << " $mn u 1:4 w l dt 2 lc rgb 'red' notitle, 1 w l lc rgb 'gray' notitle\nunset multiplot\n";
     const bool nees_png = plot(dir / "nees.png", ns.str());
 
@@ -290,13 +335,13 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
 
     std::string ell;
     for (size_t i = 0; i < r.map.size(); ++i) ell += ellipse(r.map[i], r.map_cov[i], 3);
+    const TopView view = top_view(positions({&r.truth, &r.estimate, &r.dead_reckoning}, r.map), title,
+                                  "top view, final map with 3-sigma ellipses", "forward x (m)", "left y (m)");
     const bool traj_png = plot(dir / "trajectory.png",
         block("truth", poses_xy(r.truth)) + block("est", poses_xy(r.estimate)) + block("dr", poses_xy(r.dead_reckoning)) +
-        block("ell", ell) +
-        "set size ratio -1\nset grid\nset key outside right\nset xlabel 'forward x (m)'\nset ylabel 'left y (m)'\n"
-        "set title '" + title + ": top view, final map with 3-sigma ellipses'\n"
+        block("ell", ell) + view.script +
         "plot $ell w l lc rgb '#cc8888' t 'landmark 3{/Symbol s}', $truth w l lw 2 lc rgb 'black' t 'ground truth',"
-        " $est w l lw 2 lc rgb 'blue' t 'EKF-SLAM', $dr w l lw 2 dt 2 lc rgb 'orange' t '" + odometry_label + "'\n");
+        " $est w l lw 2 lc rgb 'blue' t 'EKF-SLAM', $dr w l lw 2 dt 2 lc rgb 'orange' t '" + odometry_label + "'\n", view.width, view.height);
     std::string ms;
     for (size_t k = 0; k < r.frames.size(); ++k)
         ms += std::to_string(k) + ' ' + std::to_string(r.frames[k].map_size) + ' ' + std::to_string(r.frames[k].matched) +
