@@ -3,7 +3,10 @@
 #include <chrono>
 #include <deque>
 #include <cstdio>
-#include <future>
+#include <condition_variable>
+#include <mutex>
+#include <optional>
+#include <thread>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -171,8 +174,8 @@ struct SpecStream {
             prev = r.max;
         }
     }
-    std::vector<spec::FrameCorners> run(const std::vector<const Image*>& frames, int threads) {
-        return m.run(frames, prev, threads);
+    std::vector<spec::FrameCorners> run(const std::vector<const Image*>& frames, tbb::task_arena& arena) {
+        return m.run(frames, prev, arena);
     }
 };
 
@@ -218,9 +221,9 @@ public:
         const auto t1 = std::chrono::steady_clock::now();
         std::vector<std::vector<spec::FrameCorners>> runs(spec_.size());
         const bool thesis_needed = source != Source::rtl || in_.ablation;
-        if (thesis_needed) runs[0] = spec_[0].run(ptrs, in_.threads);
+        if (thesis_needed) runs[0] = spec_[0].run(ptrs, arena_);
         if (source == Source::spec) spec_seconds_ += since(t1);
-        for (std::size_t v = 1; v < spec_.size(); ++v) runs[v] = spec_[v].run(ptrs, in_.threads);
+        for (std::size_t v = 1; v < spec_.size(); ++v) runs[v] = spec_[v].run(ptrs, arena_);
 
         const auto pair_of = [&](int k) { return feed_.pair_index()[static_cast<std::size_t>(a + k - in_.offset)]; };
         // scoring: drop the first pair (threshold seed) and, but for the spec model, the
@@ -307,6 +310,62 @@ private:
     double spec_seconds_ = 0;
 };
 
+/// One job at a time on a thread of its own, kept for the whole part (a thread started per
+/// job leaves allocator state behind for each, which grows with the stream).
+class Background {
+public:
+    Background() : t_([this] { loop(); }) {}
+    ~Background() {
+        {
+            const std::lock_guard<std::mutex> lock(m_);
+            stop_ = true;
+        }
+        cv_.notify_all();
+        t_.join();
+    }
+    /// Waits for the job before (rethrowing what it threw), then starts `job`.
+    void run(std::function<void()> job) {
+        wait();
+        {
+            const std::lock_guard<std::mutex> lock(m_);
+            job_ = std::move(job);
+        }
+        cv_.notify_all();
+    }
+    /// Waits for the running job; rethrows what it threw.
+    void wait() {
+        std::unique_lock<std::mutex> lock(m_);
+        cv_.wait(lock, [&] { return !job_; });
+        if (err_) std::rethrow_exception(std::exchange(err_, nullptr));
+    }
+
+private:
+    void loop() {
+        std::unique_lock<std::mutex> lock(m_);
+        for (;;) {
+            cv_.wait(lock, [&] { return stop_ || job_; });
+            if (!job_) return;
+            lock.unlock();
+            std::exception_ptr e;
+            try {
+                job_();
+            } catch (...) {
+                e = std::current_exception();
+            }
+            lock.lock();
+            err_ = e;
+            job_ = nullptr;
+            cv_.notify_all();
+        }
+    }
+    std::mutex m_;
+    std::condition_variable cv_;
+    std::function<void()> job_;
+    std::exception_ptr err_;
+    bool stop_ = false;
+    std::thread t_;
+};
+
 }  // namespace
 
 Part evaluate_part(const PartInput& in) {
@@ -346,18 +405,18 @@ Part evaluate_part(const PartInput& in) {
         const bool overlap = tbb::this_task_arena::max_concurrency() > 1 && in.threads != 1;
         std::vector<SourceFrame> pending;
         int pending_first = in.first;
-        std::future<void> scoring;   // the batch being scored while the model runs on
+        std::optional<Background> scoring;   // scores a batch while the model runs on
+        if (overlap) scoring.emplace();
         const auto submit = [&] {
-            if (scoring.valid()) scoring.get();
             if (pending.empty()) return;
-            const std::size_t job_size = pending.size();
-            auto job = [&scorer, &feed, off = in.offset, a = pending_first, fs = std::move(pending)]() mutable {
-                scorer.score(a, a + static_cast<int>(fs.size()), &fs);
-                feed.release_below(a + static_cast<int>(fs.size()) - off);
+            const int a = pending_first, size = static_cast<int>(pending.size());
+            auto job = [&scorer, &feed, off = in.offset, a, size, fs = std::make_shared<std::vector<SourceFrame>>(std::move(pending))] {
+                scorer.score(a, a + size, fs.get());
+                feed.release_below(a + size - off);
             };
-            pending_first += static_cast<int>(job_size);
+            pending_first += size;
             pending = {};
-            if (overlap) scoring = std::async(std::launch::async, std::move(job));
+            if (scoring) scoring->run(std::move(job));
             else job();
         };
         const FrameAt at = [&](int k) { return feed.frame(k - in.offset); };
@@ -374,7 +433,7 @@ Part evaluate_part(const PartInput& in) {
                                             if (static_cast<int>(pending.size()) == batch) submit();
                                         });
         submit();
-        if (scoring.valid()) scoring.get();
+        if (scoring) scoring->wait();
         p.next_publications = c.next_publications;
         p.next_max = c.next_max;
         p.mixed_windows = c.mixed_windows;
