@@ -20,13 +20,18 @@ run() {   # NAME BINARY ROUND
   local wall rss
   wall=$(awk -F': ' '/Elapsed \(wall clock\)/ {n=split($2,t,":"); s=0; for(i=1;i<=n;i++) s=s*60+t[i]; print s}' "$d/$1-$3.time")
   rss=$(awk -F': ' '/Maximum resident set size/ {printf "%.0f", $2/1024}' "$d/$1-$3.time")
+  cpu=$(awk -F': ' '/User time|System time/ {s+=$2} END {print s}' "$d/$1-$3.time")
+  sys=$(awk -F': ' '/System time/ {print $2}' "$d/$1-$3.time")
   echo "$wall" >> "$d/$1.walls"
-  printf '%-7s round %d: %8.1f s wall, peak %5d MB\n' "$1" "$3" "$wall" "$rss"
+  echo "$cpu" >> "$d/$1.cpus"
+  printf '%-7s round %d: %8.1f s wall, %6.2f s CPU (%5.2f s system), peak %5d MB\n' "$1" "$3" "$wall" "$cpu" "$sys" "$rss"
 }
 for r in $(seq 1 "$rounds"); do run before "$before" "$r"; run after "$after" "$r"; done
 median() { sort -n "$1" | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
 mb=$(median "$d/before.walls"); ma=$(median "$d/after.walls")
 awk -v b="$mb" -v a="$ma" 'BEGIN {printf "median wall: before %.1f s, after %.1f s, ratio before/after %.2f\n", b, a, b/a}'
+cb=$(median "$d/before.cpus"); ca=$(median "$d/after.cpus")
+awk -v b="$cb" -v a="$ca" 'BEGIN {printf "median CPU (user + system): before %.2f s, after %.2f s, ratio before/after %.2f\n", b, a, b/a}'
 same=yes
 for f in frames.csv sequences.csv totals.json summary.md; do
   [ -e "$d/before/$f" ] || [ -e "$d/after/$f" ] || continue
