@@ -99,7 +99,8 @@ struct SpanDriver {
     }
 };
 
-void start_at(const CycleCheckpoint* c, HarrisTop& top, HostDriver& drv) {
+template <class Driver>   // HostDriver or FeedDriver
+void start_at(const CycleCheckpoint* c, HarrisTop& top, Driver& drv) {
     if (!c) return;
     try {
         top.restore_state(c->model);
@@ -117,60 +118,124 @@ CycleRun run_cycle(const Stream& s, const Formats& f, bool progress) {
 }
 
 CycleRun run_cycle(const Stream& s, const Formats& f, const CycleSpan& span, bool progress) {
-    const auto t0 = std::chrono::steady_clock::now();
     const Geometry g{s.frames.at(0).width, s.frames.at(0).height};
-    SpanDriver sd(s, span.offset, span.frames_total);
-    HostDriver& drv = sd.drv;
-    HarrisTop top(g, f);
-    start_at(span.start, top, drv);
-    const size_t npix = static_cast<size_t>(g.width) * g.height;
-    const int n = span.last - span.first;   // frames reported
+    const int held = static_cast<int>(s.frames.size());
+    if (span.offset < 0 || span.offset + held > span.frames_total)
+        throw InternalError("cycle span: frames [" + std::to_string(span.offset) + ", " +
+                            std::to_string(span.offset + held) + ") outside a stream of " +
+                            std::to_string(span.frames_total));
+    const FrameAt at = [&](int k) -> std::shared_ptr<const Image> {
+        const int i = k - span.offset;
+        if (i < 0 || i >= held)
+            throw InternalError("cycle span: frame " + std::to_string(k) + " is not among the frames held");
+        return {std::shared_ptr<const Image>{}, &s.frames[static_cast<std::size_t>(i)]};   // not owned
+    };
     CycleRun r;
-    r.masks.assign(n, std::vector<std::uint8_t>(npix, 0));
-    r.thr_map.assign(n, std::vector<std::int64_t>(npix, -1));
-    r.thr.assign(n, 0);
-    r.max.assign(n, 0);
-    r.publications_in_frame.assign(n, 0);
-    // WritePos of every write from `base` on, index = write number - 1 - base
-    std::vector<WritePos> pos = span.start ? span.start->recent : std::vector<WritePos>{};
-    const long base = span.start ? span.start->writes - static_cast<long>(pos.size()) : 0;
+    const CycleCounts c = run_cycle(at, g, f, span, progress, [&](CycleFrame&& fr) {
+        std::vector<std::int64_t> tm(fr.thr_index.size());
+        for (std::size_t i = 0; i < tm.size(); ++i) tm[i] = fr.thr_at(i);
+        r.masks.push_back(std::move(fr.mask));
+        r.thr_map.push_back(std::move(tm));
+        r.thr.push_back(fr.thr);
+        r.max.push_back(fr.max);
+        r.publications_in_frame.push_back(fr.publications);
+    });
+    r.writes = c.writes;
+    r.reads = c.reads;
+    r.mixed_windows = c.mixed_windows;
+    r.max_publications = c.max_publications;
+    r.next_publications = c.next_publications;
+    r.next_max = c.next_max;
+    r.seconds = c.seconds;
+    return r;
+}
+
+std::string chain_digest(const CycleCheckpoint& c) { return util::hex64(util::fnv1a(to_json(c).dump())); }
+
+CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f, const CycleSpan& span, bool progress,
+                      const std::function<void(CycleFrame&&)>& on_frame) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (span.first < 0 || span.first >= span.last || span.last > span.frames_total)
+        throw InternalError("cycle span: frames [" + std::to_string(span.first) + ", " + std::to_string(span.last) +
+                            ") of a stream of " + std::to_string(span.frames_total));
+    FeedDriver feed(g, span.frames_total, frames);
+    const HostDriver& drv = feed.driver();
+    HarrisTop top(g, f);
+    start_at(span.start, top, feed);
+    const size_t npix = static_cast<size_t>(g.width) * g.height;
+    CycleCounts r;
+    // the positions of the last kRecentWrites writes: write number w at ring[w % size]
+    constexpr long kRing = static_cast<long>(kRecentWrites);
+    static_assert((kRecentWrites & (kRecentWrites - 1)) == 0, "the ring indexes by a mask");
+    std::vector<WritePos> ring(kRecentWrites);
     const long begin = span.start ? span.start->writes : 0;
+    long oldest = begin + 1;   // the oldest write whose position the ring holds
+    if (span.start) {
+        const auto& rec = span.start->recent;
+        oldest = begin + 1 - static_cast<long>(rec.size());
+        for (std::size_t i = 0; i < rec.size(); ++i) ring[static_cast<std::size_t>(oldest + static_cast<long>(i)) & (kRing - 1)] = rec[i];
+    }
+    long newest = begin;   // the newest write in the ring
     const auto pos_of = [&](long write) -> const WritePos& {
-        const long i = write - 1 - base;
-        if (i < 0 || i >= static_cast<long>(pos.size()))
+        if (write < oldest || write <= newest - kRing || write > newest)
             throw InternalError("cycle span: a stage holds write " + std::to_string(write) +
-                                ", older than the checkpoint's recent writes");
-        return pos[static_cast<size_t>(i)];
+                                ", older than the recent writes kept");
+        return ring[static_cast<std::size_t>(write) & (kRing - 1)];
     };
-    const auto rel = [&](int frame, const char* what) {
-        const int k = frame - span.first;
-        if (k < 0 || k >= n)
+    // the frames still open, from `open_first` on; a frame is handed on once the driver
+    // writes the body of the frame two after it (no stage lags by a frame)
+    std::deque<CycleFrame> open;
+    int open_first = span.first;
+    std::vector<bool> thr_seen;
+    const auto slot = [&](int frame, const char* what) -> CycleFrame& {
+        if (frame < open_first || frame >= span.last)
             throw InternalError(std::string("cycle span: ") + what + " of frame " + std::to_string(frame) +
-                                " outside the span's frames [" + std::to_string(span.first) + ", " +
-                                std::to_string(span.last) + ")");
-        return k;
+                                (frame < open_first ? " after the frame was complete" : " outside the span's frames [" +
+                                 std::to_string(span.first) + ", " + std::to_string(span.last) + ")"));
+        while (open_first + static_cast<int>(open.size()) <= frame) {
+            CycleFrame c;
+            c.frame = open_first + static_cast<int>(open.size());
+            c.mask.assign(npix, 0);
+            c.thr_index.assign(npix, 0);
+            open.push_back(std::move(c));
+            thr_seen.push_back(false);
+        }
+        return open[static_cast<std::size_t>(frame - open_first)];
     };
-    pos.reserve(pos.size() + static_cast<size_t>(drv.total_writes() / std::max(1, span.frames_total) * (n + 1)));
-    std::vector<bool> thr_seen(n, false);
+    const auto hand_on_below = [&](int frame) {
+        while (open_first < std::min(frame, span.last)) {
+            slot(open_first, "the end");
+            on_frame(std::move(open.front()));
+            open.pop_front();
+            thr_seen.erase(thr_seen.begin());
+            ++open_first;
+        }
+    };
     std::vector<Corner> corners;
     BusEvent ev;
     long last_report = 0;
-    while ((span.end_write == 0 || top.writes() < span.end_write) && drv.next(ev)) {
-        pos.push_back(ev.pos);
+    int body_frame = -1;
+    while ((span.end_write == 0 || top.writes() < span.end_write) && feed.next(ev)) {
+        newest = top.writes() + 1;   // this write's number
+        ring[static_cast<std::size_t>(newest) & (kRing - 1)] = ev.pos;
+        const int fr = ev.pos.frame;
+        if (!ev.pos.tail && fr != body_frame) {   // a frame's body starts
+            body_frame = fr;
+            hand_on_below(fr - 1);
+        }
         const Word thr_before = top.thr();
         const long count_before = top.find_max().count;
         // a window whose response enters find-max on this write, mixing two frames: its
         // newest column is one of a frame's first 6 columns of its first row (the 6 older
         // columns of the 7x7 window come from the previous frame's last row)
         if (top.t() & (1U << 4)) {
-            const WindowTag w = top.tags().response;
-            if (w.valid()) {
-                const WritePos& p = pos_of(w.write);
+            const WindowTag wt = top.tags().response;
+            if (wt.valid()) {
+                const WritePos& p = pos_of(wt.write);
                 if (p.frame > 0 && p.i == 3 && p.j < 6) ++r.mixed_windows;
             }
         }
         top.write(ev.data);
-        const int fr = ev.pos.frame;
         // a publication: the period counter wrapped to 1 on this write
         if (top.find_max().count == 1 && count_before != 1) {
             ++r.max_publications;
@@ -178,9 +243,9 @@ CycleRun run_cycle(const Stream& s, const Formats& f, const CycleSpan& span, boo
                 ++r.next_publications;
                 r.next_max = top.find_max().max.value();
             } else {
-                const int k = rel(fr, "a publication");
-                ++r.publications_in_frame[k];
-                r.max[k] = top.find_max().max.value();
+                CycleFrame& c = slot(fr, "a publication");
+                ++c.publications;
+                c.max = top.find_max().max.value();
             }
         }
         // the window thresholded on this write: remember its threshold by image position
@@ -188,11 +253,20 @@ CycleRun run_cycle(const Stream& s, const Formats& f, const CycleSpan& span, boo
         if (th.valid()) {
             const Corner c = drv.write_centre(pos_of(th.write), th.quadrant);
             if (c.x >= 0 && c.y >= 0 && c.x < g.width && c.y < g.height) {
-                const int k = rel(c.frame, "a thresholded window");
-                r.thr_map[k][static_cast<size_t>(c.y) * g.width + c.x] = thr_before.value();
+                CycleFrame& s = slot(c.frame, "a thresholded window");
+                const std::int64_t v = thr_before.value();
+                std::size_t idx = 0;
+                while (idx < s.thr_values.size() && s.thr_values[idx] != v) ++idx;
+                if (idx == s.thr_values.size()) {
+                    if (idx == 255)
+                        throw InternalError("cycle run: more than 255 thresholds in frame " + std::to_string(c.frame));
+                    s.thr_values.push_back(v);
+                }
+                s.thr_index[static_cast<size_t>(c.y) * g.width + c.x] = static_cast<std::uint8_t>(idx + 1);
+                const std::size_t k = static_cast<std::size_t>(c.frame - open_first);
                 if (!thr_seen[k]) {
                     thr_seen[k] = true;
-                    r.thr[k] = thr_before.value();
+                    s.thr = v;
                 }
             }
         }
@@ -200,8 +274,7 @@ CycleRun run_cycle(const Stream& s, const Formats& f, const CycleSpan& span, boo
             ++r.reads;
             corners.clear();
             drv.decode(*ev.read, top.corner(), corners);
-            for (const Corner& c : corners)
-                r.masks[rel(c.frame, "a corner")][static_cast<size_t>(c.y) * g.width + c.x] = 1;
+            for (const Corner& c : corners) slot(c.frame, "a corner").mask[static_cast<size_t>(c.y) * g.width + c.x] = 1;
         }
         if (progress && top.writes() - last_report >= 2'000'000) {
             last_report = top.writes();
@@ -213,6 +286,17 @@ CycleRun run_cycle(const Stream& s, const Formats& f, const CycleSpan& span, boo
     if (span.end_write && top.writes() != span.end_write)
         throw InternalError("cycle span: the stream ended after " + std::to_string(top.writes()) + " writes, before " +
                             std::to_string(span.end_write));
+    if (span.end_write) {   // the state the next part must start from
+        CycleCheckpoint c;
+        c.frame = span.last;
+        c.model = top.save_state();
+        c.driver = drv.state();
+        c.writes = top.writes();
+        for (long k = std::max(oldest, top.writes() - kRing + 1); k <= top.writes(); ++k)
+            c.recent.push_back(ring[static_cast<std::size_t>(k) & (kRing - 1)]);
+        r.end_digest = chain_digest(c);
+    }
+    hand_on_below(span.last);
     r.writes = top.writes() - begin;
     r.seconds = since(t0);
     return r;
@@ -283,7 +367,7 @@ CheckpointBase checkpoint_base(const Stream& s, const Formats& f, int frames_tot
 }
 
 CycleCheckpoint warm_checkpoint(const Stream& s, const Formats& f, int offset, int frames_total,
-                                const CheckpointBase& base, int to, int warm) {
+                                const CheckpointBase& base, int to, int warm, int min_publications) {
     const Geometry g{s.frames.at(0).width, s.frames.at(0).height};
     const int from = to - warm;
     if (from < 1) throw InternalError("warm checkpoint: the warm-up would start before frame 1");
@@ -300,9 +384,10 @@ CycleCheckpoint warm_checkpoint(const Stream& s, const Formats& f, int offset, i
     // kRecentWrites writes see only responses of the warm-up's own pixels
     CycleCheckpoint c = run_to(s, f, offset, frames_total, &start, rebase, to, static_cast<long>(kRecentWrites),
                                &publications);
-    if (publications < 3)
+    if (publications < min_publications)
         throw InternalError("warm checkpoint: " + std::to_string(publications) + " find-max publication(s) in a warm-up of " +
-                            std::to_string(warm) + " frames; at least 3 are needed to flush the maximum");
+                            std::to_string(warm) + " frames; at least " + std::to_string(min_publications) +
+                            " are needed to flush the maximum");
     return c;
 }
 

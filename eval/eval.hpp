@@ -9,6 +9,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -110,13 +112,56 @@ CheckpointBase checkpoint_base(const Stream& s, const Formats& f, int frames_tot
 /// flushes those: the pipeline within a column, find-max's maximum after its second
 /// complete period (checked: fewer than 3 publications in the warm-up is InternalError).
 /// The stream holds frames [offset, ...) including to-warm .. to; to - warm >= 1.
+/// `min_publications` below 3 weakens that check (for tests of the chain check, which must
+/// catch the checkpoint such a warm-up gives).
 CycleCheckpoint warm_checkpoint(const Stream& s, const Formats& f, int offset, int frames_total,
-                                const CheckpointBase& base, int to, int warm);
+                                const CheckpointBase& base, int to, int warm, int min_publications = 3);
 
 /// The spec model over a stream. The first frame's threshold comes from `before`'s maximum
 /// (its response only) when given and the options take the previous frame's maximum, else
 /// from the reset value.
 SourceRun run_spec(const Stream& s, const spec::Options& o, int threads, const Image* before = nullptr);
+/// Frame k of the whole stream (an in-memory Stream, or a frames::FrameFeed), asked for
+/// as the host driver reaches it; the run keeps it only while it streams.
+using FrameAt = std::function<std::shared_ptr<const Image>(int frame)>;
+
+/// One frame of a cycle run, handed on once no later write can change it.
+struct CycleFrame {
+    int frame = 0;                          ///< index in the whole stream
+    std::vector<std::uint8_t> mask;         ///< the corners read back, row-major
+    /// the threshold each window centre was thresholded with: thr_values[thr_index[pixel] - 1]
+    /// (thr_index 0: no window thresholded there); a frame sees one or two thresholds
+    std::vector<std::int64_t> thr_values;
+    std::vector<std::uint8_t> thr_index;
+    std::int64_t thr = 0;                   ///< at the frame's first thresholded window
+    std::int64_t max = 0;                   ///< the last maximum published while it streamed
+    long publications = 0;                  ///< publications while it streamed
+    std::int64_t thr_at(std::size_t pixel) const {
+        return thr_index[pixel] ? thr_values[thr_index[pixel] - 1u] : -1;
+    }
+};
+
+/// A cycle run's counters over its span (what CycleRun holds besides the frames).
+struct CycleCounts {
+    long writes = 0, reads = 0, mixed_windows = 0, max_publications = 0;
+    long next_publications = 0;   ///< see CycleRun
+    std::int64_t next_max = 0;
+    /// a span that stops at `end_write`: chain_digest() of the state there (the model's
+    /// registers, the driver's position, the recent writes), which must equal the digest
+    /// of the next part's starting checkpoint; empty at the stream's end
+    std::string end_digest;
+    double seconds = 0;
+};
+
+/// The digest a chain check compares: 16 hex digits over every field of the checkpoint.
+std::string chain_digest(const CycleCheckpoint& c);
+
+/// The cycle model over a span, streaming: frames are asked of `frames` as the driver
+/// reaches them (at most two held), the positions of only the last writes are kept (a
+/// ring; a stage tag older than it is InternalError), and each reported frame goes to
+/// `on_frame` in order once complete. Memory does not grow with the span.
+CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f, const CycleSpan& span, bool progress,
+                      const std::function<void(CycleFrame&&)>& on_frame);
 /// The whole stream from reset.
 CycleRun run_cycle(const Stream& s, const Formats& f, bool progress);
 /// A span of a stream (see CycleSpan); vectors are indexed from span.first.

@@ -1,7 +1,12 @@
 // evaluate.cpp: the whole evaluation of `harris-cosim eval` (evaluate.hpp).
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <cstdio>
+#include <condition_variable>
+#include <mutex>
+#include <optional>
+#include <thread>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -59,11 +64,21 @@ Stream default_stream(int first, int last) {
 
 namespace {
 
+/// A reported frame's source output, as a source hands it on.
+struct SourceFrame {
+    std::vector<std::uint8_t> mask;
+    std::int64_t thr = -1, max = -1;
+    CycleFrame cycle;   ///< the cycle source's thresholds per window (else empty)
+};
+
 /// The RTL as a corner source: the GHDL-synthesised netlist under Verilator (trusted only
 /// after its GHDL/Verilator/model gate passes), streamed exactly like the cycle model; the
-/// masks come from the corner bits the netlist returns on every read. `mismatches` counts
-/// reads where the netlist and the cycle model (run in lock step) disagree.
-SourceRun run_rtl_source(const Stream& stream, long& mismatches) {
+/// masks come from the corner bits the netlist returns on every read, handed to `on_batch`
+/// `batch` frames at a time as their reads complete (frames loaded as the stream reaches
+/// them). `mismatches` counts reads where the netlist and the cycle model (run in lock
+/// step) disagree.
+void run_rtl_source(frames::FrameFeed& feed, long& mismatches, double& seconds, int batch,
+                    const std::function<void(int first, std::vector<SourceFrame>& frames)>& on_batch) {
     const auto t0 = std::chrono::steady_clock::now();
     const Formats f{};
     const fs::path cache = vl::default_cache_dir();
@@ -72,42 +87,54 @@ SourceRun run_rtl_source(const Stream& stream, long& mismatches) {
     if (gate.verdict != vl::GateVerdict::pass)
         throw MismatchError("--source rtl: the GHDL/Verilator/model gate did not pass (" +
                                  std::string(vl::verdict_name(gate.verdict)) + "): " + gate.first);
-    const Geometry g{stream.frames[0].width, stream.frames[0].height};
+    const Geometry g{feed.width(), feed.height()};
     const vl::NetlistConfig nc{g, f, false, {}};
     const fs::path so = vl::build_netlist(nc, cache, std::cerr);
     vl::VerilatedDesign dut(so, vl::config_key(nc));
-    std::vector<const Image*> ptrs;
-    for (const auto& im : stream.frames) ptrs.push_back(&im);
-    std::vector<std::string> rows;
+    const int n = feed.size();
+    const size_t npix = static_cast<size_t>(g.width) * static_cast<size_t>(g.height);
+    const Image blank(g.width, g.height);
+    const HostDriver decoder(g, {&blank});   // the corner bits' image positions
+    std::deque<std::vector<std::uint8_t>> open;   // masks of frames open_first.. whose reads go on
+    int open_first = 0, pending_first = 0;
+    std::vector<SourceFrame> pending;
+    std::vector<Corner> cs;
     vl::RunOptions opt;
     opt.keep_going = true;
-    opt.read_rows = &rows;
-    const int n = static_cast<int>(stream.frames.size());
+    const auto mask_of = [&](int frame) -> std::vector<std::uint8_t>& {
+        if (frame < open_first || frame >= n)
+            throw InternalError("--source rtl: a read of frame " + std::to_string(frame) + " after its frame was complete");
+        while (open_first + static_cast<int>(open.size()) <= frame) open.emplace_back(npix, 0);
+        return open[static_cast<std::size_t>(frame - open_first)];
+    };
+    opt.on_read = [&](const ReadPos& r, std::uint32_t value) {
+        cs.clear();
+        decoder.decode(r, value, cs);
+        for (const Corner& c : cs) mask_of(c.frame)[static_cast<size_t>(c.y) * g.width + c.x] = 1;
+    };
+    const auto flush = [&] {
+        if (pending.empty()) return;
+        on_batch(pending_first, pending);
+        pending_first += static_cast<int>(pending.size());
+        pending.clear();
+    };
     opt.on_frame = [&](const vl::FrameStats& s) {
         std::fprintf(stderr, "eval: rtl frame %d/%d: %ld reads, %ld corners, %ld mismatches\n", s.index + 1, n,
                      s.reads, s.corners, s.mismatches);
+        if (s.index != open_first) throw InternalError("--source rtl: frame " + std::to_string(s.index) + " completed out of order");
+        SourceFrame sf;
+        sf.mask = std::move(mask_of(s.index));   // thr and max are not observed on the netlist (no obs port)
+        open.pop_front();
+        ++open_first;
+        pending.push_back(std::move(sf));
+        if (static_cast<int>(pending.size()) == batch) flush();
     };
-    const vl::RunResult rr = vl::run_lockstep(g, f, dut, ptrs, stream.names, opt);
+    const vl::RunResult rr = vl::run_lockstep(g, f, dut, n, [&](int k) { return feed.frame(k); }, feed.names(), opt);
+    flush();
+    if (open_first != n)
+        throw InternalError("--source rtl: " + std::to_string(open_first) + " of " + std::to_string(n) + " frames completed");
     mismatches = rr.mismatches;
-    SourceRun run;
-    const size_t npix = static_cast<size_t>(g.width) * static_cast<size_t>(g.height);
-    run.masks.assign(static_cast<size_t>(n), std::vector<std::uint8_t>(npix, 0));
-    run.thr.assign(static_cast<size_t>(n), -1);   // not observed on the netlist (no obs port)
-    run.max.assign(static_cast<size_t>(n), -1);
-    const HostDriver drv(g, ptrs);
-    std::vector<Corner> cs;
-    for (const auto& row : rows) {   // write,frame,x,y,value
-        long w = 0;
-        int frame = 0, x = 0, y = 0;
-        unsigned value = 0;
-        if (std::sscanf(row.c_str(), "%ld,%d,%d,%d,%u", &w, &frame, &x, &y, &value) != 5 || frame < 0 || frame >= n)
-            throw InternalError("--source rtl: unreadable read row '" + row + "'");
-        cs.clear();
-        drv.decode(ReadPos{frame, x, y}, value, cs);
-        for (const Corner& c : cs) run.masks[static_cast<size_t>(c.frame)][static_cast<size_t>(c.y) * g.width + c.x] = 1;
-    }
-    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return run;
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
@@ -133,121 +160,127 @@ std::vector<AblationVariant> ablation_variants() {
 
 namespace {
 
-/// Frames [a, b) of a stream (indices into it).
-Stream slice(const Stream& s, int a, int b) {
-    Stream o;
-    o.frames.assign(s.frames.begin() + a, s.frames.begin() + b);
-    o.names.assign(s.names.begin() + a, s.names.begin() + b);
-    o.pair_index.assign(s.pair_index.begin() + a, s.pair_index.begin() + b);
-    o.description = s.description;
-    return o;
-}
-
-}  // namespace
-
-Part evaluate_part(const PartInput& in) {
-    const Stream& s = *in.stream;
-    const int held = static_cast<int>(s.frames.size());
-    const bool look_back = in.first > 0;   // the previous frame's maximum sets the first threshold
-    if (in.first >= in.last || in.first - (look_back ? 1 : 0) < in.offset || in.last > in.offset + held ||
-        in.last > in.frames_total)
-        throw InternalError(fmt::format("eval part: frames [{}, {}) and their neighbours are not in the frames [{}, {}) held",
-                                        in.first, in.last, in.offset, in.offset + held));
-    const Source source = in.source;
-    const Stream own = slice(s, in.first - in.offset, in.last - in.offset);
-    const int n = in.last - in.first;
-    // the spec model over the part, its first threshold from the previous frame's maximum:
-    // that frame's response only, not its corners
-    const auto spec_run = [&](const spec::Options& opt) {
-        return run_spec(own, opt, in.threads, look_back ? &s.frames[in.first - in.offset - 1] : nullptr);
-    };
-    Part p;
-    p.sequence = own.names.front().substr(0, own.names.front().find('/'));
-    p.width = own.frames[0].width;
-    p.height = own.frames[0].height;
-    p.first_pair = in.first_pair;
-    p.last_pair = in.last_pair;
-
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto ref = run_reference(own, spec::ReferenceOptions{}, in.threads);
-    p.seconds_reference = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-    SourceRun run;
-    CycleRun cyc;
-    if (source == Source::spec) {
-        run = spec_run(spec::Options{});
-    } else if (source == Source::rtl) {
-        if (in.first != 0 || in.last != in.frames_total)
-            throw InternalError("eval part: the RTL source runs whole sequences only");
-        run = run_rtl_source(own, p.rtl_mismatches);
-    } else {
-        cyc = run_cycle(s, Formats{}, CycleSpan{in.offset, in.first, in.last, in.frames_total, in.start, in.end_write},
-                        true);
-        run = cyc;
-        p.publications = cyc.publications_in_frame;
-        p.next_publications = cyc.next_publications;
-        p.next_max = cyc.next_max;
-        p.mixed_windows = cyc.mixed_windows;
-        p.max_publications = cyc.max_publications;
-        p.writes = cyc.writes;
-        p.reads = cyc.reads;
-    }
-    p.seconds_source = run.seconds;
-    // scoring: drop the first pair (threshold seed) and, but for the spec model, the last
-    // (its last windows are read only while a next pair is written)
-    auto scored = [&](int k) {
-        return own.pair_index[k] != in.first_pair && (source == Source::spec || own.pair_index[k] != in.last_pair);
-    };
-    for (int k = 0; k < n; ++k) {
-        FrameRow row;
-        row.frame = in.first + k;
-        row.name = own.names[k];
-        row.pair = own.pair_index[k];
-        row.scored = scored(k);
-        row.c = classify(run.masks[k], ref[k]);
-        row.source_corners = spec::count_corners(run.masks[k]);
-        row.reference_corners = spec::count_corners(ref[k]);
-        row.thr = run.thr[k];
-        row.max = run.max[k];
-        p.rows.push_back(row);
-        if (in.on_masks) in.on_masks(in.first + k, own.frames[k], run.masks[k], ref[k]);
-    }
-
-    if (in.ablation) {
-        for (const auto& v : ablation_variants()) {
-            const auto r = spec_run(v.opt);
-            Confusion c;
-            for (int k = 0; k < n; ++k)
-                if (own.pair_index[k] != in.first_pair) c.add(classify(r.masks[k], ref[k]));
-            p.ablation.push_back(c);
+/// The spec model over a stream in order, a batch at a time: the maximum carried from one
+/// batch to the next as SpecModel::run carries it within one.
+struct SpecStream {
+    spec::SpecModel m;
+    std::int64_t prev;
+    /// `before`: the frame before the stream, for its maximum only (when the options take
+    /// the previous frame's maximum), else the reset value
+    SpecStream(const spec::Options& o, const Image* before) : m(o), prev(m.reset_max()) {
+        if (before && o.max_from == spec::MaxFrom::previous) {
+            spec::Response r;
+            m.response(*before, r);
+            prev = r.max;
         }
     }
+    std::vector<spec::FrameCorners> run(const std::vector<const Image*>& frames, tbb::task_arena& arena) {
+        return m.run(frames, prev, arena);
+    }
+};
 
-    // ---- deviations (cycle source) -----------------------------------------------------
-    if (source == Source::cycle) {
-        const Geometry g{p.width, p.height};
+/// The scoring of a part a batch of frames at a time, in frame order: the reference, the
+/// spec model (the spec source, the ablation, the deviations), the rows and the counts.
+/// Holds only the batch's frames and masks, and one maximum per spec model run.
+class PartScorer {
+public:
+    PartScorer(const PartInput& in, Part& p) : in_(in), p_(p), feed_(*in.feed), arena_(in.threads > 0 ? in.threads : tbb::task_arena::automatic) {
+        std::shared_ptr<const Image> before;
+        if (in.first > 0) before = feed_.frame(in.first - 1 - in.offset);
+        const spec::Options thesis{};
+        spec_.emplace_back(thesis, before.get());
+        if (in.ablation)
+            for (const auto& v : ablation_variants()) {
+                // a variant with the thesis's options is the thesis run itself
+                variant_run_.push_back(v.opt.describe() == thesis.describe() ? 0 : spec_.size());
+                if (variant_run_.back() != 0) spec_.emplace_back(v.opt, before.get());
+                p.ablation.emplace_back();
+            }
+    }
+    /// Frames the scorer takes at a time.
+    int batch() const { return std::clamp(2 * arena_.max_concurrency(), 2, 16); }
+    double spec_seconds() const { return spec_seconds_; }
+
+    /// Scores frames [a, a + src.size()) (stream indices), or [a, b) of the spec source
+    /// when `src` is null.
+    void score(int a, int b, std::vector<SourceFrame>* src) {
+        const int n = b - a;
+        const Source source = in_.source;
+        std::vector<std::shared_ptr<const Image>> imgs(static_cast<std::size_t>(n));
+        std::vector<const Image*> ptrs(static_cast<std::size_t>(n));
+        std::vector<std::vector<std::uint8_t>> ref(static_cast<std::size_t>(n));
+        const auto t0 = std::chrono::steady_clock::now();
+        arena_.execute([&] {
+            tbb::parallel_for(0, n, [&](int k) {
+                imgs[k] = feed_.frame(a + k - in_.offset);
+                ptrs[k] = imgs[k].get();
+                spec::opencv_corners(*imgs[k], spec::ReferenceOptions{}, ref[k]);
+            });
+        });
+        p_.seconds_reference += since(t0);
+        const auto t1 = std::chrono::steady_clock::now();
+        std::vector<std::vector<spec::FrameCorners>> runs(spec_.size());
+        const bool thesis_needed = source != Source::rtl || in_.ablation;
+        if (thesis_needed) runs[0] = spec_[0].run(ptrs, arena_);
+        if (source == Source::spec) spec_seconds_ += since(t1);
+        for (std::size_t v = 1; v < spec_.size(); ++v) runs[v] = spec_[v].run(ptrs, arena_);
+
+        const auto pair_of = [&](int k) { return feed_.pair_index()[static_cast<std::size_t>(a + k - in_.offset)]; };
+        // scoring: drop the first pair (threshold seed) and, but for the spec model, the
+        // last (its last windows are read only while a next pair is written)
+        const auto scored = [&](int k) {
+            return pair_of(k) != in_.first_pair && (source == Source::spec || pair_of(k) != in_.last_pair);
+        };
+        const auto mask_of = [&](int k) -> const std::vector<std::uint8_t>& {
+            return src ? (*src)[static_cast<std::size_t>(k)].mask : runs[0][static_cast<std::size_t>(k)].mask;
+        };
+        for (int k = 0; k < n; ++k) {
+            FrameRow row;
+            row.frame = a + k;
+            row.name = feed_.names()[static_cast<std::size_t>(a + k - in_.offset)];
+            row.pair = pair_of(k);
+            row.scored = scored(k);
+            row.c = classify(mask_of(k), ref[k]);
+            row.source_corners = spec::count_corners(mask_of(k));
+            row.reference_corners = spec::count_corners(ref[k]);
+            row.thr = src ? (*src)[k].thr : runs[0][k].thr;
+            row.max = src ? (*src)[k].max : runs[0][k].max;
+            p_.rows.push_back(row);
+            if (in_.on_masks) in_.on_masks(a + k, *imgs[k], mask_of(k), ref[k]);
+        }
+        for (std::size_t v = 0; v < variant_run_.size(); ++v)
+            for (int k = 0; k < n; ++k)
+                if (pair_of(k) != in_.first_pair) p_.ablation[v].add(classify(runs[variant_run_[v]][k].mask, ref[k]));
+        if (source == Source::cycle) deviations(n, imgs, *src, runs[0], scored);
+    }
+
+private:
+    template <class Scored>
+    void deviations(int n, const std::vector<std::shared_ptr<const Image>>& imgs, const std::vector<SourceFrame>& src,
+                    const std::vector<spec::FrameCorners>& sp, const Scored& scored) {
+        const Geometry g{p_.width, p_.height};
         const int W = g.width, H = g.height;
-        const spec::SpecModel sm;
-        const auto sp = spec_run(spec::Options{});
+        const spec::SpecModel& sm = spec_[0].m;
         const int x_lost = g.width / 2 - 1, x_lost2 = x_lost + g.dj();          // latched under load
         const int x_hw_max = g.width / 2 - 1 + g.dj(), y_hw_max = g.height / 2 - 1 + g.di();
-        std::vector<std::vector<std::uint8_t>> at_hw_thr(n);
-        tbb::task_arena arena(in.threads > 0 ? in.threads : tbb::task_arena::automatic);
-        arena.execute([&] {
+        std::vector<std::vector<std::uint8_t>> at_hw_thr(static_cast<std::size_t>(n));
+        arena_.execute([&] {
             tbb::parallel_for(0, n, [&](int k) {
                 if (!scored(k)) return;
                 spec::Response r;
-                sm.response(own.frames[k], r);
-                const auto& tm = cyc.thr_map[k];
-                sm.corners(r, [&](int x, int y) { return tm[static_cast<size_t>(y) * W + x] < 0 ? INT64_MAX / 4 : tm[static_cast<size_t>(y) * W + x]; },
-                           at_hw_thr[k]);
+                sm.response(*imgs[k], r);
+                const CycleFrame& c = src[k].cycle;
+                sm.corners(r, [&](int x, int y) {
+                    const std::int64_t t = c.thr_at(static_cast<size_t>(y) * W + x);
+                    return t < 0 ? INT64_MAX / 4 : t;
+                }, at_hw_thr[k]);
             });
         });
         for (int k = 0; k < n; ++k) {
             if (!scored(k)) continue;
-            ++p.scored_frames;
-            const auto& hw = run.masks[k];
-            const auto& sk = sp.masks[k];
+            ++p_.scored_frames;
+            const auto& hw = src[k].mask;
+            const auto& sk = sp[k].mask;
             const auto& t = at_hw_thr[k];
             for (int y = 3; y < H - 3; ++y)
                 for (int x = 3; x < W - 3; ++x) {
@@ -256,13 +289,160 @@ Part evaluate_part(const PartInput& in) {
                     if (!in_spec) continue;
                     const bool out_hw = x > x_hw_max || y > y_hw_max;
                     const bool lost = !out_hw && (x == x_lost || x == x_lost2);
-                    p.diff_total += hw[i] != sk[i];
-                    if (out_hw) { p.outside += sk[i]; continue; }
-                    if (lost) { p.lost_col += sk[i]; continue; }
-                    p.drift += sk[i] != t[i];
-                    p.residual += hw[i] != t[i];
+                    p_.diff_total += hw[i] != sk[i];
+                    if (out_hw) { p_.outside += sk[i]; continue; }
+                    if (lost) { p_.lost_col += sk[i]; continue; }
+                    p_.drift += sk[i] != t[i];
+                    p_.residual += hw[i] != t[i];
                 }
         }
+    }
+    static double since(std::chrono::steady_clock::time_point t0) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+
+    const PartInput& in_;
+    Part& p_;
+    frames::FrameFeed& feed_;
+    tbb::task_arena arena_;
+    std::vector<SpecStream> spec_;          ///< [0]: the thesis's options, then the variants'
+    std::vector<std::size_t> variant_run_;  ///< per ablation variant, its run in spec_
+    double spec_seconds_ = 0;
+};
+
+/// One job at a time on a thread of its own, kept for the whole part (a thread started per
+/// job leaves allocator state behind for each, which grows with the stream).
+class Background {
+public:
+    Background() : t_([this] { loop(); }) {}
+    ~Background() {
+        {
+            const std::lock_guard<std::mutex> lock(m_);
+            stop_ = true;
+        }
+        cv_.notify_all();
+        t_.join();
+    }
+    /// Waits for the job before (rethrowing what it threw), then starts `job`.
+    void run(std::function<void()> job) {
+        wait();
+        {
+            const std::lock_guard<std::mutex> lock(m_);
+            job_ = std::move(job);
+        }
+        cv_.notify_all();
+    }
+    /// Waits for the running job; rethrows what it threw.
+    void wait() {
+        std::unique_lock<std::mutex> lock(m_);
+        cv_.wait(lock, [&] { return !job_; });
+        if (err_) std::rethrow_exception(std::exchange(err_, nullptr));
+    }
+
+private:
+    void loop() {
+        std::unique_lock<std::mutex> lock(m_);
+        for (;;) {
+            cv_.wait(lock, [&] { return stop_ || job_; });
+            if (!job_) return;
+            lock.unlock();
+            std::exception_ptr e;
+            try {
+                job_();
+            } catch (...) {
+                e = std::current_exception();
+            }
+            lock.lock();
+            err_ = e;
+            job_ = nullptr;
+            cv_.notify_all();
+        }
+    }
+    std::mutex m_;
+    std::condition_variable cv_;
+    std::function<void()> job_;
+    std::exception_ptr err_;
+    bool stop_ = false;
+    std::thread t_;
+};
+
+}  // namespace
+
+Part evaluate_part(const PartInput& in) {
+    frames::FrameFeed& feed = *in.feed;
+    const int held = feed.size();
+    const bool look_back = in.first > 0;   // the previous frame's maximum sets the first threshold
+    if (in.first >= in.last || in.first - (look_back ? 1 : 0) < in.offset || in.last > in.offset + held ||
+        in.last > in.frames_total)
+        throw InternalError(fmt::format("eval part: frames [{}, {}) and their neighbours are not in the frames [{}, {}) held",
+                                        in.first, in.last, in.offset, in.offset + held));
+    const Source source = in.source;
+    Part p;
+    const std::string& first_name = feed.names()[static_cast<std::size_t>(in.first - in.offset)];
+    p.sequence = first_name.substr(0, first_name.find('/'));
+    p.width = feed.width();
+    p.height = feed.height();
+    p.first_pair = in.first_pair;
+    p.last_pair = in.last_pair;
+    PartScorer scorer(in, p);
+    const int batch = scorer.batch();
+
+    if (source == Source::spec) {
+        for (int a = in.first; a < in.last; a += batch) {
+            const int b = std::min(in.last, a + batch);
+            scorer.score(a, b, nullptr);
+            feed.release_below(b - in.offset);
+        }
+        p.seconds_source = scorer.spec_seconds();
+    } else if (source == Source::rtl) {
+        if (in.first != 0 || in.last != in.frames_total || in.offset != 0)
+            throw InternalError("eval part: the RTL source runs whole sequences only");
+        run_rtl_source(feed, p.rtl_mismatches, p.seconds_source, batch, [&](int a, std::vector<SourceFrame>& fs) {
+            scorer.score(a, a + static_cast<int>(fs.size()), &fs);
+            feed.release_below(a + static_cast<int>(fs.size()));
+        });
+    } else {
+        const bool overlap = tbb::this_task_arena::max_concurrency() > 1 && in.threads != 1;
+        std::vector<SourceFrame> pending;
+        int pending_first = in.first;
+        std::optional<Background> scoring;   // scores a batch while the model runs on
+        if (overlap) scoring.emplace();
+        const auto submit = [&] {
+            if (pending.empty()) return;
+            const int a = pending_first, size = static_cast<int>(pending.size());
+            auto job = [&scorer, &feed, off = in.offset, a, size, fs = std::make_shared<std::vector<SourceFrame>>(std::move(pending))] {
+                scorer.score(a, a + size, fs.get());
+                feed.release_below(a + size - off);
+            };
+            pending_first += size;
+            pending = {};
+            if (scoring) scoring->run(std::move(job));
+            else job();
+        };
+        const FrameAt at = [&](int k) { return feed.frame(k - in.offset); };
+        const CycleCounts c = run_cycle(at, Geometry{p.width, p.height}, Formats{},
+                                        CycleSpan{in.offset, in.first, in.last, in.frames_total, in.start, in.end_write},
+                                        true, [&](CycleFrame&& fr) {
+                                            SourceFrame sf;
+                                            sf.mask = std::move(fr.mask);
+                                            sf.thr = fr.thr;
+                                            sf.max = fr.max;
+                                            p.publications.push_back(fr.publications);
+                                            sf.cycle = std::move(fr);
+                                            pending.push_back(std::move(sf));
+                                            if (static_cast<int>(pending.size()) == batch) submit();
+                                        });
+        submit();
+        if (scoring) scoring->wait();
+        p.next_publications = c.next_publications;
+        p.next_max = c.next_max;
+        p.mixed_windows = c.mixed_windows;
+        p.max_publications = c.max_publications;
+        p.writes = c.writes;
+        p.reads = c.reads;
+        p.seconds_source = c.seconds;
+        p.start_digest = in.start ? chain_digest(*in.start) : "";
+        p.end_digest = c.end_digest;
     }
     return p;
 }
@@ -279,29 +459,27 @@ Report evaluate(const Request& o) {
     const std::vector<int>& overlays = o.overlays;
     cv::setNumThreads(1);   // frames run in parallel; OpenCV's own threads would oversubscribe
 
-    std::fprintf(stderr, "eval: loading frames...\n");
-    Stream stream;
+    std::fprintf(stderr, "eval: opening the frames...\n");
     const fs::path& kitti_dir = o.kitti;
-    if (!kitti_dir.empty())
-        stream = frames::load_kitti_stream(kitti_dir, o.sequence, o.pairs, o.pairs_flag, o.threads, 2);
-    else
-        stream = default_stream(first, last);
-    const int n = static_cast<int>(stream.frames.size());
+    Stream small;   // the default stream, in memory (12 pairs at most)
+    frames::FrameFeed feed = kitti_dir.empty() ? frames::FrameFeed::of(small = default_stream(first, last))
+                                               : frames::open_kitti_feed(kitti_dir, o.sequence, o.pairs, o.pairs_flag, 2);
+    const int n = feed.size();
     for (int f : overlays)
         if (f < 0 || f >= n) throw InputError(fmt::format("--overlay frame {} is not in the stream (0..{})", f, n - 1));
     fs::create_directories(o.out);
-    std::fprintf(stderr, "eval: %s\n", stream.description.c_str());
+    std::fprintf(stderr, "eval: %s\n", feed.description().c_str());
     std::fprintf(stderr, "eval: OpenCV reference, %s source%s on %d frames...\n", source_name(source).c_str(),
                  o.ablation ? ", ablation" : "", n);
 
     PartInput in;
     in.source = source;
-    in.stream = &stream;
+    in.feed = &feed;
     in.first = 0;
     in.last = n;
     in.frames_total = n;
-    in.first_pair = stream.pair_index.front();
-    in.last_pair = stream.pair_index.back();
+    in.first_pair = feed.pair_index().front();
+    in.last_pair = feed.pair_index().back();
     in.ablation = o.ablation;
     in.threads = o.threads;
     std::vector<std::string> overlay_files;
@@ -314,7 +492,7 @@ Report evaluate(const Request& o) {
     const Part part = evaluate_part(in);
 
     Report rep = merge_parts({part}, source, o.ablation);
-    rep.stream = stream.description;
+    rep.stream = feed.description();
     rep.threads = o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency();
     rep.command = o.command;
     rep.seconds_source = part.seconds_source;

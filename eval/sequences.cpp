@@ -80,6 +80,7 @@ json Part::to_json() const {
             {"ablation", abl},
             {"counts", {lost_col, outside, drift, residual, diff_total, scored_frames, mixed_windows, max_publications,
                         writes, reads, rtl_mismatches}},
+            {"chain", {start_digest, end_digest, chain_checked}},
             {"seconds", {seconds_source, seconds_reference}}};
 }
 
@@ -113,6 +114,9 @@ Part Part::from_json(const json& j) {
                           &p.mixed_windows, &p.max_publications, &p.writes, &p.reads, &p.rtl_mismatches};
         if (n.size() != std::size(fields)) throw InputError("eval part: " + std::to_string(n.size()) + " counts");
         for (std::size_t k = 0; k < std::size(fields); ++k) *fields[k] = n.at(k);
+        p.start_digest = j.at("chain").at(0);
+        p.end_digest = j.at("chain").at(1);
+        p.chain_checked = j.at("chain").at(2);
         p.seconds_source = j.at("seconds").at(0);
         p.seconds_reference = j.at("seconds").at(1);
         return p;
@@ -136,6 +140,18 @@ std::vector<Part> fold_sequences(const std::vector<Part>& parts, Source source) 
                                          p.sequence, p.rows.empty() ? -1 : p.rows.front().frame,
                                          q.rows.empty() ? -1 : q.rows.back().frame));
         if (p.ablation.size() != q.ablation.size()) throw InputError("eval parts of sequence " + p.sequence + " differ in ablation");
+        // the chain check: where the part before stopped is where this one started
+        if (source == Source::cycle) {
+            const FrameRow& at = p.rows.front();
+            if (q.end_digest.empty() || q.end_digest != p.start_digest)
+                throw SimulatorError(fmt::format(
+                    "chain check failed at the boundary before frame {} ({}, stereo pair {}) of sequence {}: the part "
+                    "before it stopped in state {}, the part after it started from checkpoint {}; the sharded cycle run "
+                    "would differ from the serial one (a warm-up too short to flush the model?), so no report is written",
+                    at.frame, at.name, at.pair, p.sequence, q.end_digest.empty() ? "(not recorded)" : q.end_digest,
+                    p.start_digest.empty() ? "(reset)" : p.start_digest));
+            q.chain_checked += 1 + p.chain_checked;
+        }
         for (std::size_t k = 0; k < p.rows.size(); ++k) {
             FrameRow row = p.rows[k];
             // the first frame's maximum: the last one published while it streamed, which
@@ -151,6 +167,7 @@ std::vector<Part> fold_sequences(const std::vector<Part>& parts, Source source) 
         }
         q.next_publications = p.next_publications;
         q.next_max = p.next_max;
+        q.end_digest = p.end_digest;
         for (std::size_t v = 0; v < p.ablation.size(); ++v) q.ablation[v].add(p.ablation[v]);
         q.lost_col += p.lost_col;
         q.outside += p.outside;
@@ -203,6 +220,7 @@ Report merge_parts(const std::vector<Part>& parts, Source source, bool ablation)
         sum.writes += p.writes;
         sum.reads += p.reads;
         sum.rtl_mismatches += p.rtl_mismatches;
+        sum.chain_checked += p.chain_checked;
         geometries.insert({p.width, p.height});
     }
     if (rep.sequences.size() == 1) rep.sequences.clear();   // a single stream: no per-sequence table
@@ -248,6 +266,11 @@ Report merge_parts(const std::vector<Part>& parts, Source source, bool ablation)
         rep.notes.push_back(fmt::format("Cycle vs spec corner masks differ on {} pixels of {} scored frames in total "
                                         "(pixels x,y in 3..w-4, 3..h-4).", sum.diff_total, sum.scored_frames));
         rep.notes.push_back(fmt::format("Cycle model: {} writes, {} reads.", sum.writes, sum.reads));
+        if (sum.chain_checked > 0)
+            rep.notes.push_back(fmt::format(
+                "Sharded cycle run: chain checked at {} boundaries (at each, the cycle model's registers, the host "
+                "driver's position and the recent writes where a part stopped equal the next part's starting checkpoint).",
+                sum.chain_checked));
     }
     return rep;
 }

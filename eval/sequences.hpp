@@ -31,7 +31,8 @@ void check_sequences(const std::filesystem::path& kitti, const std::vector<std::
 /// One part of a sequence's evaluation.
 struct PartInput {
     Source source = Source::spec;
-    const Stream* stream = nullptr;   ///< frames [offset, offset + size) of the sequence's stream
+    frames::FrameFeed* feed = nullptr;   ///< frames [offset, offset + size) of the sequence's stream,
+                                         ///< read as the part reaches them
     int offset = 0;
     int first = 0, last = 0;          ///< the frames reported, [first, last)
     int frames_total = 0;             ///< frames in the sequence's stream
@@ -60,6 +61,11 @@ struct Part {
     /// deviation counts (cycle) and counters
     long lost_col = 0, outside = 0, drift = 0, residual = 0, diff_total = 0, scored_frames = 0;
     long mixed_windows = 0, max_publications = 0, writes = 0, reads = 0, rtl_mismatches = 0;
+    /// cycle: chain_digest() of the checkpoint the part started from (empty: reset) and of
+    /// the state where it stopped (empty: the stream's end); a merge checks that each
+    /// part's end equals the next part's start
+    std::string start_digest, end_digest;
+    int chain_checked = 0;               ///< boundaries within the sequence whose digests agreed
     double seconds_source = 0, seconds_reference = 0;   ///< not part of the merged data
 
     nlohmann::json to_json() const;

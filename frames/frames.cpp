@@ -139,6 +139,71 @@ Stream load_kitti_stream(const fs::path& kitti_dir, const std::string& sequence,
     return s;
 }
 
+FrameFeed::FrameFeed(std::vector<std::string> names, std::vector<int> pair_index, std::string description,
+                     std::function<Image(int)> load)
+    : names_(std::move(names)), pair_index_(std::move(pair_index)), description_(std::move(description)),
+      load_(std::move(load)) {
+    if (names_.empty()) throw InputError("a stream of no frames");
+    if (pair_index_.size() != names_.size()) throw std::invalid_argument("frame feed: names and pair numbers differ in count");
+    const auto f0 = frame(0);
+    width_ = f0->width;
+    height_ = f0->height;
+}
+
+FrameFeed FrameFeed::of(const Stream& s) {
+    return FrameFeed(s.names, s.pair_index, s.description, [&s](int k) { return s.frames.at(static_cast<std::size_t>(k)); });
+}
+
+std::shared_ptr<const Image> FrameFeed::frame(int k) {
+    if (k < 0 || k >= size())
+        throw std::out_of_range("frame " + std::to_string(k) + " of a stream of " + std::to_string(size()));
+    {
+        const std::lock_guard<std::mutex> lock(*mu_);
+        if (auto it = held_.find(k); it != held_.end()) return it->second;
+    }
+    auto im = std::make_shared<const Image>(load_(k));   // outside the lock: loads run in parallel
+    if (width_ && (im->width != width_ || im->height != height_))
+        throw InputError("frame '" + names_[static_cast<std::size_t>(k)] + "' is " + std::to_string(im->width) + "x" +
+                         std::to_string(im->height) + " but '" + names_[0] + "' is " + std::to_string(width_) + "x" +
+                         std::to_string(height_) + "; a stream has one size");
+    const std::lock_guard<std::mutex> lock(*mu_);
+    ++loads_;
+    return held_.emplace(k, std::move(im)).first->second;
+}
+
+void FrameFeed::release_below(int k) {
+    const std::lock_guard<std::mutex> lock(*mu_);
+    held_.erase(held_.begin(), held_.lower_bound(k));
+}
+
+long FrameFeed::loads() const {
+    const std::lock_guard<std::mutex> lock(*mu_);
+    return loads_;
+}
+
+FrameFeed open_kitti_feed(const fs::path& kitti_dir, const std::string& sequence, util::Range r, const std::string& what,
+                          int min_pairs) {
+    const KittiSequence k = open_kitti(kitti_dir, sequence);
+    auto paths = stereo_stream(k, r, what);
+    if (static_cast<int>(paths.size()) < 2 * min_pairs)
+        throw InputError(what + " gives " + std::to_string(paths.size() / 2) + " stereo pair(s) of KITTI sequence '" +
+                         k.root.string() + "'; at least " + std::to_string(min_pairs) + " are needed");
+    std::vector<std::string> names;
+    std::vector<int> pairs;
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+        names.push_back(sequence + "/" + (i % 2 ? "R" : "L") + paths[i].stem().string());
+        pairs.push_back(r.first + static_cast<int>(i / 2));
+    }
+    FrameFeed feed(std::move(names), std::move(pairs), "", [paths](int i) {
+        return load_image(paths[static_cast<std::size_t>(i)]);
+    });
+    feed.describe("KITTI sequence " + sequence + " (" + k.root.string() + "), stereo pairs " + std::to_string(r.first) +
+                  ".." + std::to_string(r.first + static_cast<int>(paths.size() / 2) - 1) + ": " +
+                  std::to_string(paths.size()) + " frames " + std::to_string(feed.width()) + "x" +
+                  std::to_string(feed.height()));
+    return feed;
+}
+
 std::vector<const Image*> pointers(const std::vector<Image>& frames) {
     std::vector<const Image*> v;
     for (const auto& f : frames) v.push_back(&f);

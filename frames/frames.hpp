@@ -6,6 +6,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +56,48 @@ struct Stream {
 /// cores). Throws InputError when fewer than `min_pairs` pairs result or frames differ in size.
 Stream load_kitti_stream(const std::filesystem::path& kitti_dir, const std::string& sequence, util::Range r,
                          const std::string& what, int threads, int min_pairs = 1);
+
+/// The frames of a stream loaded as a run reaches them: names, pair numbers and the size
+/// (from frame 0) up front, each frame's pixels when first asked for, kept until released,
+/// so a run over a long stream holds only the frames it is working on.
+class FrameFeed {
+public:
+    /// `load(k)` gives frame k (0 <= k < names.size()); it may throw InputError naming the file.
+    FrameFeed(std::vector<std::string> names, std::vector<int> pair_index, std::string description,
+              std::function<Image(int)> load);
+    /// The frames of an in-memory stream (referenced, not copied: `s` must outlive the feed).
+    static FrameFeed of(const Stream& s);
+
+    int size() const { return static_cast<int>(names_.size()); }
+    int width() const { return width_; }
+    int height() const { return height_; }
+    const std::vector<std::string>& names() const { return names_; }
+    const std::vector<int>& pair_index() const { return pair_index_; }
+    const std::string& description() const { return description_; }
+    void describe(std::string d) { description_ = std::move(d); }
+
+    /// Frame k, loaded now unless held (thread-safe). InputError when it differs in size
+    /// from frame 0; std::out_of_range outside the stream.
+    std::shared_ptr<const Image> frame(int k);
+    /// Drops the frames below k from the feed (those still in use stay alive with their users).
+    void release_below(int k);
+    /// Frames loaded so far (a frame dropped and asked for again counts twice).
+    long loads() const;
+
+private:
+    std::vector<std::string> names_;
+    std::vector<int> pair_index_;
+    std::string description_;
+    std::function<Image(int)> load_;
+    int width_ = 0, height_ = 0;
+    std::unique_ptr<std::mutex> mu_ = std::make_unique<std::mutex>();
+    std::map<int, std::shared_ptr<const Image>> held_;
+    long loads_ = 0;
+};
+/// Stereo pairs `r` of a KITTI sequence as a feed (the same checks, names and description as
+/// load_kitti_stream, each image read when reached).
+FrameFeed open_kitti_feed(const std::filesystem::path& kitti_dir, const std::string& sequence, util::Range r,
+                          const std::string& what, int min_pairs = 1);
 
 /// Which frames a command streams (the command line's frame-source flags).
 struct FrameSource {

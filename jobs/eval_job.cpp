@@ -72,12 +72,12 @@ json run_eval_shard(const json& common, const json& shard, std::size_t) {
     // after (the cycle model preloads its first columns before this part's last reads)
     const int lo = std::max(p0, a - 1), hi = std::min(p1, b + 1);
     const std::string what = fmt::format("pairs {}:{} of sequence {}", lo, hi, seq);
-    const eval::Stream s = frames::load_kitti_stream(kitti, seq, {lo, hi}, what, common.at("threads").get<int>(), 1);
+    frames::FrameFeed s = frames::open_kitti_feed(kitti, seq, {lo, hi}, what, 1);
     std::optional<eval::CycleCheckpoint> start;
     if (!shard.at("start").is_null()) start = eval::checkpoint_from_json(shard.at("start"));
     eval::PartInput in;
     in.source = eval::parse_source(common.at("source"));
-    in.stream = &s;
+    in.feed = &s;
     in.offset = 2 * (lo - p0);
     in.first = 2 * (a - p0);
     in.last = 2 * (b - p0);

@@ -79,16 +79,26 @@ std::string Mismatch::describe() const {
 RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut,
                        const std::vector<const Image*>& frames, const std::vector<std::string>& names,
                        const RunOptions& opt) {
+    HostDriver check(g, frames);   // the driver's checks of the frames' sizes
+    return run_lockstep(g, f, dut, static_cast<int>(frames.size()),
+                        [&](int k) { return std::shared_ptr<const Image>(std::shared_ptr<const Image>{}, frames.at(static_cast<std::size_t>(k))); },
+                        names, opt);
+}
+
+RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut, int count,
+                       const FeedDriver::FrameAt& frame, const std::vector<std::string>& names,
+                       const RunOptions& opt) {
     RunResult res;
-    HostDriver drv(g, frames);
+    FeedDriver feed(g, count, frame);
+    const HostDriver& drv = feed.driver();
     HarrisTop model(g, f);
     dut.reset();
     const auto layout = obs_layout(f);
     std::vector<ObsSlot> slots;
     if (opt.compare_obs) slots = obs_slots(f, dut.obs_bits());
 
-    res.frames.resize(frames.size());
-    for (std::size_t k = 0; k < frames.size(); ++k) {
+    res.frames.resize(static_cast<std::size_t>(count));
+    for (std::size_t k = 0; k < res.frames.size(); ++k) {
         res.frames[k].index = static_cast<int>(k);
         res.frames[k].source = k < names.size() ? names[k] : "";
     }
@@ -114,7 +124,7 @@ RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut
     };
 
     BusEvent ev;
-    while (drv.next(ev)) {
+    while (feed.next(ev)) {
         // a frame is complete once the next frame's body (not its preload) starts
         if (!ev.pos.tail) finish_frames_below(ev.pos.frame);
         ++res.writes;
@@ -141,6 +151,7 @@ RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut
             drv.decode(r, actual, corners);
             res.corners += static_cast<long>(corners.size());
             fs.corners += static_cast<long>(corners.size());
+            if (opt.on_read) opt.on_read(r, actual);
             if (opt.read_rows) {
                 std::ostringstream row;
                 row << res.writes << ',' << r.frame << ',' << r.x << ',' << r.y << ',' << actual;
@@ -234,7 +245,7 @@ RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut
             }
         }
     }
-    if (!res.stopped_early) finish_frames_below(static_cast<int>(frames.size()));
+    if (!res.stopped_early) finish_frames_below(count);
     res.seconds = secs(Clock::now() - t_start);
     res.verilator_seconds = secs(t_dut);
     res.model_seconds = secs(t_model);

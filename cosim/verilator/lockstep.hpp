@@ -57,6 +57,9 @@ struct RunOptions {
     std::function<void(const FrameStats&)> on_frame;   ///< progress, once per finished frame
     /// when set, every read: write,frame,x,y,value (as `harris-cosim rtl --reads`)
     std::vector<std::string>* read_rows = nullptr;
+    /// when set, called on every read with the netlist's corner word (before on_frame of
+    /// the read's frame)
+    std::function<void(const ReadPos& r, std::uint32_t value)> on_read;
 };
 
 struct RunResult {
@@ -74,6 +77,11 @@ struct RunResult {
 /// Streams `frames` (all of g's size) through `dut` (reset first) and a fresh HarrisTop.
 RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut,
                        const std::vector<const Image*>& frames, const std::vector<std::string>& names,
+                       const RunOptions& opt);
+/// The same over `count` frames asked of `frame` as the host driver reaches them (two held
+/// at a time): memory does not grow with the stream.
+RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut, int count,
+                       const FeedDriver::FrameAt& frame, const std::vector<std::string>& names,
                        const RunOptions& opt);
 
 }  // namespace hc::vl

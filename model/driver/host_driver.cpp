@@ -27,6 +27,17 @@ HostDriver::HostDriver(const Geometry& g, std::vector<const Image*> frames)
     }
 }
 
+void HostDriver::set_frame(int k, const Image* im) {
+    if (k < 0 || k >= static_cast<int>(frames_.size()))
+        throw std::invalid_argument("host driver: frame " + std::to_string(k) + " of a stream of " +
+                                    std::to_string(frames_.size()) + " frames");
+    if (im->width != g_.width || im->height != g_.height)
+        throw std::invalid_argument("frame " + std::to_string(k) + " is " + std::to_string(im->width) + "x" +
+                                    std::to_string(im->height) + " but the design is built for " +
+                                    std::to_string(g_.width) + "x" + std::to_string(g_.height));
+    frames_[static_cast<std::size_t>(k)] = im;
+}
+
 long HostDriver::total_writes() const {
     const long n = static_cast<long>(frames_.size());
     // every frame's body, minus the two preloaded columns of frames 1.., plus their tails
@@ -176,6 +187,45 @@ bool HostDriver::next(BusEvent& ev) {
         }
         return true;
     }
+}
+
+FeedDriver::FeedDriver(const Geometry& g, int frames, FrameAt frame)
+    : frame_(std::move(frame)), blank_(g.width, g.height),
+      drv_(g, std::vector<const Image*>(static_cast<std::size_t>(frames > 0 ? frames : 0), &blank_)), total_(frames) {}
+
+void FeedDriver::restore(const DriverState& s) {
+    if (started_) throw std::logic_error("feed driver: restore after the stream started");
+    drv_.restore(s);
+}
+
+void FeedDriver::need(int k) {
+    if (k >= total_ || k <= newest_) return;
+    for (auto it = held_.begin(); it != held_.end();)
+        if (it->first < k - 1) {
+            drv_.set_frame(it->first, &blank_);
+            it = held_.erase(it);
+        } else {
+            ++it;
+        }
+    std::shared_ptr<const Image> im = frame_(k);
+    drv_.set_frame(k, im.get());
+    held_.emplace_back(k, std::move(im));
+    newest_ = k;
+}
+
+bool FeedDriver::next(BusEvent& ev) {
+    if (!started_) {
+        started_ = true;
+        const DriverState s = drv_.state();
+        need(s.frame);
+        if (s.in_tail) need(s.frame + 1);
+    }
+    if (!drv_.next(ev)) return false;
+    if (!ev.pos.tail && ev.pos.frame != body_) {   // a body starts: its frame's successor is preloaded at its end
+        body_ = ev.pos.frame;
+        need(body_ + 1);
+    }
+    return true;
 }
 
 }  // namespace hc

@@ -17,6 +17,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -91,6 +93,11 @@ public:
 
     const Geometry& geometry() const { return g_; }
 
+    /// Points frame k at `im` (the geometry's size; referenced, not copied): a stream whose
+    /// frames are loaded as the driver reaches them sets each before its first write, and
+    /// the frame after it before the preload at the frame's end.
+    void set_frame(int k, const Image* im);
+
     /// Where the stream stands: the next call of next() continues from here.
     DriverState state() const;
     /// Continues from a state() of a driver over the same geometry and number of frames.
@@ -111,6 +118,32 @@ private:
     int px_[3] = {-1, -1, -1};
     int py_[3] = {-1, -1, -1};
     bool column_open_ = false;
+};
+
+/// A host driver over frames loaded as it reaches them: `frame(k)` is asked for frame k
+/// once, before its first write (the driver's frame and the one after it are held, for the
+/// preload at a frame's end; every other frame is a blank never sent), so a stream of any
+/// length holds two frames.
+class FeedDriver {
+public:
+    using FrameAt = std::function<std::shared_ptr<const Image>(int frame)>;
+    /// A stream of `frames` frames of the geometry's size. std::invalid_argument as HostDriver.
+    FeedDriver(const Geometry& g, int frames, FrameAt frame);
+    /// Continues from a HostDriver::state() (as HostDriver::restore); call before next().
+    void restore(const DriverState& s);
+    /// The next bus event, loading the frame after the driver's when its body starts.
+    bool next(BusEvent& ev);
+    const HostDriver& driver() const { return drv_; }
+
+private:
+    void need(int k);
+    FrameAt frame_;
+    Image blank_;
+    HostDriver drv_;
+    int total_;
+    int newest_ = -1, body_ = -1;
+    bool started_ = false;
+    std::vector<std::pair<int, std::shared_ptr<const Image>>> held_;
 };
 
 }  // namespace hc

@@ -349,9 +349,14 @@ long count_corners(const std::vector<std::uint8_t>& mask) {
 
 std::vector<FrameCorners> SpecModel::run(const std::vector<const Image*>& frames, std::int64_t& prev_max,
                                          int threads) const {
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    return run(frames, prev_max, arena);
+}
+
+std::vector<FrameCorners> SpecModel::run(const std::vector<const Image*>& frames, std::int64_t& prev_max,
+                                         tbb::task_arena& arena) const {
     const int n = static_cast<int>(frames.size());
     std::vector<FrameCorners> out(static_cast<size_t>(n));
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     // responses are 8 bytes a pixel: hold as many frames at a time as there are threads (at
     // most 8), not the whole stream; a run allocates these afresh, so each one costs the
     // first touch of its pages in every run

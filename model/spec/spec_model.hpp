@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
 #include "model/harris/harris_pkg.hpp"
 #include "model/image/image.hpp"
 
@@ -92,6 +94,9 @@ public:
     /// and is updated to the last frame's. threads <= 0: all cores.
     std::vector<FrameCorners> run(const std::vector<const Image*>& frames, std::int64_t& prev_max,
                                   int threads = 0) const;
+    /// The same in a caller's arena: a stream run a batch at a time creates no arena per batch.
+    std::vector<FrameCorners> run(const std::vector<const Image*>& frames, std::int64_t& prev_max,
+                                  tbb::task_arena& arena) const;
 
 private:
     Options o_;

@@ -11,8 +11,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+
+#include <fmt/format.h>
 
 #include "cluster/cluster.hpp"
 #include "eval/sequences.hpp"
@@ -72,13 +75,30 @@ cluster::RunOptions runner(cluster::RunnerKind kind) {
     return o;
 }
 
+/// The boundaries the chain check passed in merged eval data, set to 0 in `merged`.
+int take_chain_checked(json& merged) {
+    int n = 0;
+    for (auto& q : merged.at("sequences")) {
+        n += q.at("chain").at(2).get<int>();
+        q.at("chain").at(2) = 0;
+    }
+    return n;
+}
+
 /// The job run sharded through `kind` and the same evaluation in one process (one shard
-/// per sequence) give the same data.
+/// per sequence) give the same data, but for the boundaries the chain check passed: every
+/// boundary within a sequence of a cycle run, none elsewhere.
 void check_sharded_equals_single(const cluster::Manifest& sharded, const cluster::Manifest& single,
                                  cluster::RunnerKind kind, const std::string& name) {
     const fs::path dir = scratch(name);
-    const json merged = jobs::run_and_merge(dir, sharded, runner(kind));
-    const json once = cluster::run_in_process(jobs::registry(), single);
+    json merged = jobs::run_and_merge(dir, sharded, runner(kind));
+    json once = cluster::run_in_process(jobs::registry(), single);
+    if (sharded.job == "eval") {
+        const bool cycle = sharded.common.at("source") == "cycle";
+        CHECK(take_chain_checked(merged) ==
+              (cycle ? static_cast<int>(sharded.shards.size() - merged.at("sequences").size()) : 0));
+        CHECK(take_chain_checked(once) == 0);
+    }
     CHECK(merged == once);
     CHECK(jobs::merged_path(dir).string().size() > 0);
     CHECK(fs::exists(jobs::merged_path(dir)));
@@ -278,6 +298,45 @@ TEST_CASE("spec and cycle evaluations sharded within sequences merge to the sing
         const eval::Report r = jobs::eval_report(cluster::run_in_process(jobs::registry(), single));
         CHECK(r.frames.size() == 24);
         CHECK(r.sequences.size() == 2);
+    }
+}
+
+TEST_CASE("a sharded cycle run checks its chain at every boundary and refuses a checkpoint from too short a warm-up", "[cluster]") {
+    jobs::EvalJob j;
+    j.kitti = standin();
+    j.sequences = {"02"};
+    j.source = "cycle";
+    j.ablation = false;
+    j.threads = 1;
+    j.shards = 3;
+    cluster::Manifest m = jobs::eval_manifest(j);
+    REQUIRE(m.shards.size() == 3);
+    // the good chain: two boundaries checked, and the report says so
+    {
+        const eval::Report r = jobs::eval_report(cluster::run_in_process(jobs::registry(), m));
+        CHECK(std::count(r.notes.begin(), r.notes.end(),
+                         "Sharded cycle run: chain checked at 2 boundaries (at each, the cycle model's registers, the "
+                         "host driver's position and the recent writes where a part stopped equal the next part's "
+                         "starting checkpoint).") == 1);
+    }
+    // the last part from a one-frame warm-up (its find-max maximum not flushed)
+    const int p0 = m.shards[2].at("pairs").at(0), p1 = m.shards[2].at("pairs").at(1);
+    const int to_pair = m.shards[2].at("part").at(0), to = 2 * (to_pair - p0);
+    const eval::Stream s = frames::load_kitti_stream(standin(), "02", {p0, p1}, "the stand-in", 1);
+    const eval::CheckpointBase base = eval::checkpoint_base(s, Formats{}, 2 * (p1 - p0));
+    const eval::CycleCheckpoint bad = eval::warm_checkpoint(s, Formats{}, 0, 2 * (p1 - p0), base, to, 1, 0);
+    REQUIRE(eval::to_json(bad) != m.shards[2].at("start"));   // the short warm-up does give another state
+    m.shards[2]["start"] = eval::to_json(bad);
+    try {
+        cluster::run_in_process(jobs::registry(), m);
+        FAIL("the merge accepted a part started from a wrong checkpoint");
+    } catch (const SimulatorError& e) {
+        const std::string what = e.what();
+        INFO(what);
+        CHECK(what.find("chain check failed at the boundary before frame " + std::to_string(to) + " (02/L" +
+                        fmt::format("{:06}", to_pair) + ", stereo pair " + std::to_string(to_pair) + ") of sequence 02") !=
+              std::string::npos);
+        CHECK(what.find(eval::chain_digest(bad)) != std::string::npos);
     }
 }
 

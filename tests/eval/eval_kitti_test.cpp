@@ -3,10 +3,17 @@
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "eval/eval.hpp"
+#include "eval/evaluate.hpp"
 #include "frames/frames.hpp"
 
 using namespace hc;
@@ -57,7 +64,60 @@ TEST_CASE("the cycle model equals the spec model at its own thresholds on a KITT
     CHECK(diff == 0);
 }
 
+namespace {
+
+/// Digests of an eval report directory's files with what depends on the machine left out
+/// (timings, the data's path in the stream line, the command line): 16 hex digits each.
+std::map<std::string, std::string> report_digests(const std::filesystem::path& dir) {
+    std::map<std::string, std::string> d;
+    const auto lines_without = [](const std::string& text, const std::vector<std::string>& prefixes) {
+        std::istringstream in(text);
+        std::string line, out;
+        while (std::getline(in, line)) {
+            bool drop = false;
+            for (const auto& p : prefixes) drop = drop || line.rfind(p, 0) == 0;
+            if (!drop) out += line + "\n";
+        }
+        return out;
+    };
+    d["frames.csv"] = util::hex64(util::fnv1a(util::read_file(dir / "frames.csv")));
+    nlohmann::json t = nlohmann::json::parse(util::read_file(dir / "totals.json"));
+    for (const char* k : {"seconds", "stream", "command"}) t.erase(k);
+    d["totals.json"] = util::hex64(util::fnv1a(t.dump()));
+    d["summary.md"] = util::hex64(util::fnv1a(lines_without(util::read_file(dir / "summary.md"), {"Stream: ", "Command: ", "Time: "})));
+    return d;
+}
+
+/// Recorded digests of the reports of `harris-cosim eval --kitti K --sequence 01 --source S
+/// --out DIR` (all 51 stereo pairs, ablation on), computed with `eval_kitti_tests --digests
+/// DIR`: any change to what these reports say fails here.
+const std::map<std::string, std::map<std::string, std::string>> kBefore = {
+    {"spec", {{"frames.csv", "29613e420b9f7ec8"}, {"totals.json", "37e75de1f2594918"}, {"summary.md", "692de62f1c34b7b9"}}},
+    {"cycle", {{"frames.csv", "800bbdc496752730"}, {"totals.json", "89da03378457f1c6"}, {"summary.md", "fbc9c81308ec31d4"}}},
+};
+
+}  // namespace
+
+TEST_CASE("the spec and cycle reports of all of KITTI 01 match their recorded digests", "[eval][kitti][slow][reports]") {
+    for (const char* source : {"spec", "cycle"}) {
+        INFO(source << " source");
+        eval::Request r;
+        r.source = eval::parse_source(source);
+        r.kitti = g_kitti;
+        r.sequence = "01";
+        r.out = std::filesystem::temp_directory_path() / ("hc-eval-kitti-reports-" + std::to_string(::getpid())) / source;
+        r.command = "eval_kitti_tests";
+        eval::evaluate(r);
+        CHECK(report_digests(r.out) == kBefore.at(source));
+        std::filesystem::remove_all(r.out);
+    }
+}
+
 int main(int argc, char** argv) {
+    if (argc == 3 && std::string(argv[1]) == "--digests") {
+        for (const auto& [file, digest] : report_digests(argv[2])) std::printf("%s %s\n", file.c_str(), digest.c_str());
+        return 0;
+    }
     const auto d = frames::data_dir("");
     if (!d || !std::filesystem::is_directory(*d / "kitti/sequences/01/image_0")) {
         std::printf("SKIPPED: no KITTI sequence 01 (set HARRIS_COSIM_DATA to a directory holding "

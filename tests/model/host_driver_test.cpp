@@ -67,3 +67,32 @@ TEST_CASE("a frame of the wrong size is refused with its index and sizes", "[mod
     CHECK_THROWS_WITH(HostDriver(Geometry{20, 16}, {&a, &b}),
                       Catch::Contains("frame 1 is 22x16") && Catch::Contains("20x16"));
 }
+
+TEST_CASE("the feed driver sends the host driver's stream, asking for each frame once and holding two", "[model]") {
+    const Geometry g{64, 36};
+    std::vector<Image> frames;
+    std::vector<const Image*> ptrs;
+    for (int k = 0; k < 5; ++k) frames.push_back(make_pattern(Pattern::blocks, 64, 36, k));
+    for (const Image& f : frames) ptrs.push_back(&f);
+    HostDriver host(g, ptrs);
+    std::vector<int> asked;
+    int live = 0, most_live = 0;
+    FeedDriver feed(g, 5, [&](int k) {
+        asked.push_back(k);
+        most_live = std::max(most_live, ++live);
+        return std::shared_ptr<const Image>(&frames[static_cast<std::size_t>(k)], [&](const Image*) { --live; });
+    });
+    BusEvent a, b;
+    long events = 0, same = 0;
+    while (host.next(a)) {
+        REQUIRE(feed.next(b));
+        ++events;
+        same += a.data == b.data && a.pos.frame == b.pos.frame && a.pos.j == b.pos.j && a.pos.tail == b.pos.tail &&
+                a.read.has_value() == b.read.has_value();
+    }
+    CHECK_FALSE(feed.next(b));
+    CHECK(events == host.total_writes());
+    CHECK(same == events);
+    CHECK(asked == std::vector<int>{0, 1, 2, 3, 4});
+    CHECK(most_live == 2);
+}

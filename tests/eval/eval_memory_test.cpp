@@ -1,0 +1,138 @@
+// eval_memory_test.cpp: peak resident memory of every corner source over long generated
+// streams. `eval_memory_tests --run SOURCE W H FRAMES ABLATION` evaluates FRAMES generated
+// frames of WxH (the `blocks` pattern, new content every frame) through SOURCE in this
+// process and exits; each test case runs that in a child process and reads the child's
+// peak resident set (wait4's rusage), so one run's memory is measured alone.
+//
+// The bound (512 MB at KITTI's 1241x376) is shown on 2,000 frames at full size for the spec
+// source (about a minute). The cycle model and the netlist take about 0.1 s and 1 s of CPU
+// per full-size frame, so for them non-growth is shown where it costs little: at full size
+// the peak of a run three times longer equals the shorter one's within 16 MB (the retained
+// write positions and thresholds once cost about 21 MB a frame), and for the cycle source a
+// stream of 2,000 small frames stays within 8 MB of a 100-frame one.
+#define CATCH_CONFIG_RUNNER
+#include <catch2/catch.hpp>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "cosim/verilator/netlist.hpp"
+#include "eval/sequences.hpp"
+#include "frames/frames.hpp"
+
+using namespace hc;
+
+namespace {
+
+/// Evaluates a generated stream through one source (the child's work).
+int run_child(const std::string& source, int w, int h, int n, bool ablation) {
+    std::vector<std::string> names;
+    std::vector<int> pairs;
+    for (int k = 0; k < n; ++k) {
+        names.push_back(fmt::format("gen/{}{:06}", k % 2 ? 'R' : 'L', k / 2));
+        pairs.push_back(k / 2);
+    }
+    frames::FrameFeed feed(names, pairs, "generated", [w, h](int k) { return make_pattern(Pattern::blocks, w, h, k); });
+    eval::PartInput in;
+    in.source = eval::parse_source(source);
+    in.feed = &feed;
+    in.first = 0;
+    in.last = n;
+    in.frames_total = n;
+    in.first_pair = 0;
+    in.last_pair = (n - 1) / 2;
+    in.ablation = ablation;
+    in.threads = 0;
+    const eval::Part p = eval::evaluate_part(in);
+    if (static_cast<int>(p.rows.size()) != n) return 3;
+    // every frame was loaded once: none is held for the whole run and reloaded
+    if (feed.loads() != n) return 4;
+    std::printf("%zu rows, %ld scored\n", p.rows.size(), static_cast<long>(p.rows.size()));
+    return 0;
+}
+
+std::string g_self;
+
+/// Peak resident memory (MB) of a child evaluating the stream; REQUIREs a clean exit.
+double peak_mb(const std::string& source, int w, int h, int n, bool ablation) {
+    const std::string ws = std::to_string(w), hs = std::to_string(h), ns = std::to_string(n);
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        ::execl(g_self.c_str(), g_self.c_str(), "--run", source.c_str(), ws.c_str(), hs.c_str(), ns.c_str(),
+                ablation ? "1" : "0", static_cast<char*>(nullptr));
+        std::_Exit(127);
+    }
+    int status = 0;
+    struct rusage ru {};
+    REQUIRE(::wait4(pid, &status, 0, &ru) == pid);
+    INFO(source << " over " << n << " frames of " << w << "x" << h << ": exit status " << status);
+    REQUIRE(WIFEXITED(status));
+    REQUIRE(WEXITSTATUS(status) == 0);
+    const double mb = static_cast<double>(ru.ru_maxrss) / 1024.0;   // ru_maxrss is in KB on Linux
+    std::printf("peak memory: %s source, %d frames of %dx%d%s: %.1f MB\n", source.c_str(), n, w, h,
+                ablation ? " with ablation" : "", mb);
+    return mb;
+}
+
+constexpr int kW = 1241, kH = 376;   // KITTI's frame size
+constexpr double kBoundMb = 512;
+
+}  // namespace
+
+TEST_CASE("the spec source stays under 512 MB over 2,000 full-size frames", "[memory]") {
+    const double mb = peak_mb("spec", kW, kH, 2000, false);
+    CHECK(mb < kBoundMb);
+    // the ablation's eight more spec runs change the work per frame, not what is held
+    const double abl = peak_mb("spec", kW, kH, 40, true);
+    CHECK(abl < kBoundMb);
+}
+
+TEST_CASE("the cycle source's peak memory does not grow with the stream", "[memory]") {
+    const double short_run = peak_mb("cycle", kW, kH, 8, true);
+    const double long_run = peak_mb("cycle", kW, kH, 24, true);
+    CHECK(short_run < kBoundMb);
+    CHECK(long_run < kBoundMb);
+    // retaining each frame's writes and thresholds cost about 21 MB a frame
+    CHECK(long_run < short_run + 16);
+    const double small_short = peak_mb("cycle", 96, 40, 100, true);
+    const double small_long = peak_mb("cycle", 96, 40, 2000, true);
+    CHECK(small_long < small_short + 8);
+}
+
+TEST_CASE("the rtl source's peak memory does not grow with the stream", "[memory][rtl]") {
+    std::string why;
+    if (!vl::toolchain_available(&why)) {
+        WARN("skipped: " << why);
+        return;
+    }
+    // the KITTI-size netlist (the one `eval --source rtl` on KITTI builds and caches)
+    const double short_run = peak_mb("rtl", kW, kH, 4, false);
+    const double long_run = peak_mb("rtl", kW, kH, 12, false);
+    CHECK(short_run < kBoundMb);
+    CHECK(long_run < kBoundMb);
+    CHECK(long_run < short_run + 16);
+}
+
+int main(int argc, char** argv) {
+    if (argc == 7 && std::strcmp(argv[1], "--run") == 0) {
+        try {
+            return run_child(argv[2], std::stoi(argv[3]), std::stoi(argv[4]), std::stoi(argv[5]), argv[6][0] == '1');
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "eval_memory_tests --run: %s\n", e.what());
+            return 2;
+        }
+    }
+    g_self = "/proc/self/exe";
+    char buf[4096];
+    const ssize_t len = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
+    if (len > 0) g_self.assign(buf, static_cast<std::size_t>(len));
+    return Catch::Session().run(argc, argv);
+}
