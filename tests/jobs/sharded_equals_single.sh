@@ -24,7 +24,7 @@ both() {   # both ARGS...: the single-process run into single/, the sharded one 
   mv out sharded
   grep -q "^\[shards\] $shards/$shards done" sharded.log || fail "the sharded run did not report $shards/$shards shards done"
 }
-untimed_json() { jq -S 'del(.. | objects | .seconds?, .synth_seconds?, .eval_seconds?, .overflow_seconds?, .seconds_interval?, .seconds_search?, .cached?, .synthesised?, .synth_cached?, .synth_seconds_sum?)' "$1"; }
+untimed_json() { jq -S 'del(.. | objects | .seconds?, .synth_seconds?, .eval_seconds?, .overflow_seconds?, .seconds_interval?, .seconds_search?, .seconds_solver?, .solver_seconds?, .cached?, .synthesised?, .synth_cached?, .synth_seconds_sum?)' "$1"; }
 
 case "$kind" in
 slam)
