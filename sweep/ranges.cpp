@@ -564,7 +564,9 @@ SolverAnswer ask_solver(const Formats& f, Reg reg, int pixel_max, const std::str
         return a;
     }
     if (first != "sat") {
-        a.why = first == "timeout" || first == "unknown" ? fmt::format("timeout after {} s", secs) : "z3: " + first;
+        a.why = first == "timeout"   ? fmt::format("timeout after {} s", secs)
+                : first == "unknown" ? fmt::format("unknown (z3 gave up within {} s)", secs)
+                                     : "z3: " + first;
         return a;
     }
     // ((exact #x...) (p_0_0 #x..) ...)

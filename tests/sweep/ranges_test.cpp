@@ -302,4 +302,11 @@ TEST_CASE("bf_sum_w=19: the solver settles the registers the search left open, w
     // the maximum follows the response
     CHECK(r.at(Reg::maximum).verdict == r.at(Reg::response).verdict);
     CHECK(r.at(Reg::block_a).verdict == Verdict::wraps);
+    // the solver's findings survive the report's JSON (the sweep's cache)
+    const RangeReport back = range_report_from_json(range_report_to_json(r));
+    REQUIRE(back.at(Reg::m_b).solver_range);
+    CHECK(*back.at(Reg::m_b).solver_range == *mb.solver_range);
+    CHECK(back.at(Reg::block_b).solver == b.solver);
+    CHECK(back.at(Reg::block_b).verdict == Verdict::proven);
+    CHECK(back.summary() == r.summary());
 }
