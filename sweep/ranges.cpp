@@ -550,7 +550,7 @@ SolverAnswer ask_solver(const Formats& f, Reg reg, int pixel_max, const std::str
     const fs::path in = dir.path() / "query.smt2", out = dir.path() / "answer.txt";
     util::write_file_atomic(in, text);
     SolverAnswer a;
-    const int secs = std::max(1, static_cast<int>(std::ceil(seconds)));
+    const int secs = std::max(1, static_cast<int>(std::floor(seconds)));   // never past the budget (but one second at least)
     try {
         util::run_process({"z3", "-smt2", fmt::format("-T:{}", secs), in.string()}, {.log = dir.path() / "log", .stdout_file = out});
     } catch (const SimulatorError& e) {
