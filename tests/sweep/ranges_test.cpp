@@ -261,7 +261,7 @@ TEST_CASE("the solver's exact extremes of b = ix*iy equal the extremes over ever
     CHECK(lo.reached == eb.lo);
 }
 
-TEST_CASE("the solver finds a window that wraps m_b one bit short; the model and the overflow audit agree",
+TEST_CASE("the solver finds a window that wraps m_b one bit short, and the model and the overflow audit agree",
           "[model][sweep][ranges][solver]") {
     Formats f;
     f.m_prod_w = 20;   // ix*iy reaches 765^2 = 585,225 > 2^19
