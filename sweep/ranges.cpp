@@ -4,6 +4,8 @@
 #include <cctype>
 #include <chrono>
 #include <functional>
+#include <cmath>
+#include <map>
 #include <random>
 
 #include <fmt/format.h>
@@ -27,7 +29,7 @@ namespace hc::sweep {
 namespace {
 
 // Bump when the analysis (bounds, search, verdicts) changes: cached reports then miss.
-constexpr const char* kRangesVersion = "hc-ranges-1 interval + witness search";
+constexpr const char* kRangesVersion = "hc-ranges-2 interval + witness search + z3";
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -39,6 +41,7 @@ constexpr int idx(Reg r) { return static_cast<int>(r); }
 /// (the register as the next stage sees it: its whole range when it may wrap).
 struct IntervalPass {
     RangeReport& rep;
+    const Tightened* tight = nullptr;
     RangeWord stage(Reg r, const std::function<RangeWord()>& fn) {
         RangeLog ideal;
         ideal.keep_ideal = true;
@@ -58,6 +61,12 @@ struct IntervalPass {
         {
             RangeScope scope(hw);
             out = fn();
+        }
+        // a proven register with an exact range proven tighter: the next stage sees that
+        if (tight && (*tight)[idx(r)] && rr.bound_fits) {
+            const Interval t = *(*tight)[idx(r)];
+            out.ideal = {std::max(out.ideal.lo, t.lo), std::min(out.ideal.hi, t.hi)};
+            rr.bound = out.ideal;
         }
         return RangeWord::materialised(out);
     }
@@ -122,13 +131,14 @@ std::string RangeReport::summary() const {
     std::string s;
     for (const auto& r : regs)
         if (r.verdict == Verdict::open)
-            s += fmt::format("{}{}: bound [{}, {}] in [{}, {}]{}", s.empty() ? "" : "; ", kRegNames[idx(r.reg)], r.bound.lo,
+            s += fmt::format("{}{}: bound [{}, {}] in [{}, {}]{}{}", s.empty() ? "" : "; ", kRegNames[idx(r.reg)], r.bound.lo,
                              r.bound.hi, r.held.lo, r.held.hi,
-                             r.searched ? fmt::format(", reached [{}, {}]", r.reached.lo, r.reached.hi) : "");
+                             r.searched ? fmt::format(", reached [{}, {}]", r.reached.lo, r.reached.hi) : "",
+                             r.solver_asked ? ", solver: " + r.solver : "");
     return "open (" + s + ")";
 }
 
-RangeReport interval_ranges(const Formats& f, int pixel_max) {
+RangeReport interval_ranges(const Formats& f, int pixel_max, const Tightened* tight) {
     f.validate();
     const auto t0 = Clock::now();
     RangeReport rep;
@@ -136,7 +146,7 @@ RangeReport interval_ranges(const Formats& f, int pixel_max) {
     rep.pixel_max = pixel_max;
     rep.regs.resize(kRegCount);
     for (int i = 0; i < kRegCount; ++i) rep.regs[i].reg = static_cast<Reg>(i);
-    IntervalPass pass{rep};
+    IntervalPass pass{rep, tight};
     using R = RangeWord;
     std::array<std::array<Interval, 3>, 3> px;
     for (auto& row : px) row.fill(Interval{0, pixel_max});
@@ -246,9 +256,11 @@ std::string witness_stem(const std::string& config, Reg r) {
 }
 
 std::string ranges_markdown(const std::string& config, const RangeReport& r) {
-    std::string s = fmt::format("### {}: {}\n\nInterval bound {:.3f} ms, witness search {:.3f} s{}; pixels in [0, {}].\n\n", config,
-                                r.summary(), 1e3 * r.seconds_interval, r.seconds_search, r.cached ? " (cached)" : "", r.pixel_max);
-    s += "| register | width | holds | bound (any input) | verdict | search reached | witness |\n|---|---:|---|---|---|---|---|\n";
+    std::string s = fmt::format("### {}: {}\n\nInterval bound {:.3f} ms, witness search {:.3f} s, solver {:.3f} s{}; pixels in [0, {}].\n\n",
+                                config, r.summary(), 1e3 * r.seconds_interval, r.seconds_search, r.seconds_solver,
+                                r.cached ? " (cached)" : "", r.pixel_max);
+    s += "| register | width | holds | bound (any input) | verdict | search reached | solver | exact extreme | witness |\n"
+         "|---|---:|---|---|---|---|---|---|---|\n";
     for (const auto& x : r.regs) {
         std::string wit;
         if (x.verdict == Verdict::wraps) {
@@ -257,9 +269,16 @@ std::string ranges_markdown(const std::string& config, const RangeReport& r) {
                 for (size_t j = 0; j < row.size(); ++j) wit += fmt::format("{}{}", j ? " " : "", row[j]);
             }
         }
-        s += fmt::format("| {} | {} | [{}, {}] | [{}, {}] | {} | {} | {} |\n", kRegNames[idx(x.reg)], x.width, x.held.lo, x.held.hi,
-                         x.bound.lo, x.bound.hi, x.verdict == Verdict::wraps ? "**wraps**" : verdict_name(x.verdict),
-                         x.searched ? fmt::format("[{}, {}]", x.reached.lo, x.reached.hi) : "-", wit);
+        std::string extreme = "-";
+        if (x.extreme_side) {
+            const char* what = x.extreme_side > 0 ? "max" : "min";
+            extreme = x.extreme.lo == x.extreme.hi ? fmt::format("{} = {}", what, x.extreme.lo)
+                                                   : fmt::format("{} in [{}, {}]", what, x.extreme.lo, x.extreme.hi);
+        }
+        s += fmt::format("| {} | {} | [{}, {}] | [{}, {}] | {} | {} | {} | {} | {} |\n", kRegNames[idx(x.reg)], x.width, x.held.lo,
+                         x.held.hi, x.bound.lo, x.bound.hi, x.verdict == Verdict::wraps ? "**wraps**" : verdict_name(x.verdict),
+                         x.searched ? fmt::format("[{}, {}]", x.reached.lo, x.reached.hi) : "-",
+                         x.solver_asked ? fmt::format("{} ({:.1f} s)", x.solver, x.solver_seconds) : "-", extreme, wit);
     }
     return s;
 }
@@ -369,7 +388,309 @@ void search_witness(RegisterRange& rr, const Formats& f, const RangeOptions& o, 
     }
 }
 
+// ---- the solver: the exact question as an SMT-LIB bit-vector query ----------------------
+
+/// The definitions of one query, in the order they are made.
+struct SmtQuery {
+    std::string text;
+    int next = 0;
+};
+thread_local SmtQuery* smt_query = nullptr;
+
+/// A hardware word as an SMT-LIB bit-vector term with numeric_std's semantics (the number
+/// type that runs the shared stage functions to write the query): each operation defines a
+/// new term in the query in scope (its bits; `s` says how they are read).
+struct SmtWord {
+    std::string e;
+    int w = 1;
+    bool s = false;
+    static SmtWord def(const std::string& expr, int width, bool is_signed) {
+        SmtQuery& q = *smt_query;
+        std::string name = fmt::format("t{}", q.next++);
+        q.text += fmt::format("(define-fun {} () (_ BitVec {}) {})\n", name, width, expr);
+        return {name, width, is_signed};
+    }
+    /// An 8-bit pixel variable (already unsigned 8 bits).
+    static SmtWord uns(const SmtWord& p, int width) {
+        if (width != p.w) throw std::logic_error("SmtWord::uns: a pixel is 8 bits");
+        return p;
+    }
+    static SmtWord constant(std::int64_t v, int width) {
+        const std::uint64_t bits = width >= 64 ? static_cast<std::uint64_t>(v)
+                                               : static_cast<std::uint64_t>(v) & ((std::uint64_t{1} << width) - 1);
+        return def(fmt::format("(_ bv{} {})", bits, width), width, true);
+    }
+    int width() const { return w; }
+};
+
+SmtWord extend(const SmtWord& x, int n) {
+    if (n == x.w) return x;
+    return SmtWord::def(fmt::format("((_ {}_extend {}) {})", x.s ? "sign" : "zero", n - x.w, x.e), n, x.s);
+}
+SmtWord resize(const SmtWord& x, int n) {
+    if (n >= x.w) return extend(x, n);
+    if (!x.s) return SmtWord::def(fmt::format("((_ extract {} 0) {})", n - 1, x.e), n, false);
+    if (n == 1) return SmtWord::def(fmt::format("((_ extract {0} {0}) {1})", x.w - 1, x.e), 1, true);
+    // numeric_std's signed shrink: the sign bit and the n-1 LSBs
+    return SmtWord::def(fmt::format("(concat ((_ extract {0} {0}) {1}) ((_ extract {2} 0) {1}))", x.w - 1, x.e, n - 2), n, true);
+}
+SmtWord slice(const SmtWord& x, int hi, int lo) {
+    if (lo == 0 && hi == x.w - 1) return x;
+    return SmtWord::def(fmt::format("((_ extract {} {}) {})", hi, lo, x.e), hi - lo + 1, x.s);
+}
+SmtWord as_signed(const SmtWord& x) { return {x.e, x.w, true}; }
+SmtWord binary(const char* op, const SmtWord& a, const SmtWord& b, int n) {
+    const SmtWord x = resize(a, n), y = resize(b, n);
+    return SmtWord::def(fmt::format("({} {} {})", op, x.e, y.e), n, a.s);
+}
+SmtWord operator+(const SmtWord& a, const SmtWord& b) { return binary("bvadd", a, b, std::max(a.w, b.w)); }
+SmtWord operator-(const SmtWord& a, const SmtWord& b) { return binary("bvsub", a, b, std::max(a.w, b.w)); }
+SmtWord operator-(const SmtWord& a) { return SmtWord::def(fmt::format("(bvneg {})", a.e), a.w, true); }
+SmtWord operator*(const SmtWord& a, const SmtWord& b) { return binary("bvmul", a, b, a.w + b.w); }   // full precision
+
+/// 64-bit integers (every exact value fits): the register's exact value beside its hardware value.
+constexpr int kExactW = 64;
+SmtWord wide(const SmtWord& x) { return extend(x, kExactW); }
+SmtWord shr(const SmtWord& x, int n) {
+    return n == 0 ? x : SmtWord::def(fmt::format("(bvashr {} (_ bv{} {}))", x.e, n, kExactW), kExactW, true);
+}
+
+/// The exact value and the hardware value of every register, as 64-bit terms of the 25
+/// pixel variables p_<row>_<col> (Sobel and M: at the window's top-left 3x3 position; the
+/// rest at its centre), defined by the stage functions on SmtWord as window_values does on Word.
+struct SmtRegister {
+    SmtWord exact, hw;
+};
+std::array<SmtRegister, kRegCount> smt_registers(const Formats& f) {
+    std::array<SmtRegister, kRegCount> v;
+    std::array<std::array<SmtWord, 5>, 5> px;
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j) px[i][j] = {fmt::format("p_{}_{}", i, j), 8, false};
+    std::array<std::array<SmtWord, 3>, 3> A, B, C;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            std::array<std::array<SmtWord, 3>, 3> nb;
+            for (int di = 0; di < 3; ++di)
+                for (int dj = 0; dj < 3; ++dj) nb[di][dj] = px[i + di][j + dj];
+            const SmtWord ix = sobel_x<SmtWord>(nb, f), iy = sobel_y<SmtWord>(nb, f);
+            const MProductsT<SmtWord> m = m_products(ix, iy, f);
+            if (i == 0 && j == 0) {
+                const auto p = [&](int r, int c) { return wide(nb[r][c]); };
+                const SmtWord two = SmtWord::constant(2, kExactW);
+                const SmtWord gx = (p(0, 2) + two * p(1, 2) + p(2, 2)) - (p(0, 0) + two * p(1, 0) + p(2, 0));
+                const SmtWord gy = (p(0, 0) + two * p(0, 1) + p(0, 2)) - (p(2, 0) + two * p(2, 1) + p(2, 2));
+                v[idx(Reg::sobel_x)] = {resize(gx, kExactW), wide(ix)};
+                v[idx(Reg::sobel_y)] = {resize(gy, kExactW), wide(iy)};
+                v[idx(Reg::m_a)] = {shr(resize(wide(ix) * wide(ix), kExactW), f.m_drop), wide(m.a)};
+                v[idx(Reg::m_b)] = {shr(resize(wide(ix) * wide(iy), kExactW), f.m_drop), wide(m.b)};
+                v[idx(Reg::m_c)] = {shr(resize(wide(iy) * wide(iy), kExactW), f.m_drop), wide(m.c)};
+            }
+            A[i][j] = m.a;
+            B[i][j] = m.b;
+            C[i][j] = m.c;
+        }
+    const auto block = [&](Reg r, const std::array<std::array<SmtWord, 3>, 3>& M) {
+        SmtWord sum = wide(M[0][0]);
+        for (int k = 1; k < 9; ++k) sum = sum + wide(M[k / 3][k % 3]);
+        const SmtWord out = block_filter(M, f);
+        v[idx(r)] = {shr(sum, f.bf_drop), wide(out)};
+        return out;
+    };
+    const SmtWord a = block(Reg::block_a, A), b = block(Reg::block_b, B), c = block(Reg::block_c, C);
+    v[idx(Reg::trace)] = {wide(a) + wide(c), wide(harris_trace(a, c, f))};
+    const ResponseTermsT<SmtWord> t = harris_response_terms(a, b, c, f);
+    const SmtWord tr = wide(a) + wide(c), tr2 = resize(tr * tr, kExactW);
+    v[idx(Reg::k_term)] = {shr(tr2, f.k_shift1) + shr(tr2, f.k_shift2), wide(t.ktr2)};
+    v[idx(Reg::det)] = {wide(t.ac) - wide(t.bb), wide(resize(t.ac, f.resp_w)) - wide(resize(t.bb, f.resp_w))};
+    const SmtWord r = harris_response(t, f);
+    v[idx(Reg::response)] = {wide(t.ac) - wide(t.bb) - wide(t.ktr2), wide(r)};
+    v[idx(Reg::maximum)] = v[idx(Reg::response)];
+    v[idx(Reg::threshold)] = {shr(wide(r), f.thr_shift1) + shr(wide(r), f.thr_shift2), wide(threshold_value(r, f))};
+    return v;
+}
+
+std::string bv64(std::int64_t v) { return fmt::format("(_ bv{} 64)", static_cast<std::uint64_t>(v)); }
+
+enum class Sat { sat, unsat, unknown };
+struct SolverAnswer {
+    Sat sat = Sat::unknown;
+    Window5 window{};
+    std::int64_t exact = 0;   ///< sat: the register's exact value at the window
+    std::string why;          ///< unknown: "timeout", "no solver", the solver's message
+};
+
+std::int64_t parse_bv(const std::string& s) {
+    std::uint64_t v = 0;
+    if (s.rfind("#x", 0) == 0) v = std::stoull(s.substr(2), nullptr, 16);
+    else if (s.rfind("#b", 0) == 0) v = std::stoull(s.substr(2), nullptr, 2);
+    else throw std::runtime_error("solver: unexpected value '" + s + "'");
+    return static_cast<std::int64_t>(v);
+}
+
+/// Asks z3 whether a window of pixels in [0, pixel_max] satisfies `goal` (an SMT-LIB
+/// condition on the terms `exact` and `hw` of register `reg`), within `seconds`.
+SolverAnswer ask_solver(const Formats& f, Reg reg, int pixel_max, const std::string& goal, double seconds) {
+    SmtQuery q;
+    smt_query = &q;
+    const std::array<SmtRegister, kRegCount> regs = smt_registers(f);
+    smt_query = nullptr;
+    std::string text = "(set-logic QF_BV)\n";
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j)
+            text += fmt::format("(declare-const p_{0}_{1} (_ BitVec 8))\n(assert (bvule p_{0}_{1} (_ bv{2} 8)))\n", i, j, pixel_max);
+    text += q.text;
+    const SmtRegister& x = regs[idx(reg)];
+    text += fmt::format("(define-fun exact () (_ BitVec 64) {})\n(define-fun hw () (_ BitVec 64) {})\n(assert {})\n(check-sat)\n",
+                        x.exact.e, x.hw.e, goal);
+    text += "(get-value (exact";
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j) text += fmt::format(" p_{}_{}", i, j);
+    text += "))\n";
+    const util::ScratchDir dir;
+    const fs::path in = dir.path() / "query.smt2", out = dir.path() / "answer.txt";
+    util::write_file_atomic(in, text);
+    SolverAnswer a;
+    const int secs = std::max(1, static_cast<int>(std::floor(seconds)));   // never past the budget (but one second at least)
+    try {
+        util::run_process({"z3", "-smt2", fmt::format("-T:{}", secs), in.string()}, {.log = dir.path() / "log", .stdout_file = out});
+    } catch (const SimulatorError& e) {
+        a.why = std::string("no solver: ") + e.what();
+        return a;
+    }
+    const std::string ans = fs::exists(out) ? util::read_file(out) : "";
+    const std::string first = ans.substr(0, ans.find('\n'));
+    if (first == "unsat") {
+        a.sat = Sat::unsat;
+        return a;
+    }
+    if (first != "sat") {
+        a.why = first == "timeout"   ? fmt::format("timeout after {} s", secs)
+                : first == "unknown" ? fmt::format("unknown (z3 gave up within {} s)", secs)
+                                     : "z3: " + first;
+        return a;
+    }
+    // ((exact #x...) (p_0_0 #x..) ...)
+    std::map<std::string, std::string> val;
+    for (size_t k = ans.find('(', first.size()); k != std::string::npos; k = ans.find('(', k + 1)) {
+        const size_t sp = ans.find(' ', k), close = ans.find(')', k);
+        if (sp == std::string::npos || close == std::string::npos || sp > close) continue;
+        val[ans.substr(k + 1, sp - k - 1)] = ans.substr(sp + 1, close - sp - 1);
+    }
+    if (!val.count("exact")) throw std::runtime_error("z3 said sat without a model: " + ans.substr(0, 200));
+    a.sat = Sat::sat;
+    a.exact = parse_bv(val.at("exact"));
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j) a.window[i][j] = static_cast<int>(parse_bv(val.at(fmt::format("p_{}_{}", i, j))));
+    return a;
+}
+
+/// The register's hardware value differs from its exact value at the window, in the model.
+bool wraps_in_model(const Window5& w, const Formats& f, Reg r) {
+    for (bool maximise : {true, false}) {
+        const WindowValue x = window_values(w, f, maximise)[idx(r)];
+        if (x.exact != x.narrowed) return true;
+    }
+    return false;
+}
+
+/// The solver on one open register: can the exact value differ from the hardware value?
+/// (solve_wrap), then (solve_extreme) the exact extreme on the side of the bound that leaves the register, by a binary
+/// search of `exists window: exact > T` (or < T), all within `budget` seconds.
+SolverVerdict wrap_question(const Formats& f, Reg r, const RangeOptions& o, double seconds) {
+    const SolverAnswer w = ask_solver(f, r, o.pixel_max, "(distinct exact hw)", seconds);
+    SolverVerdict v;
+    v.why = w.why;
+    if (w.sat == Sat::unsat) v.verdict = Verdict::proven;
+    if (w.sat == Sat::sat) {
+        if (!wraps_in_model(w.window, f, r))
+            throw std::logic_error(fmt::format("solver's window for {} does not wrap in the model", kRegNames[idx(r)]));
+        v.verdict = Verdict::wraps;
+        v.window = w.window;
+        v.exact = w.exact;
+    }
+    return v;
+}
+
+void solve_wrap(RegisterRange& rr, const Formats& f, const RangeOptions& o, double budget) {
+    const auto t0 = Clock::now();
+    rr.solver_asked = true;
+    const SolverVerdict w = wrap_question(f, rr.reg, o, std::min(o.query_seconds, budget));
+    rr.verdict = w.verdict;
+    if (w.verdict == Verdict::proven) rr.solver = "unsat: cannot wrap";
+    if (w.verdict == Verdict::wraps) {
+        rr.witness = w.window;
+        rr.solver = "sat: a window wraps it";
+        rr.solver_reached = w.exact;
+    }
+    if (w.verdict == Verdict::open) rr.solver = w.why;
+    rr.solver_seconds = since(t0);
+}
+
+/// The exact extreme of a register's value on one side (hi: its maximum), by a binary search
+/// between `known` (a value some window reaches) and `limit` (a value proven not exceeded):
+/// returns them as far as the solver got within `budget` (equal: the extreme is exact).
+std::pair<std::int64_t, std::int64_t> bracket_extreme(const Formats& f, Reg r, const RangeOptions& o, bool hi, std::int64_t known,
+                                                      std::int64_t limit, double budget) {
+    const auto t0 = Clock::now();
+    const auto left = [&] { return budget - since(t0); };
+    while (known != limit && left() > 1) {
+        const std::int64_t mid = known + (limit - known) / 2;   // hi: known <= mid < limit; lo: limit < mid <= known
+        const std::string goal = hi ? fmt::format("(bvsgt exact {})", bv64(mid)) : fmt::format("(bvslt exact {})", bv64(mid));
+        const SolverAnswer a = ask_solver(f, r, o.pixel_max, goal, std::min(o.query_seconds, left()));
+        if (a.sat == Sat::sat) known = a.exact;
+        else if (a.sat == Sat::unsat) limit = mid;
+        else break;
+        if (hi ? known > limit : known < limit) throw std::logic_error("solver: a model beyond a proven bound");
+    }
+    return {known, limit};
+}
+
+/// The exact extreme of an open register on the side of its bound that leaves it.
+void solve_extreme(RegisterRange& rr, const Formats& f, const RangeOptions& o, double budget) {
+    const auto t0 = Clock::now();
+    const bool hi = rr.bound.hi > rr.held.hi || rr.bound.lo >= rr.held.lo;
+    std::int64_t known = hi ? rr.bound.lo : rr.bound.hi;
+    if (rr.searched) known = hi ? std::max(known, rr.reached.hi) : std::min(known, rr.reached.lo);
+    if (rr.solver_reached) known = hi ? std::max(known, *rr.solver_reached) : std::min(known, *rr.solver_reached);
+    if (!rr.searched && !rr.solver_reached) return;   // no value known to be reached
+    const auto [k, l] = bracket_extreme(f, rr.reg, o, hi, known, hi ? rr.bound.hi : rr.bound.lo, budget);
+    rr.extreme_side = hi ? 1 : -1;
+    rr.extreme = hi ? Interval{k, l} : Interval{l, k};
+    rr.solver_seconds += since(t0);
+}
+
+/// The exact range of a proven register whose interval bound may be loose (both extremes by
+/// the solver, from the values the witness search reaches): solver_range holds what is proven.
+void solve_range(RegisterRange& rr, const Formats& f, const RangeOptions& o, double budget) {
+    const auto t0 = Clock::now();
+    // start from what the witness search reaches on each side (at most a second each)
+    RangeOptions quick = o;
+    quick.search_seconds = std::min(1.0, o.search_seconds);
+    RegisterRange up = rr, down = rr;
+    search_witness(up, f, quick, true);
+    search_witness(down, f, quick, false);
+    const auto [khi, lhi] = bracket_extreme(f, rr.reg, o, true, up.reached.hi, rr.bound.hi, (budget - since(t0)) / 2);
+    const auto [klo, llo] = bracket_extreme(f, rr.reg, o, false, down.reached.lo, rr.bound.lo, budget - since(t0));
+    rr.solver_asked = true;
+    rr.solver_seconds = since(t0);
+    if (Interval{llo, lhi} == rr.bound) {
+        rr.solver = klo == llo && khi == lhi ? "the interval bound is exact (a window reaches both ends)" : "no tighter range proven";
+        return;
+    }
+    rr.solver_range = Interval{llo, lhi};
+    rr.solver_range_reached = klo == llo && khi == lhi;
+    rr.solver = fmt::format("exact value in [{}, {}]{}", llo, lhi, rr.solver_range_reached ? " (both ends reached)" : "");
+}
+
 }  // namespace
+
+SolverVerdict solver_wrap(const Formats& f, Reg r, const RangeOptions& o) { return wrap_question(f, r, o, o.query_seconds); }
+
+SolverExtreme solver_extreme(const Formats& f, Reg r, bool maximise, const RangeOptions& o, double seconds) {
+    const Interval b = interval_ranges(f, o.pixel_max).at(r).bound;
+    const auto [k, l] = bracket_extreme(f, r, o, maximise, 0, maximise ? b.hi : b.lo, seconds);   // the flat window: 0
+    return {k, l};
+}
 
 RangeReport analyse_ranges(const Formats& f, const RangeOptions& o) {
     RangeReport rep = interval_ranges(f, o.pixel_max);
@@ -381,14 +702,49 @@ RangeReport analyse_ranges(const Formats& f, const RangeOptions& o) {
         if (hi || !lo) search_witness(rr, f, o, true);
         if (rr.verdict != Verdict::wraps && (lo || !hi)) search_witness(rr, f, o, false);
     }
-    // the maximum holds a response: it wraps with the response's witness
+    rep.seconds_search = since(t0);
+    // the solver where the search found no witness (the maximum is the response's: below),
+    // first whether each open register can wrap, then its exact extreme, within the budget
+    const auto t1 = Clock::now();
+    const auto left = [&] { return o.solver_seconds - since(t1); };
+    const bool open = std::any_of(rep.regs.begin(), rep.regs.end(), [](const RegisterRange& x) { return x.verdict == Verdict::open; });
+    if (o.solver_seconds > 0 && open) {
+        // the products' intervals are loose (b = ix*iy: x and y share pixels): their exact
+        // ranges (3x3 queries, fast) as the block sums' inputs, proven, tighten what follows
+        Tightened tight{};
+        for (Reg mr : {Reg::m_a, Reg::m_b, Reg::m_c}) {
+            RegisterRange& x = rep.regs[idx(mr)];
+            if (x.verdict != Verdict::proven || left() <= 1) continue;
+            solve_range(x, f, o, std::min(left(), o.solver_seconds / 6));
+            if (x.solver_range) tight[idx(mr)] = x.solver_range;
+        }
+        const RangeReport under = interval_ranges(f, o.pixel_max, &tight);
+        for (auto& rr : rep.regs) {
+            const RegisterRange& u = under.at(rr.reg);
+            if (rr.verdict != Verdict::open || rr.reg == Reg::maximum || !u.bound_fits) continue;
+            rr.verdict = Verdict::proven;
+            rr.solver_asked = true;
+            rr.solver = fmt::format("proven: interval bound [{}, {}] under the M registers' exact ranges", u.bound.lo, u.bound.hi);
+        }
+        for (auto& rr : rep.regs)
+            if (rr.verdict == Verdict::open && rr.reg != Reg::maximum && left() > 1) solve_wrap(rr, f, o, left());
+        for (auto& rr : rep.regs)
+            if (rr.solver_asked && !rr.solver_range && rr.verdict != Verdict::proven && left() > 1) solve_extreme(rr, f, o, left());
+    }
+    rep.seconds_solver = since(t1);
+    // the maximum holds a response: it wraps with the response's witness, is proven with it
     RegisterRange& m = rep.regs[idx(Reg::maximum)];
     const RegisterRange& r = rep.regs[idx(Reg::response)];
-    if (!m.bound_fits && r.verdict == Verdict::wraps) {
-        m.verdict = Verdict::wraps;
+    if (!m.bound_fits && r.verdict != Verdict::open) {
+        m.verdict = r.verdict;
         m.witness = r.witness;
     }
-    rep.seconds_search = since(t0);
+    if (!m.bound_fits && r.solver_asked) {
+        m.solver_asked = true;
+        m.solver = r.solver + " (the response's)";
+        m.extreme_side = r.extreme_side;
+        m.extreme = r.extreme;
+    }
     return rep;
 }
 
@@ -400,11 +756,22 @@ json range_report_to_json(const RangeReport& r) {
                   {"searched", x.searched}};
         if (x.searched) e["reached"] = interval_json(x.reached);
         if (x.verdict == Verdict::wraps) e["witness"] = x.witness;
+        e["solver_asked"] = x.solver_asked;
+        if (x.solver_asked) {
+            e["solver"] = x.solver;
+            e["solver_seconds"] = x.solver_seconds;
+            if (x.solver_reached) e["solver_reached"] = *x.solver_reached;
+            e["extreme_side"] = x.extreme_side;
+            if (x.extreme_side) e["extreme"] = interval_json(x.extreme);
+            if (x.solver_range) e["solver_range"] = interval_json(*x.solver_range);
+            e["solver_range_reached"] = x.solver_range_reached;
+        }
         regs.push_back(e);
     }
     return {{"flow", kRangesVersion}, {"formats", fields_text(r.formats, format_fields())}, {"pixel_max", r.pixel_max},
             {"key", r.key}, {"verdict", verdict_name(r.overall())}, {"summary", r.summary()},
-            {"seconds_interval", r.seconds_interval}, {"seconds_search", r.seconds_search}, {"registers", regs}};
+            {"seconds_interval", r.seconds_interval}, {"seconds_search", r.seconds_search}, {"seconds_solver", r.seconds_solver},
+            {"registers", regs}};
 }
 
 RangeReport range_report_from_json(const json& j) {
@@ -414,6 +781,7 @@ RangeReport range_report_from_json(const json& j) {
     r.key = j.at("key");
     r.seconds_interval = j.at("seconds_interval");
     r.seconds_search = j.at("seconds_search");
+    r.seconds_solver = j.at("seconds_solver");
     const json& regs = j.at("registers");
     if (regs.size() != static_cast<size_t>(kRegCount)) throw std::invalid_argument("range report: wrong register count");
     for (int i = 0; i < kRegCount; ++i) {
@@ -431,6 +799,16 @@ RangeReport range_report_from_json(const json& j) {
         x.searched = e.at("searched");
         if (x.searched) x.reached = interval_from(e.at("reached"));
         if (x.verdict == Verdict::wraps) x.witness = e.at("witness").get<Window5>();
+        x.solver_asked = e.at("solver_asked");
+        if (x.solver_asked) {
+            x.solver = e.at("solver");
+            x.solver_seconds = e.at("solver_seconds");
+            if (e.contains("solver_reached")) x.solver_reached = e.at("solver_reached").get<std::int64_t>();
+            x.extreme_side = e.at("extreme_side");
+            if (x.extreme_side) x.extreme = interval_from(e.at("extreme"));
+            if (e.contains("solver_range")) x.solver_range = interval_from(e.at("solver_range"));
+            x.solver_range_reached = e.at("solver_range_reached");
+        }
         r.regs.push_back(x);
     }
     return r;

@@ -12,7 +12,15 @@
 //      vertices) improved by coordinate ascent on the register's exact value, evaluated by
 //      the same stage functions on Word. A window whose value leaves the register's range
 //      is a witness (checked again by the overflow audit on the window's image).
-//   3. otherwise the register is open: the bound and the best value the search reached.
+//   3. where the search found none, the exact question to z3 as an SMT-LIB bit-vector query:
+//      the 25 pixels of a window are variables, the stage functions run on a number type
+//      that writes their numeric_std arithmetic as bit-vector terms, and the query asks for
+//      a window where the register's exact value differs from its hardware value: unsat is
+//      proven (cannot wrap), sat is a witness (checked in the model), a timeout leaves it
+//      open. Then a binary search of "exists window: exact > T" queries brackets the exact
+//      extreme on the side that leaves the register, within the configuration's budget.
+//   4. otherwise the register is open: the bound, the best value the search reached and
+//      where the solver stopped.
 // The exact value of a register at the window (the audit's "exact"): Sobel and the
 // products are exact integers; block sum floor(sum of the nine M / 2^bf_drop); trace a+c;
 // det a*c and b*b (each resized to resp_w in the response); k-term floor(tr^2/2^k_shift1)
@@ -22,6 +30,7 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,13 +68,25 @@ struct RegisterRange {
     bool searched = false;     ///< the witness search ran (only where the bound does not fit)
     Interval reached;          ///< the exact values the search reached (searched only)
     Window5 witness{};         ///< verdict wraps: a window that wraps the register
+    // the solver (only where the search found no witness)
+    bool solver_asked = false;
+    std::string solver;        ///< its answer: "unsat: cannot wrap", "sat: a window wraps it", "timeout after N s", ...
+    double solver_seconds = 0;
+    std::optional<std::int64_t> solver_reached;   ///< sat: the exact value at the solver's window
+    int extreme_side = 0;      ///< +1: the maximum of the exact value was bracketed, -1: the minimum, 0: neither
+    Interval extreme;          ///< the exact extreme lies in here (lo == hi: exact); the rest of the bound is unreachable
+    /// A proven register whose interval bound is loose (the M registers, when something
+    /// downstream is not proven): the solver's proof that the exact value lies in here,
+    /// used as the next stage's input range; reached: a window attains both ends.
+    std::optional<Interval> solver_range;
+    bool solver_range_reached = false;
 };
 
 struct RangeReport {
     Formats formats;
     int pixel_max = 255;
     std::vector<RegisterRange> regs;   ///< one per Reg, in Reg order
-    double seconds_interval = 0, seconds_search = 0;
+    double seconds_interval = 0, seconds_search = 0, seconds_solver = 0;
     bool cached = false;
     std::string key;                   ///< cache key (the sweep's synthesis key), or ""
     /// proven when every register is; wraps when one wraps; else open
@@ -81,12 +102,36 @@ struct RangeOptions {
     int pixel_max = 255;          ///< pixels anywhere in [0, pixel_max] (8-bit: 255)
     double search_seconds = 5;    ///< per register and side, at most
     int seeds = 64;               ///< random 0/255 windows per register and side
+    double solver_seconds = 60;   ///< the solver's whole budget for the configuration (0: no solver)
+    double query_seconds = 20;    ///< one solver query, at most
 };
 
+/// Proven ranges of registers' exact values that replace their interval bounds as the next
+/// stage's input (only for registers the interval part proves).
+using Tightened = std::array<std::optional<Interval>, kRegCount>;
 /// Only the interval part: bounds and fits, every verdict proven or open (no search).
-RangeReport interval_ranges(const Formats& f, int pixel_max = 255);
-/// The whole analysis: interval bounds, then the witness search where they do not fit.
+RangeReport interval_ranges(const Formats& f, int pixel_max = 255, const Tightened* tight = nullptr);
+/// The whole analysis: interval bounds, then the witness search where they do not fit, then
+/// the solver (z3 on PATH; without it the register stays open, saying so) where the search found none.
 RangeReport analyse_ranges(const Formats& f, const RangeOptions& o = {});
+
+/// The solver's answer to "is there a window of pixels in [0, pixel_max] where register r's
+/// exact value differs from its hardware value?" (z3 on PATH, one query of at most
+/// o.query_seconds): proven (unsat), wraps (sat; the window wraps r in the model, else
+/// std::logic_error), open (why: "timeout after N s", "no solver: ...").
+struct SolverVerdict {
+    Verdict verdict = Verdict::open;
+    Window5 window{};
+    std::int64_t exact = 0;   ///< wraps: r's exact value at the window
+    std::string why;
+};
+SolverVerdict solver_wrap(const Formats& f, Reg r, const RangeOptions& o = {});
+/// The solver's bracket of r's exact maximum (maximise) or minimum within `seconds`:
+/// `reached` is attained by a window, no window goes beyond `proven` (equal: exact).
+struct SolverExtreme {
+    std::int64_t reached = 0, proven = 0;
+};
+SolverExtreme solver_extreme(const Formats& f, Reg r, bool maximise, const RangeOptions& o, double seconds);
 
 /// The exact value and the hardware value of every register at the window's centre
 /// (Sobel and M: the extreme over the 3x3 positions), by the stage functions on Word.

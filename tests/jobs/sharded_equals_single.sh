@@ -35,7 +35,7 @@ same_sweep_reports() {   # sweep.csv, sweep.json without times and cache flags, 
   grep -v '^Timing: ' sharded/sweep.md > sharded.md
   same single.md sharded.md
 }
-untimed_json() { jq -S 'del(.. | objects | .seconds?, .synth_seconds?, .eval_seconds?, .overflow_seconds?, .seconds_interval?, .seconds_search?, .cached?, .synthesised?, .synth_cached?, .synth_seconds_sum?)' "$1"; }
+untimed_json() { jq -S 'del(.. | objects | .seconds?, .synth_seconds?, .eval_seconds?, .overflow_seconds?, .seconds_interval?, .seconds_search?, .seconds_solver?, .solver_seconds?, .cached?, .synthesised?, .synth_cached?, .synth_seconds_sum?)' "$1"; }
 
 case "$kind" in
 slam)

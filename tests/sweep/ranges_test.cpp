@@ -49,6 +49,13 @@ void every_window(int pmax, const std::array<bool, 9>& use, F&& fn) {
     }
 }
 
+/// The interval bound and the witness search alone (the solver's tests are [solver]).
+RangeOptions no_solver() {
+    RangeOptions o;
+    o.solver_seconds = 0;
+    return o;
+}
+
 const sweep::Config* find_config(const SweepSpec& spec, const std::string& name) {
     for (const auto& c : spec.configs)
         if (c.name == name) return &c;
@@ -129,7 +136,7 @@ TEST_CASE("configs/bit-widths.json: the tight points are proven, each too-narrow
         INFO(name);
         const sweep::Config* c = find_config(spec, name);
         REQUIRE(c);
-        const RangeReport r = analyse_ranges(c->formats);
+        const RangeReport r = analyse_ranges(c->formats, no_solver());
         REQUIRE(r.overall() == Verdict::wraps);
         REQUIRE(r.first_wrap()->reg == reg);
         const Window5& w = r.first_wrap()->witness;
@@ -146,7 +153,7 @@ TEST_CASE("configs/bit-widths.json: the tight points are proven, each too-narrow
 TEST_CASE("a block sum narrowed by one bit is reachable, with the exact maximum at the interval bound", "[model][sweep][ranges]") {
     Formats f;
     f.bf_sum_w = 19;   // 9 * 32512 = 292608 needs 20 signed bits
-    const RangeReport r = analyse_ranges(f);
+    const RangeReport r = analyse_ranges(f, no_solver());
     const RegisterRange& a = r.at(Reg::block_a);
     CHECK(a.bound.hi == (9 * 32512) >> 4);
     REQUIRE(a.verdict == Verdict::wraps);
@@ -154,10 +161,11 @@ TEST_CASE("a block sum narrowed by one bit is reachable, with the exact maximum 
     CHECK(v[static_cast<int>(Reg::block_a)].exact == a.bound.hi);   // the witness reaches the bound: it is exact
 }
 
-TEST_CASE("a response one bit too narrow for the interval bound: wraps or open, never proven", "[model][sweep][ranges]") {
+TEST_CASE("a response one bit too narrow for the interval bound: the search says wraps or open, never proven",
+          "[model][sweep][ranges]") {
     Formats f;
     f.resp_w = 29;   // the thesis's upper bound 18288^2 = 334,450,944 needs 30 signed bits
-    const RangeReport r = analyse_ranges(f);
+    const RangeReport r = analyse_ranges(f, no_solver());
     const RegisterRange& x = r.at(Reg::response);
     CHECK_FALSE(x.bound_fits);
     CHECK(x.verdict != Verdict::proven);
@@ -208,7 +216,7 @@ TEST_CASE("each witness stream of the regression set wraps its configuration in 
         CHECK(c.wrapped[audit_stage(reg)] > 0);
         CHECK(count_overflows(frames.front(), Formats{}).total_wrapped() == 0);
         // the range analysis agrees that the configuration wraps there
-        CHECK(analyse_ranges(broken).at(reg).verdict == Verdict::wraps);
+        CHECK(analyse_ranges(broken, no_solver()).at(reg).verdict == Verdict::wraps);
     }
     CHECK(witnesses >= 4);
 }
@@ -231,4 +239,74 @@ TEST_CASE("the range analysis is cached under the key it is given; an unreadable
     const RangeReport redone = cached_ranges(f, "0123456789abcdef", d.path());
     CHECK_FALSE(redone.cached);
     CHECK(redone.summary() == first.summary());
+}
+
+TEST_CASE("the solver's exact extremes of b = ix*iy equal the extremes over every 3x3 window of 2-bit pixels",
+          "[model][sweep][ranges][solver]") {
+    Formats f;
+    f.m_drop = 0;   // the products themselves
+    RangeOptions o;
+    o.pixel_max = 3;
+    Extremes eb;
+    every_window(3, {true, true, true, true, false, true, true, true, true}, [&](const Pixels3& nb) {
+        eb.add(m_products(sobel_x<Word>(nb, f), sobel_y<Word>(nb, f), f).b.value());
+    });
+    const Interval bound = interval_ranges(f, 3).at(Reg::m_b).bound;
+    REQUIRE(eb.hi < bound.hi);   // the interval is loose here: the solver has something to prove
+    const SolverExtreme hi = solver_extreme(f, Reg::m_b, true, o, 30);
+    const SolverExtreme lo = solver_extreme(f, Reg::m_b, false, o, 30);
+    CHECK(hi.proven == eb.hi);   // proven not exceeded, and reached: exact
+    CHECK(hi.reached == eb.hi);
+    CHECK(lo.proven == eb.lo);
+    CHECK(lo.reached == eb.lo);
+}
+
+TEST_CASE("the solver finds a window that wraps m_b one bit short, and the model and the overflow audit agree",
+          "[model][sweep][ranges][solver]") {
+    Formats f;
+    f.m_prod_w = 20;   // ix*iy reaches 765^2 = 585,225 > 2^19
+    f.m_drop = 4;
+    const SolverVerdict v = solver_wrap(f, Reg::m_b);
+    INFO(v.why);
+    REQUIRE(v.verdict == Verdict::wraps);
+    // the window's Sobel product leaves m_prod_w bits: the audit counts an M wrap on its image
+    CHECK((v.exact > (std::int64_t{1} << 15) - 1 || v.exact < -(std::int64_t{1} << 15)));
+    CHECK(count_overflows(witness_image(v.window), f).wrapped[m_resize] > 0);
+    // with the thesis's widths the same question is unsat
+    CHECK(solver_wrap(Formats{}, Reg::m_b).verdict == Verdict::proven);
+}
+
+TEST_CASE("bf_sum_w=19: the solver settles the registers the search left open, within the budget",
+          "[model][sweep][ranges][solver]") {
+    const Formats f = formats_from_file(std::string(HC_SOURCE_DIR) + "/golden/witnesses/bf_sum_w-19.json");
+    const RangeReport r = analyse_ranges(f);
+    INFO(r.summary());
+    CHECK(r.seconds_solver <= 61);
+    // the interval bound of block_b does not fit; the search found no witness
+    const RegisterRange& b = r.at(Reg::block_b);
+    CHECK_FALSE(b.bound_fits);
+    CHECK(b.searched);
+    CHECK(b.verdict == Verdict::proven);
+    CHECK(b.solver_asked);
+    // it rests on the solver's range of m_b, which contains a window's exact value
+    // (ix = iy = 765: 585,225 / 32 = 18,288) and is tighter than the interval's
+    const RegisterRange& mb = r.at(Reg::m_b);
+    REQUIRE(mb.solver_range);
+    CHECK(mb.solver_range->hi >= 18288);
+    CHECK(mb.solver_range->hi < mb.bound.hi);
+    Window5 w{};
+    const std::array<std::array<int, 3>, 3> corner{{{0, 255, 255}, {0, 0, 255}, {0, 0, 0}}};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) w[i][j] = corner[i][j];
+    CHECK(window_values(w, f, true)[static_cast<int>(Reg::m_b)].exact == 18288);
+    // the maximum follows the response
+    CHECK(r.at(Reg::maximum).verdict == r.at(Reg::response).verdict);
+    CHECK(r.at(Reg::block_a).verdict == Verdict::wraps);
+    // the solver's findings survive the report's JSON (the sweep's cache)
+    const RangeReport back = range_report_from_json(range_report_to_json(r));
+    REQUIRE(back.at(Reg::m_b).solver_range);
+    CHECK(*back.at(Reg::m_b).solver_range == *mb.solver_range);
+    CHECK(back.at(Reg::block_b).solver == b.solver);
+    CHECK(back.at(Reg::block_b).verdict == Verdict::proven);
+    CHECK(back.summary() == r.summary());
 }
