@@ -120,13 +120,13 @@ TopView top_view(const std::vector<Vec2>& xy, const std::string& title, const st
     std::vector<double> xs, ys;
     for (const auto& p : xy) xs.push_back(p.x()), ys.push_back(p.y());
     util::AxisRange x = util::axis_range(xs, 0.05, -1e300, 1e300, 2.0), y = util::axis_range(ys, 0.05, -1e300, 1e300, 2.0);
-    // the plot area (about 700 px on its long side) in the data's aspect, within 1:3 either way
+    // the plot area (about 800 px on its long side) in the data's aspect, within 1:3 either way
     const double aspect = std::clamp((y.hi - y.lo) / (x.hi - x.lo), 1.0 / 3, 3.0);
-    const int long_side = 700;
+    const int long_side = 800;
     const int pw = aspect >= 1 ? static_cast<int>(long_side / aspect) : long_side;
     const int ph = aspect >= 1 ? long_side : static_cast<int>(long_side * aspect);
     TopView v;
-    v.width = std::max(800, pw + 330);    // axis labels and the key beside the map
+    v.width = std::max(640, pw + 330);    // axis labels and the key beside the map; the title fits
     v.height = ph + 150;                  // the two-line title and the x label
     std::ostringstream o;
     o << "set size ratio -1\nset grid\nset key outside right top\nset xlabel '" << xlabel << "'\nset ylabel '" << ylabel
