@@ -22,12 +22,19 @@ echo "[coverage] analysing ${#files[@]} files with coverage instrumentation"
 (cd "$build/cosim" && ghdl-gcc -e --std=08 --workdir="$sim/work" -Wl,-lgcov \
    -Wl,-L"$build/cosim" -Wl,-lhc_bridge -Wl,-Wl,-rpath,"$build/cosim" -o "$sim/harris_top_tb_gcc" harris_top_tb)
 n=0
-while read -r pattern size frames idle; do
+while read -r pattern size frames idle _; do
   case "$pattern" in ''|\#*) continue ;; esac
   n=$((n + 1))
   echo "[coverage] stream $n: $pattern $size x$frames (idle every $idle)"
-  "$cli" rtl --pattern "$pattern" --size "$size" --frames "$frames" --idle-every "$idle" \
-        --backend gcc --sim-dir "$sim" --quiet
+  case "$pattern" in
+    *.pgm|*.png)   # an image chained `frames` times (paths relative to the set), the thesis's formats
+      images=()
+      for ((k = 0; k < frames; k++)); do images+=("$src/golden/$pattern"); done
+      "$cli" rtl "${images[@]}" --idle-every "$idle" --backend gcc --sim-dir "$sim" --quiet ;;
+    *)
+      "$cli" rtl --pattern "$pattern" --size "$size" --frames "$frames" --idle-every "$idle" \
+            --backend gcc --sim-dir "$sim" --quiet ;;
+  esac
 done < "$src/golden/regression-set.txt"
 (cd "$sim/work" && gcovr --root "$src" --filter "$src/rtl/" --object-directory "$sim/work" \
    --html-details "$(cd "$out" && pwd)/index.html" --txt "$(cd "$out" && pwd)/summary.txt" \
