@@ -115,7 +115,7 @@ landmarks)
   n=0
   while IFS= read -r f; do same "single/$f" "sharded/$f"; n=$((n + 1)); done < <(cd single && find . -path '*/landmarks/*' -type f | sort)
   [ "$n" -gt 0 ] || fail "no landmark files were written"
-  echo "landmarks: 2 scenes x 3 detectors x 6 descriptors in $shards shards: results.csv, results.json (times aside) and $n landmark files identical"
+  echo "landmarks: 2 scenes x 3 detectors x 8 descriptor rows in $shards shards: results.csv, results.json (times aside) and $n landmark files identical"
   ;;
 *) echo "unknown kind $kind"; exit 2 ;;
 esac
