@@ -225,16 +225,26 @@ std::string to_json(const SweepResult& r) {
 std::string write_plot(const SweepResult& r, const fs::path& dir) {
     // y ranges from the non-wrapping points only: a wrapping point's accuracy can be near 0
     // and would squash the front into one line; such points are drawn clamped to the
-    // bottom of the axis (their true values are in the table)
-    double lo[3] = {1, 1, 1};
-    for (const auto& p : r.points)
+    // bottom of the axis (their true values are in the table). Every axis is framed on its
+    // data with a margin (util::axis_range).
+    std::vector<double> acc[3], luts, dsps;
+    for (const auto& p : r.points) {
+        luts.push_back(p.cost.luts);
+        dsps.push_back(p.cost.dsps);
         if (!p.wraps) {
-            lo[0] = std::min(lo[0], p.accuracy.f1());
-            lo[1] = std::min(lo[1], p.accuracy.recall());
-            lo[2] = std::min(lo[2], p.accuracy.precision());
+            acc[0].push_back(p.accuracy.f1());
+            acc[1].push_back(p.accuracy.recall());
+            acc[2].push_back(p.accuracy.precision());
         }
+    }
+    util::AxisRange yr[3];
     double ymin[3];
-    for (int k = 0; k < 3; ++k) ymin[k] = std::max(0.0, lo[k] - 0.01);
+    for (int k = 0; k < 3; ++k) {
+        yr[k] = util::axis_range(acc[k], 0.12, 0.0, 1e300, 0.004);
+        ymin[k] = yr[k].lo;
+    }
+    const util::AxisRange xr_luts = util::axis_range(luts, 0.06, 0.0, 1e300, 2.0),
+                          xr_dsps = util::axis_range(dsps, 0.06, 0.0, 1e300, 2.0);
     // data: one file per class (ok, Pareto, wrapping) so gnuplot styles them apart
     std::string ok, par, wrap;
     for (const auto& p : r.points) {
@@ -257,9 +267,9 @@ std::string write_plot(const SweepResult& r, const fs::path& dir) {
     g += "set grid\nset key outside bottom center horizontal\n";
     const std::string d = tmp.string() + "/";
     auto panel = [&](const std::string& xcol, const std::string& xlabel, const std::string& ycol, const std::string& ylabel, bool labels) {
-        const double y0 = ymin[ycol == "3" ? 0 : ycol == "4" ? 1 : 2];
+        const util::AxisRange& y = yr[ycol == "3" ? 0 : ycol == "4" ? 1 : 2];
         std::string p = "set xlabel '" + xlabel + "'\nset ylabel '" + ylabel + "'\n";
-        p += fmt::format("set yrange [{:.4f}:*]\nset offsets 0, 0, 0.002, 0\n", y0);
+        p += "set yrange " + y.gnuplot() + "\nset xrange " + (xcol == "1" ? xr_luts : xr_dsps).gnuplot() + "\n";
         p += "plot '" + d + "ok.dat' using " + xcol + ":" + ycol + " with points pt 6 ps 1.2 lc rgb '#777777' title 'dominated', \\\n";
         p += "     '" + d + "pareto.dat' using " + xcol + ":" + ycol + " with points pt 7 ps 1.6 lc rgb '#d62728' title 'Pareto-optimal', \\\n";
         p += "     '" + d + "wrap.dat' using " + xcol + ":" + ycol + " with points pt 2 ps 1.4 lc rgb '#1f77b4' title 'wraps (excluded; at the axis if below it)'";
