@@ -4,6 +4,7 @@
 # builds can be compared byte for byte: run it with the build before a change and with the
 # build after it, then `diff BEFORE/digests.txt AFTER/digests.txt` (empty: same behaviour).
 #   bash tools/behaviour-check.sh [--cli PATH] [--data DIR] OUT_DIR
+#   bash tools/behaviour-check.sh --digest OUT_DIR    (the digests of an earlier run again)
 # The commands (KITTI 01 and Middlebury from the data directory; about 15 minutes on an idle
 # 2-core machine): eval --source spec (with the ablation), cycle and rtl on KITTI 01;
 # landmarks --compare; slam --sequence 01 with stereo landmarks; a sweep of three
@@ -13,23 +14,26 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 cli=build/tools/harris-cosim
 data="${HARRIS_COSIM_DATA:-$(cd .. && pwd)/shared/data}"
+digest_only=0
 while (($#)); do
   case "$1" in
     --cli) cli="$2"; shift 2 ;;
+    --digest) digest_only=1; shift ;;
     --data) data="$2"; shift 2 ;;
-    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
     -*) echo "behaviour-check: unknown flag $1" >&2; exit 2 ;;
     *) break ;;
   esac
 done
 if (($# != 1)); then echo "usage: bash tools/behaviour-check.sh [--cli PATH] [--data DIR] OUT_DIR" >&2; exit 2; fi
 out="$1"
+status="$out/status.txt"
+if ((digest_only == 0)); then
 [ -x "$cli" ] || { echo "behaviour-check: no executable $cli (build first, or give --cli)" >&2; exit 2; }
 [ -d "$data/kitti/sequences/01" ] || { echo "behaviour-check: no KITTI 01 under $data (give --data)" >&2; exit 2; }
 command -v jq >/dev/null || { echo "behaviour-check: needs jq" >&2; exit 2; }
 if [ -e "$out" ]; then echo "behaviour-check: $out exists; give a new directory" >&2; exit 2; fi
 mkdir -p "$out"
-status="$out/status.txt"
 : > "$status"
 
 run() {   # run NAME COMMAND...: the command's output in $out/NAME.log, its status in status.txt
@@ -48,9 +52,12 @@ run slam "$cli" slam --sequence 01 --data "$data" --landmarks-from stereo --out 
 run sweep "$cli" sweep --config tools/behaviour-sweep.json --data "$data" --cache "$out/sweep-cache" --quiet --out "$out/sweep"
 run mutate "$cli" mutate --report "$out/mutate/mutation-smoke.md"
 run golden "$cli" golden --check
+fi
 
-# digests: JSON without keys that hold times or hosts, CSV without such columns
-timing='seconds|time|wall|elapsed|duration|host|date|_ms$|_s$|ms_per|per_second'
+# digests: JSON without keys that hold times, hosts, the command line (it names OUT_DIR) or the
+# state of a cache (whether a result was recorded by an earlier run: `cached`, the gate's
+# `detail`, gates run or recorded), CSV without such columns
+timing='seconds|time|wall|elapsed|duration|host|date|_ms$|_s$|ms_per|per_second|^command$|cached|^gates_run$|^detail$'
 digests="$out/digests.txt"
 : > "$digests"
 find "$out" -path "$out/sweep-cache" -prune -o -type f \( -name '*.json' -o -name '*.csv' \) -print | LC_ALL=C sort |
@@ -63,5 +70,5 @@ while read -r f; do
   esac
   echo "$d  $rel" >> "$digests"
 done
-cat "$status" >> "$digests"
+[ -f "$status" ] && cat "$status" >> "$digests"
 echo "behaviour-check: $(wc -l < "$digests") lines in $digests" >&2
