@@ -1,8 +1,9 @@
 // eval_memory_test.cpp: peak resident memory of every corner source over long generated
-// streams. `eval_memory_tests --run SOURCE W H FRAMES ABLATION` evaluates FRAMES generated
-// frames of WxH (the `blocks` pattern, new content every frame) through SOURCE in this
-// process and exits; each test case runs that in a child process and reads the child's
-// peak resident set (wait4's rusage), so one run's memory is measured alone.
+// streams. Each test case forks a child that evaluates FRAMES generated frames of WxH (the
+// `blocks` pattern, new content every frame) through a SOURCE with the library
+// (eval::evaluate_part) and reads the child's peak resident set (wait4's rusage), so one
+// run's memory is measured alone; `eval_memory_tests --run SOURCE W H FRAMES ABLATION` does
+// one such run in this process, for measuring by hand.
 //
 // The bound (512 MB at KITTI's 1241x376) is shown on 2,000 frames at full size for the spec
 // source (about a minute). The cycle model and the netlist take about 0.1 s and 1 s of CPU
@@ -58,17 +59,27 @@ int run_child(const std::string& source, int w, int h, int n, bool ablation) {
     return 0;
 }
 
-std::string g_self;
+/// run_child's status, an exception reported as status 2
+int run_child_status(const std::string& source, int w, int h, int n, bool ablation) {
+    try {
+        return run_child(source, w, h, n, ablation);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "eval_memory_tests: %s\n", e.what());
+        return 2;
+    }
+}
 
-/// Peak resident memory (MB) of a child evaluating the stream; REQUIREs a clean exit.
+/// Peak resident memory (MB) of a forked child evaluating the stream through the library
+/// (this process runs no evaluation itself, so the child starts from the test program's
+/// small footprint); REQUIREs a clean exit.
 double peak_mb(const std::string& source, int w, int h, int n, bool ablation) {
-    const std::string ws = std::to_string(w), hs = std::to_string(h), ns = std::to_string(n);
+    std::fflush(nullptr);   // the child's exit flushes nothing the parent still holds
     const pid_t pid = ::fork();
     REQUIRE(pid >= 0);
     if (pid == 0) {
-        ::execl(g_self.c_str(), g_self.c_str(), "--run", source.c_str(), ws.c_str(), hs.c_str(), ns.c_str(),
-                ablation ? "1" : "0", static_cast<char*>(nullptr));
-        std::_Exit(127);
+        const int rc = run_child_status(source, w, h, n, ablation);
+        std::fflush(nullptr);
+        std::_Exit(rc);
     }
     int status = 0;
     struct rusage ru {};
@@ -122,17 +133,8 @@ TEST_CASE("the rtl source's peak memory does not grow with the stream", "[memory
 }
 
 int main(int argc, char** argv) {
-    if (argc == 7 && std::strcmp(argv[1], "--run") == 0) {
-        try {
-            return run_child(argv[2], std::stoi(argv[3]), std::stoi(argv[4]), std::stoi(argv[5]), argv[6][0] == '1');
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "eval_memory_tests --run: %s\n", e.what());
-            return 2;
-        }
-    }
-    g_self = "/proc/self/exe";
-    char buf[4096];
-    const ssize_t len = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
-    if (len > 0) g_self.assign(buf, static_cast<std::size_t>(len));
+    // by hand: one run in this process, e.g. `/usr/bin/time -v eval_memory_tests --run cycle 1241 376 2000 1`
+    if (argc == 7 && std::strcmp(argv[1], "--run") == 0)
+        return run_child_status(argv[2], std::stoi(argv[3]), std::stoi(argv[4]), std::stoi(argv[5]), argv[6][0] == '1');
     return Catch::Session().run(argc, argv);
 }
