@@ -215,6 +215,10 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
     BusEvent ev;
     long last_report = 0;
     int body_frame = -1;
+    // the threshold the design applies (it follows find-max's published maximum) and the
+    // period counter, as they were before the write in hand
+    std::int64_t thr_now = top.thr().value();
+    long count_before = top.find_max_count();
     while ((span.end_write == 0 || top.writes() < span.end_write) && feed.next(ev)) {
         newest = top.writes() + 1;   // this write's number
         ring[static_cast<std::size_t>(newest) & (kRing - 1)] = ev.pos;
@@ -223,8 +227,7 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
             body_frame = fr;
             hand_on_below(fr - 1);
         }
-        const Word thr_before = top.thr();
-        const long count_before = top.find_max().count;
+        const std::int64_t thr_before = thr_now;
         // a window whose response enters find-max on this write, mixing two frames: its
         // newest column is one of a frame's first 6 columns of its first row (the 6 older
         // columns of the 7x7 window come from the previous frame's last row)
@@ -237,7 +240,11 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
         }
         top.write(ev.data);
         // a publication: the period counter wrapped to 1 on this write
-        if (top.find_max().count == 1 && count_before != 1) {
+        const long count = top.find_max_count();
+        const bool published = count == 1 && count_before != 1;
+        count_before = count;
+        if (count == 1) thr_now = top.thr().value();   // the maximum changes only where the counter is 1
+        if (published) {
             ++r.max_publications;
             if (fr == span.last) {   // the next frame's preloaded columns
                 ++r.next_publications;
@@ -254,7 +261,7 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
             const Corner c = drv.write_centre(pos_of(th.write), th.quadrant);
             if (c.x >= 0 && c.y >= 0 && c.x < g.width && c.y < g.height) {
                 CycleFrame& s = slot(c.frame, "a thresholded window");
-                const std::int64_t v = thr_before.value();
+                const std::int64_t v = thr_before;
                 std::size_t idx = 0;
                 while (idx < s.thr_values.size() && s.thr_values[idx] != v) ++idx;
                 if (idx == s.thr_values.size()) {

@@ -129,7 +129,11 @@ void run_rtl_source(frames::FrameFeed& feed, long& mismatches, double& seconds, 
         pending.push_back(std::move(sf));
         if (static_cast<int>(pending.size()) == batch) flush();
     };
-    const vl::RunResult rr = vl::run_lockstep(g, f, dut, n, [&](int k) { return feed.frame(k); }, feed.names(), opt);
+    const vl::RunResult rr = vl::run_lockstep(g, f, dut, n, [&](int k) {
+        auto im = feed.frame(k);
+        feed.prefetch(k + 1);   // decoded while the netlist runs
+        return im;
+    }, feed.names(), opt);
     flush();
     if (open_first != n)
         throw InternalError("--source rtl: " + std::to_string(open_first) + " of " + std::to_string(n) + " frames completed");
@@ -419,7 +423,11 @@ Part evaluate_part(const PartInput& in) {
             if (scoring) scoring->run(std::move(job));
             else job();
         };
-        const FrameAt at = [&](int k) { return feed.frame(k - in.offset); };
+        const FrameAt at = [&](int k) {
+            auto im = feed.frame(k - in.offset);
+            feed.prefetch(k + 1 - in.offset);   // decoded while the model runs
+            return im;
+        };
         const CycleCounts c = run_cycle(at, Geometry{p.width, p.height}, Formats{},
                                         CycleSpan{in.offset, in.first, in.last, in.frames_total, in.start, in.end_write},
                                         true, [&](CycleFrame&& fr) {

@@ -2,6 +2,7 @@
 #include "frames/frames.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -142,43 +143,85 @@ Stream load_kitti_stream(const fs::path& kitti_dir, const std::string& sequence,
 FrameFeed::FrameFeed(std::vector<std::string> names, std::vector<int> pair_index, std::string description,
                      std::function<Image(int)> load)
     : names_(std::move(names)), pair_index_(std::move(pair_index)), description_(std::move(description)),
-      load_(std::move(load)) {
+      state_(std::make_shared<State>()) {
     if (names_.empty()) throw InputError("a stream of no frames");
     if (pair_index_.size() != names_.size()) throw std::invalid_argument("frame feed: names and pair numbers differ in count");
+    state_->load = std::move(load);
+    state_->names = names_;
     const auto f0 = frame(0);
-    width_ = f0->width;
-    height_ = f0->height;
+    width_ = state_->width = f0->width;
+    height_ = state_->height = f0->height;
 }
 
 FrameFeed FrameFeed::of(const Stream& s) {
     return FrameFeed(s.names, s.pair_index, s.description, [&s](int k) { return s.frames.at(static_cast<std::size_t>(k)); });
 }
 
+std::shared_ptr<const Image> FrameFeed::load_checked(State& st, int k) {
+    auto im = std::make_shared<const Image>(st.load(k));
+    if (st.width && (im->width != st.width || im->height != st.height))
+        throw InputError("frame '" + st.names[static_cast<std::size_t>(k)] + "' is " + std::to_string(im->width) + "x" +
+                         std::to_string(im->height) + " but '" + st.names[0] + "' is " + std::to_string(st.width) + "x" +
+                         std::to_string(st.height) + "; a stream has one size");
+    const std::lock_guard<std::mutex> lock(st.mu);
+    ++st.loads;
+    return im;
+}
+
 std::shared_ptr<const Image> FrameFeed::frame(int k) {
     if (k < 0 || k >= size())
         throw std::out_of_range("frame " + std::to_string(k) + " of a stream of " + std::to_string(size()));
+    std::promise<std::shared_ptr<const Image>> mine;
+    Loaded f;
+    bool load_here = false;
     {
-        const std::lock_guard<std::mutex> lock(*mu_);
-        if (auto it = held_.find(k); it != held_.end()) return it->second;
+        const std::lock_guard<std::mutex> lock(state_->mu);
+        if (auto it = state_->held.find(k); it != state_->held.end()) {
+            f = it->second;
+        } else {
+            f = mine.get_future().share();
+            state_->held.emplace(k, f);
+            load_here = true;
+        }
     }
-    auto im = std::make_shared<const Image>(load_(k));   // outside the lock: loads run in parallel
-    if (width_ && (im->width != width_ || im->height != height_))
-        throw InputError("frame '" + names_[static_cast<std::size_t>(k)] + "' is " + std::to_string(im->width) + "x" +
-                         std::to_string(im->height) + " but '" + names_[0] + "' is " + std::to_string(width_) + "x" +
-                         std::to_string(height_) + "; a stream has one size");
-    const std::lock_guard<std::mutex> lock(*mu_);
-    ++loads_;
-    return held_.emplace(k, std::move(im)).first->second;
+    if (load_here) {   // outside the lock: loads of different frames run in parallel
+        try {
+            mine.set_value(load_checked(*state_, k));
+        } catch (...) {
+            mine.set_exception(std::current_exception());
+        }
+    }
+    return f.get();
+}
+
+void FrameFeed::prefetch(int k) {
+    if (k < 0 || k >= size()) return;
+    std::promise<std::shared_ptr<const Image>> p;
+    {
+        const std::lock_guard<std::mutex> lock(state_->mu);
+        if (state_->held.count(k)) return;
+        state_->held.emplace(k, p.get_future().share());
+    }
+    std::erase_if(loading_, [](const std::future<void>& f) {
+        return f.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+    });
+    loading_.push_back(std::async(std::launch::async, [st = state_, k, p = std::move(p)]() mutable {
+        try {
+            p.set_value(load_checked(*st, k));
+        } catch (...) {
+            p.set_exception(std::current_exception());
+        }
+    }));
 }
 
 void FrameFeed::release_below(int k) {
-    const std::lock_guard<std::mutex> lock(*mu_);
-    held_.erase(held_.begin(), held_.lower_bound(k));
+    const std::lock_guard<std::mutex> lock(state_->mu);
+    state_->held.erase(state_->held.begin(), state_->held.lower_bound(k));
 }
 
 long FrameFeed::loads() const {
-    const std::lock_guard<std::mutex> lock(*mu_);
-    return loads_;
+    const std::lock_guard<std::mutex> lock(state_->mu);
+    return state_->loads;
 }
 
 FrameFeed open_kitti_feed(const fs::path& kitti_dir, const std::string& sequence, util::Range r, const std::string& what,

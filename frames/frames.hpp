@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -76,23 +77,39 @@ public:
     const std::string& description() const { return description_; }
     void describe(std::string d) { description_ = std::move(d); }
 
-    /// Frame k, loaded now unless held (thread-safe). InputError when it differs in size
-    /// from frame 0; std::out_of_range outside the stream.
+    /// Frame k, loaded now unless held or being loaded (then waited for; thread-safe; each
+    /// frame is loaded once however many threads ask). InputError when it differs in size
+    /// from frame 0 (or the load's own, naming the file); std::out_of_range outside the stream.
     std::shared_ptr<const Image> frame(int k);
+    /// Starts loading frame k on a thread of its own, unless it is held, being loaded or
+    /// outside the stream, so that a later frame(k) finds it ready; a failed load is
+    /// reported by that frame(k). Loads started and not finished are waited for when the
+    /// feed is destroyed.
+    void prefetch(int k);
     /// Drops the frames below k from the feed (those still in use stay alive with their users).
     void release_below(int k);
     /// Frames loaded so far (a frame dropped and asked for again counts twice).
     long loads() const;
 
 private:
+    using Loaded = std::shared_future<std::shared_ptr<const Image>>;
+    /// What the feed and its loading threads share (so the feed may be moved while one runs).
+    struct State {
+        std::function<Image(int)> load;
+        std::vector<std::string> names;
+        int width = 0, height = 0;
+        std::mutex mu;
+        std::map<int, Loaded> held;
+        long loads = 0;
+    };
+    /// Frame k's pixels checked against frame 0's size.
+    static std::shared_ptr<const Image> load_checked(State& st, int k);
     std::vector<std::string> names_;
     std::vector<int> pair_index_;
     std::string description_;
-    std::function<Image(int)> load_;
     int width_ = 0, height_ = 0;
-    std::unique_ptr<std::mutex> mu_ = std::make_unique<std::mutex>();
-    std::map<int, std::shared_ptr<const Image>> held_;
-    long loads_ = 0;
+    std::shared_ptr<State> state_;
+    std::vector<std::future<void>> loading_;   ///< prefetches started (finished ones pruned)
 };
 /// Stereo pairs `r` of a KITTI sequence as a feed (the same checks, names and description as
 /// load_kitti_stream, each image read when reached).

@@ -52,6 +52,8 @@ public:
     virtual Observation observe() const = 0;
     virtual long writes() const = 0;
     virtual FindMax find_max() const = 0;
+    /// find_max's period counter alone (find_max().count, without building its words).
+    virtual long find_max_count() const = 0;
     virtual const StageTags& tags() const = 0;
     /// Every register (the image of the register set after the last edge), and its inverse.
     virtual std::string state() const = 0;
@@ -89,6 +91,7 @@ public:
     const Formats& formats() const { return f_; }
     long writes() const { return m_->writes(); }
     FindMax find_max() const { return m_->find_max(); }
+    long find_max_count() const { return m_->find_max_count(); }
     const StageTags& tags() const { return m_->tags(); }
     /// The full state: every register of harris_top (and the write count), prefixed by the
     /// geometry, the formats and the instance, as a byte string. A model of the same

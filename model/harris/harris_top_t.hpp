@@ -174,6 +174,8 @@ public:
         reg_[cur_].fm.count = find_max_count;
     }
 
+    long find_max_count() const override { return q().fm.count; }
+
     FindMax find_max() const override {
         const FindMaxT<Back>& m = q().fm;
         FindMax out(fs_.get());

@@ -9,8 +9,8 @@
 // source (about a minute). The cycle model and the netlist take about 0.1 s and 1 s of CPU
 // per full-size frame, so for them non-growth is shown where it costs little: at full size
 // the peak of a run three times longer equals the shorter one's within 16 MB (the retained
-// write positions and thresholds once cost about 21 MB a frame), and for the cycle source a
-// stream of 2,000 small frames stays within 8 MB of a 100-frame one.
+// write positions and thresholds once cost about 21 MB a frame), and for the cycle and rtl
+// sources a stream of 2,000 small frames stays within 8 MB of a 100-frame one.
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
@@ -130,6 +130,10 @@ TEST_CASE("the rtl source's peak memory does not grow with the stream", "[memory
     CHECK(short_run < kBoundMb);
     CHECK(long_run < kBoundMb);
     CHECK(long_run < short_run + 16);
+    // a long stream of small frames (its own, small netlist)
+    const double small_short = peak_mb("rtl", 64, 36, 100, false);
+    const double small_long = peak_mb("rtl", 64, 36, 2000, false);
+    CHECK(small_long < small_short + 8);
 }
 
 int main(int argc, char** argv) {

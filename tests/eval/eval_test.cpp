@@ -1,12 +1,17 @@
-// eval_test.cpp: classification, the OpenCV reference and its scale to the fixed point.
+// eval_test.cpp: classification, the OpenCV reference and its scale to the fixed point; the
+// frame feed the sources read their frames from.
 #include <catch2/catch.hpp>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include <opencv2/core.hpp>
 
 #include "eval/eval.hpp"
 #include "eval/report.hpp"
+#include "frames/frames.hpp"
 #include "util/errors.hpp"
 #include "model/spec/opencv_reference.hpp"
 #include "model/spec/spec_model.hpp"
@@ -147,4 +152,63 @@ TEST_CASE("the spec model and the cycle model agree on every pixel the hardware 
         CHECK(compared > 4 * 900);   // most of each frame's 55x35 centres
         CHECK(corners > 0);
     }
+}
+
+namespace {
+
+/// A feed of `n` 8x8 frames whose pixels are the frame number; `calls` counts its loads
+/// that ended and a load of frame `bad` throws InputError. Each load waits `ms` milliseconds, so a
+/// load started ahead is still running when another thread asks for the frame.
+frames::FrameFeed counting_feed(int n, std::atomic<int>& calls, int bad, int ms) {
+    std::vector<std::string> names;
+    std::vector<int> pairs;
+    for (int k = 0; k < n; ++k) {
+        names.push_back("gen/" + std::to_string(k));
+        pairs.push_back(k / 2);
+    }
+    return frames::FrameFeed(names, pairs, "counted", [&calls, bad, ms](int k) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+        ++calls;   // counted as it ends
+        if (k == bad) throw InputError("frame " + std::to_string(k) + " cannot be read");
+        Image im(8, 8);
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 8; ++x) im.at(y, x) = static_cast<std::uint8_t>(k);
+        return im;
+    });
+}
+
+}  // namespace
+
+TEST_CASE("a frame fetched ahead is loaded once, whoever asks for it and however often", "[eval]") {
+    std::atomic<int> calls{0};
+    frames::FrameFeed feed = counting_feed(6, calls, -1, 20);
+    CHECK(calls == 1);   // frame 0, for the stream's size
+    feed.prefetch(3);
+    feed.prefetch(3);    // already being loaded: nothing more
+    std::vector<std::thread> askers;
+    std::vector<int> seen(4, -1);
+    for (int t = 0; t < 4; ++t)
+        askers.emplace_back([&, t] { seen[static_cast<std::size_t>(t)] = feed.frame(3)->at(5, 5); });
+    for (auto& a : askers) a.join();
+    CHECK(seen == std::vector<int>(4, 3));
+    CHECK(calls == 2);
+    CHECK(feed.loads() == 2);
+    feed.prefetch(-1);   // outside the stream: ignored
+    feed.prefetch(6);
+    CHECK(calls == 2);
+    feed.release_below(4);   // frame 3 dropped: asked again, loaded again
+    CHECK(feed.frame(3)->at(0, 0) == 3);
+    CHECK(feed.loads() == 3);
+}
+
+TEST_CASE("a failed load fetched ahead is reported by the frame's reader, naming the frame", "[eval]") {
+    std::atomic<int> calls{0};
+    {
+        frames::FrameFeed feed = counting_feed(4, calls, 2, 5);
+        feed.prefetch(2);
+        CHECK_THROWS_WITH(feed.frame(2), Catch::Contains("frame 2 cannot be read"));
+        CHECK(feed.loads() == 1);   // only frame 0 was loaded
+        feed.prefetch(3);           // still loading when the feed is destroyed: waited for
+    }
+    CHECK(calls == 3);   // frames 0, 2 and 3 ended before the feed was gone
 }
