@@ -1,12 +1,13 @@
 // harris_top_t.hpp: the cycle model of rtl/harris_top.vhd, process by process.
 //
 // Purpose: HarrisTopT holds every register of harris_top and steps them on write() the way
-// the RTL does on a clock edge with write = '1': each process reads the registers before
-// the edge (q) and assigns the registers after it (d), holding (d = q) those its enables
-// leave unchanged. The processes are member functions named after the entity
-// instances of harris_top.vhd (lc, icmux, ctrl, sx/sy, mm, bfa/bfb/bfc, hr, th, fm, thr, lm,
-// sr) and are called in the order the architecture lists them. The arithmetic is the
-// shared stage functions (harris/sobel_x.hpp ... harris/threshold.hpp) on LeanWords.
+// the RTL does on a clock edge with write = '1': each process assigns its registers from
+// the values before the edge, leaving those its enables hold untouched. The registers are
+// kept once and updated in place, so the processes run in reverse pipeline order (each
+// before the process that overwrites its inputs; write() lists the order and why). They
+// are member functions named after the entity instances of harris_top.vhd (lc, icmux,
+// ctrl, sx/sy, mm, bfa/bfb/bfc, hr, th, fm, thr, lm, sr). The arithmetic is the shared
+// stage functions (harris/sobel_x.hpp ... harris/threshold.hpp) on LeanWords.
 //
 // FS says where the formats come from: StaticFormats<F> makes every width a compile-time
 // constant (the shifts and masks of each LeanWord operation fold, and the datapath before
@@ -98,13 +99,13 @@ class HarrisTopT final : public CycleModel {
     };
 
 public:
-    HarrisTopT(const Geometry& g, const FS& fs) : g_(g), fs_(fs), reg_{Registers(fs.get()), Registers(fs.get())} {
+    HarrisTopT(const Geometry& g, const FS& fs) : g_(g), fs_(fs), reg_(fs.get()) {
         reset();
     }
 
     void reset() override {
         const Formats& f = fs_.get();
-        Registers& r = reg_[cur_];
+        Registers& r = reg_;
         r.lc.reset();
         r.icmux.reset();
         r.ctrl.reset();
@@ -119,22 +120,26 @@ public:
     // flatten: every stage function is inlined here, so that the formats' constants reach
     // each LeanWord operation (GCC's inliner otherwise stops early in a file holding many
     // instances: docs/performance.md, cycle model).
+    //
+    // The clock edge in place: each process updates its own registers from the values they
+    // and their inputs held before the edge, so the processes run from the pipeline's end to
+    // its start (each before the one that overwrites its inputs), the enables t and ready
+    // are read before ctrl and lc move on, and a disabled stage keeps its registers
+    // untouched.
     [[gnu::flatten]] void write(std::uint32_t data) override {
-        const Registers& q = reg_[cur_];
-        Registers& d = reg_[cur_ ^ 1];
-        d.writes = q.writes + 1;
-        const bool ready = q.icmux.ready(q.lc.load);   // icmux's output, from lc's load
-        lc(q, d);
-        icmux(q, d, data);
-        ctrl(q, d, ready);
-        sx_sy(q, d, ready);
-        mm(q, d);
-        bf(q, d);
-        hr(q, d);
-        th(q, d);
-        fm(q, d);
-        sr(q, d);
-        cur_ ^= 1;   // the clock edge
+        Registers& r = reg_;
+        const bool ready = r.icmux.ready(r.lc.load);   // icmux's output, from lc's load
+        ++r.writes;                                     // this write's number (icmux's tag)
+        sr(r);       // reads trm
+        th(r);       // reads fm's maximum, r0_delay, hrm
+        fm(r);       // reads hrm
+        hr(r);       // step 2 reads step 1's registers, step 1 reads bf
+        bf(r);       // reads mm
+        mm(r);       // reads sx, sy
+        sx_sy(r, ready);   // reads icmux's output register
+        icmux(r, data);
+        ctrl(r, ready);    // t: read by every stage above
+        lc(r);
     }
 
     bool load() const override { return q().lc.load; }
@@ -166,12 +171,12 @@ public:
         if (at != image.size())
             throw std::invalid_argument("cycle model state of " + std::to_string(image.size()) + " bytes, expected " +
                                         std::to_string(at));
-        reg_[cur_] = r;
+        reg_ = r;
     }
 
     void rebase(long writes, long find_max_count) override {
-        reg_[cur_].writes = writes;
-        reg_[cur_].fm.count = find_max_count;
+        reg_.writes = writes;
+        reg_.fm.count = find_max_count;
     }
 
     long find_max_count() const override { return q().fm.count; }
@@ -213,7 +218,7 @@ public:
     }
 
 private:
-    const Registers& q() const { return reg_[cur_]; }
+    const Registers& q() const { return reg_; }
 
     /// Calls f on every scalar of every register (arrays element by element), in one fixed
     /// order: the state image is these values' bytes, without the structs' padding.
@@ -265,130 +270,106 @@ private:
     // ---- the processes of harris_top, in the order of its architecture ----------------
 
     /// lc: load_control counts the writes of a window row and the rows of a frame.
-    void lc(const Registers& q, Registers& d) const { d.lc = q.lc.next(g_); }
+    void lc(Registers& r) const { r.lc = r.lc.next(g_); }
 
     /// icmux: input_converter_mux shifts the write's pixels into the quadrants' windows and
     /// loads window i-1 into its output register (icm).
-    void icmux(const Registers& q, Registers& d, std::uint32_t data) const {
-        q.icmux.next_into(data, d.icmux);
+    void icmux(Registers& r, std::uint32_t data) const {
         // the loaded window is quadrant i-1's, whose newest column ended i writes ago
-        d.tags.window = q.icmux.i <= 4 ? WindowTag{d.writes - q.icmux.i, q.icmux.i - 1} : WindowTag{};
+        const int i = r.icmux.i;
+        r.tags.window = i <= 4 ? WindowTag{r.writes - i, i - 1} : WindowTag{};
+        r.icmux.advance(data);
     }
 
     /// ctrl: control_shift_register shifts ready into the stage enables t.
-    void ctrl(const Registers& q, Registers& d, bool ready) const { d.ctrl = q.ctrl.next(ready); }
+    void ctrl(Registers& r, bool ready) const { r.ctrl = r.ctrl.next(ready); }
 
     /// rows5/cols5 sx, sy: sobel_x and sobel_y of the 3x3 window pixels at (i..i+2, j..j+2)
     /// for the 5x5 gradients; enable: ready.
-    void sx_sy(const Registers& q, Registers& d, bool ready) const {
-        if (!ready) {
-            d.sxm = q.sxm;
-            d.sym = q.sym;
-            d.tags.sobel = q.tags.sobel;
-            return;
-        }
-        if (!q.icmux.a_defined) throw std::logic_error("Sobel enabled while the window register is undefined");
+    void sx_sy(Registers& r, bool ready) const {
+        if (!ready) return;
+        if (!r.icmux.a_defined) throw std::logic_error("Sobel enabled while the window register is undefined");
         const Formats& f = fs_.get();
         for (int i = 0; i < 5; ++i)
             for (int j = 0; j < 5; ++j) {
-                const Pixels3 nb = sub3(q.icmux.a, i, j);
-                d.sxm[i * 5 + j] = sobel_x<Front>(nb, f).v;
-                d.sym[i * 5 + j] = sobel_y<Front>(nb, f).v;
+                const Pixels3 nb = sub3(r.icmux.a, i, j);
+                r.sxm[i * 5 + j] = sobel_x<Front>(nb, f).v;
+                r.sym[i * 5 + j] = sobel_y<Front>(nb, f).v;
             }
-        d.tags.sobel = q.tags.window;
+        r.tags.sobel = r.tags.window;
     }
 
     /// rows5/cols5 mm: m_products of each gradient pair; enable: t(0).
-    void mm(const Registers& q, Registers& d) const {
-        if (!q.ctrl.en(0)) {
-            d.mam = q.mam;
-            d.mbm = q.mbm;
-            d.mcm = q.mcm;
-            d.tags.m = q.tags.m;
-            return;
-        }
+    void mm(Registers& r) const {
+        if (!r.ctrl.en(0)) return;
         const Formats& f = fs_.get();
         for (int k = 0; k < 25; ++k) {
-            const MProductsT<Front> m = m_products(as<Front>(q.sxm[k], f.sobel_w), as<Front>(q.sym[k], f.sobel_w), f);
-            d.mam[k] = m.a.v;
-            d.mbm[k] = m.b.v;
-            d.mcm[k] = m.c.v;
+            const MProductsT<Front> m = m_products(as<Front>(r.sxm[k], f.sobel_w), as<Front>(r.sym[k], f.sobel_w), f);
+            r.mam[k] = m.a.v;
+            r.mbm[k] = m.b.v;
+            r.mcm[k] = m.c.v;
         }
-        d.tags.m = q.tags.sobel;
+        r.tags.m = r.tags.sobel;
     }
 
     /// rows3/cols3 bfa, bfb, bfc: block_filter of the M coefficients at (i..i+2, j..j+2);
     /// enable: t(1).
-    void bf(const Registers& q, Registers& d) const {
-        if (!q.ctrl.en(1)) {
-            d.bfam = q.bfam;
-            d.bfbm = q.bfbm;
-            d.bfcm = q.bfcm;
-            d.tags.block = q.tags.block;
-            return;
-        }
+    void bf(Registers& r) const {
+        if (!r.ctrl.en(1)) return;
         const Formats& f = fs_.get();
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) {
-                d.bfam[i * 3 + j] = block_filter(block3(q.mam, i, j, f.m_w()), f).v;
-                d.bfbm[i * 3 + j] = block_filter(block3(q.mbm, i, j, f.m_w()), f).v;
-                d.bfcm[i * 3 + j] = block_filter(block3(q.mcm, i, j, f.m_w()), f).v;
+                r.bfam[i * 3 + j] = block_filter(block3(r.mam, i, j, f.m_w()), f).v;
+                r.bfbm[i * 3 + j] = block_filter(block3(r.mbm, i, j, f.m_w()), f).v;
+                r.bfcm[i * 3 + j] = block_filter(block3(r.mcm, i, j, f.m_w()), f).v;
             }
-        d.tags.block = q.tags.m;
+        r.tags.block = r.tags.m;
     }
 
-    /// rows3/cols3 hr: harris_response, step 1 (products and k-term, enable t(2)) and
-    /// step 2 (the response from step 1's registers, enable t(3)).
-    void hr(const Registers& q, Registers& d) const {
+    /// rows3/cols3 hr: harris_response, step 2 (the response from step 1's registers, enable
+    /// t(3)), then step 1 (products and k-term, enable t(2)), which overwrites them.
+    void hr(Registers& r) const {
         const Formats& f = fs_.get();
-        if (q.ctrl.en(2)) {   // step1
+        if (r.ctrl.en(3)) {   // step2
+            if (!r.step1_defined) throw std::logic_error("harris_response step 2 enabled before step 1 ever was");
+            for (int k = 0; k < 9; ++k) {
+                const ResponseTermsT<Back> s{as<Back>(r.ac[k], f.prod_w()), as<Back>(r.bb[k], f.prod_w()),
+                                             as<Back>(r.ktr2[k], f.ktr_w)};
+                r.hrm[k] = harris_response(s, f).v;
+            }
+            r.tags.response = r.tags.terms;
+        }
+        if (r.ctrl.en(2)) {   // step1
             for (int k = 0; k < 9; ++k) {
                 const ResponseTermsT<Back> s = harris_response_terms(
-                    as<Back>(q.bfam[k], f.bf_w()), as<Back>(q.bfbm[k], f.bf_w()), as<Back>(q.bfcm[k], f.bf_w()), f);
-                d.ac[k] = s.ac.v;
-                d.bb[k] = s.bb.v;
-                d.ktr2[k] = s.ktr2.v;
+                    as<Back>(r.bfam[k], f.bf_w()), as<Back>(r.bfbm[k], f.bf_w()), as<Back>(r.bfcm[k], f.bf_w()), f);
+                r.ac[k] = s.ac.v;
+                r.bb[k] = s.bb.v;
+                r.ktr2[k] = s.ktr2.v;
             }
-            d.step1_defined = true;
-            d.tags.terms = q.tags.block;
-        } else {
-            d.ac = q.ac;
-            d.bb = q.bb;
-            d.ktr2 = q.ktr2;
-            d.step1_defined = q.step1_defined;
-            d.tags.terms = q.tags.terms;
-        }
-        if (q.ctrl.en(3)) {   // step2
-            if (!q.step1_defined) throw std::logic_error("harris_response step 2 enabled before step 1 ever was");
-            for (int k = 0; k < 9; ++k) {
-                const ResponseTermsT<Back> s{as<Back>(q.ac[k], f.prod_w()), as<Back>(q.bb[k], f.prod_w()),
-                                             as<Back>(q.ktr2[k], f.ktr_w)};
-                d.hrm[k] = harris_response(s, f).v;
-            }
-            d.tags.response = q.tags.terms;
-        } else {
-            d.hrm = q.hrm;
-            d.tags.response = q.tags.response;
+            r.step1_defined = true;
+            r.tags.terms = r.tags.block;
         }
     }
 
     /// rows3/cols3 th: threshold delays each response by one write (r0_delay) and, on t(5),
     /// keeps the delayed response when it reaches thr (else 0); without t(5) the output is 0.
-    void th(const Registers& q, Registers& d) const {
+    void th(Registers& r) const {
         const Formats& f = fs_.get();
-        const Back thr_q = thr(q);
+        const Back thr_q = thr(r);
+        const bool en = r.ctrl.en(5);
         for (int k = 0; k < 9; ++k) {
-            d.trm[k] = q.ctrl.en(5) ? threshold(as<Back>(q.r0_delay[k], f.resp_w), thr_q).v : 0;
-            d.r0_delay[k] = q.hrm[k];
+            r.trm[k] = en ? threshold(as<Back>(r.r0_delay[k], f.resp_w), thr_q).v : 0;
+            r.r0_delay[k] = r.hrm[k];
         }
-        d.tags.thresholded = q.ctrl.en(5) ? q.tags.delay : WindowTag{};
-        d.tags.delay = q.tags.response;
+        r.tags.thresholded = en ? r.tags.delay : WindowTag{};
+        r.tags.delay = r.tags.response;
     }
 
     /// fm: find_max tracks the centre response hrm(2,2) on t(4) and publishes the maximum
     /// of each period.
-    void fm(const Registers& q, Registers& d) const {
-        d.fm = q.ctrl.en(4) ? q.fm.next(as<Back>(q.hrm[1 * 3 + 1], fs_.get().resp_w), g_) : q.fm;
+    void fm(Registers& r) const {
+        if (r.ctrl.en(4)) r.fm = r.fm.next(as<Back>(r.hrm[1 * 3 + 1], fs_.get().resp_w), g_);
     }
 
     /// thr: the threshold value formed from the published maximum (combinational).
@@ -404,12 +385,11 @@ private:
     }
 
     /// sr: corner_shift_register shifts the corner bit in.
-    void sr(const Registers& q, Registers& d) const { d.sr = q.sr.next(lm(q)); }
+    void sr(Registers& r) const { r.sr = r.sr.next(lm(r)); }
 
     Geometry g_;
     [[no_unique_address]] FS fs_;
-    std::array<Registers, 2> reg_;   ///< the registers before the edge (cur_) and after it
-    int cur_ = 0;
+    Registers reg_;   ///< every register of harris_top
 };
 
 }  // namespace hc

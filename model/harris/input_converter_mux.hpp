@@ -28,22 +28,24 @@ struct InputConverterMux {
 
     bool ready(bool load) const { return i > 1 && i <= 5 && !load; }
 
-    /// One write: every register of `n` takes its value after the clock edge (n != this).
-    void next_into(std::uint32_t data, InputConverterMux& n) const {
-        n.a = i <= 4 ? win[i - 1] : Window7{};
-        n.a_defined = true;
-        n.i = i < 7 ? i + 1 : 1;
-        n.i_dly = {i, i_dly[0], i_dly[1]};
-        n.data_dly = {data, data_dly[0], data_dly[1]};
-        n.win = win;
-        input_converter_shift(n.win[0], i, static_cast<Pixel>(data & 0xFFU));
+    /// One write: every register takes its value after the clock edge (each new value from
+    /// the old ones: the shifts read the delays before they move on).
+    void advance(std::uint32_t data) {
+        const int i0 = i;
+        const std::array<int, 3> i_dly0 = i_dly;
+        const std::array<std::uint32_t, 3> data_dly0 = data_dly;
+        a = i0 <= 4 ? win[i0 - 1] : Window7{};   // the windows before this write's shift
+        a_defined = true;
+        i = i0 < 7 ? i0 + 1 : 1;
+        i_dly = {i0, i_dly0[0], i_dly0[1]};
+        data_dly = {data, data_dly0[0], data_dly0[1]};
+        input_converter_shift(win[0], i0, static_cast<Pixel>(data & 0xFFU));
         for (int q = 1; q < 4; ++q)
-            input_converter_shift(n.win[q], i_dly[q - 1],
-                                  static_cast<Pixel>((data_dly[q - 1] >> (8 * q)) & 0xFFU));
+            input_converter_shift(win[q], i_dly0[q - 1], static_cast<Pixel>((data_dly0[q - 1] >> (8 * q)) & 0xFFU));
     }
     InputConverterMux next(std::uint32_t data) const {
-        InputConverterMux n;
-        next_into(data, n);
+        InputConverterMux n = *this;
+        n.advance(data);
         return n;
     }
 };

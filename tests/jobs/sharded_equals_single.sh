@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # sharded_equals_single.sh KIND HARRIS_COSIM WORKDIR [RUNNER FLAGS...]
-# Runs one command of job kind KIND (slam, mutate, sweep, sweep_rtl, landmarks) twice on small inputs:
+# Runs one command of job kind KIND (slam, mutate, sweep, sweep_rtl, sweep_rtl_no_wait,
+# sweep_verilator, landmarks) twice on small inputs:
 # in one process, then in shards through the given runner flags (default: --runner local
 # --jobs 2), with the same --out (moved aside in between, so that the command quoted in the
 # reports is the same), and compares the report data byte for byte; time columns and the
@@ -25,6 +26,47 @@ both() {   # both ARGS...: the single-process run into single/, the sharded one 
   "$bin" "$@" --shards "$shards" "${runner[@]}" > sharded.log 2>&1 || { tail -30 sharded.log; fail "sharded run failed"; }
   mv out sharded
   grep -q "^\[shards\] $shards/$shards done" sharded.log || fail "the sharded run did not report $shards/$shards shards done"
+}
+shards_done() {   # shards_done RUN_DIR: every shard of the run has a result and the merge job wrote merged.json
+  "$bin" shard status "$1" 2>/dev/null | grep -Eq '^([0-9]+) of \1 shards done' && [ -e "$1/merged.json" ]
+}
+wait_done() {   # wait_done RUN_DIR: until shards_done (at most 10 minutes)
+  for _ in $(seq 1 600); do shards_done "$1" && return 0; sleep 1; done
+  fail "the shards of $1 did not finish: $("$bin" shard status "$1" 2>&1 | head -3)"
+}
+both_no_wait() {   # as both, the sharded run submitted with --no-wait and finished by two --resume
+  mkdir -p out
+  "$bin" "$@" > single.log 2>&1 || { tail -20 single.log; fail "single-process run failed"; }
+  mv out single
+  $between
+  mkdir -p out
+  local sharded=("$@" --shards "$shards" "${runner[@]}" --no-wait)
+  "$bin" "${sharded[@]}" > submit.log 2>&1 || { tail -20 submit.log; fail "the --no-wait submission failed"; }
+  [ ! -e out/sweep.csv ] || fail "--no-wait wrote a report before the shards ran"
+  wait_done out/run
+  "$bin" "${sharded[@]}" --resume > checks.log 2>&1 || { tail -20 checks.log; fail "the first --resume failed"; }
+  [ ! -e out/sweep.csv ] || fail "the first --resume wrote a report before the checks ran"
+  wait_done out/run/checks
+  "$bin" "${sharded[@]}" --resume > sharded.log 2>&1 || { tail -20 sharded.log; fail "the second --resume failed"; }
+  [ -e out/sweep.csv ] || fail "the second --resume wrote no report"
+  mv out sharded
+}
+sweep_rtl_inputs() {   # spec.json, streams.txt and the cache of the sweep_rtl kinds
+  need "$data/kitti/sequences/01"
+  cat > spec.json <<'SPEC'
+{"name": "shard-rtl-test", "configs": [{"name": "m6", "m_drop": 6}], "data": {"sequence": "01", "pairs": "0:3"},
+ "trust": {"rtl": true, "verilator_pairs": "", "verilator_gate": false}}
+SPEC
+  printf 'flat 33x21 3 0\nrandom 40x30 3 13\n' > streams.txt
+  cache=$work/../sweep-rtl-shard-cache
+  between="rm -rf $cache/trust"
+  $between
+}
+check_shards() {   # check_shards RUN_DIR N KIND: N check shards, each a passing, simulated KIND check
+  [ "$(ls "$1"/shards/*.json | wc -l)" -eq "$2" ] || fail "expected the $2 RTL checks as $2 shards in $1"
+  jq -e -s --argjson n "$2" --arg k "$3" \
+    'map(.data.outcomes[0]) | length == $n and all(.kind == $k and .status == "pass" and (.result.cached | not))' \
+    "$1"/shards/*.json > /dev/null || fail "the check shards did not each run a passing $3 check"
 }
 same_sweep_reports() {   # sweep.csv, sweep.json without times and cache flags, sweep.md without its timing line
   same single/sweep.csv sharded/sweep.csv
@@ -76,28 +118,49 @@ sweep_rtl)
   # (mcode) on two streams of the regression set. Before each run the trust cache is
   # emptied (the synthesis cache is kept), so that both runs simulate every check, the
   # sharded one each in a shard of its own.
-  need "$data/kitti/sequences/01"
-  cat > spec.json <<'SPEC'
-{"name": "shard-rtl-test", "configs": [{"name": "m6", "m_drop": 6}], "data": {"sequence": "01", "pairs": "0:3"},
- "trust": {"rtl": true, "verilator_pairs": "", "verilator_gate": false}}
-SPEC
-  printf 'flat 33x21 3 0\nrandom 40x30 3 13\n' > streams.txt
-  cache=$work/../sweep-rtl-shard-cache
-  between="rm -rf $cache/trust"
-  $between
+  sweep_rtl_inputs
   shards=1
   both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1 --backend mcode \
     --regression-set streams.txt
-  run=sharded/run/checks
-  [ "$(ls "$run"/shards/*.json | wc -l)" -eq 4 ] || fail "expected the 4 RTL checks as 4 shards in $run"
   grep -q '^\[shards\] 4/4 done' sharded.log || fail "the sharded run did not report the 4 check shards done"
-  jq -e -s 'map(.data.outcomes[0]) | length == 4 and all(.kind == "ghdl" and .status == "pass" and (.result.cached | not))' \
-    "$run"/shards/*.json > /dev/null || fail "the check shards did not each simulate a passing GHDL stream"
+  check_shards sharded/run/checks 4 ghdl
   for p in m6 thesis; do
     grep -q "^$p,.*,1,2,0,0,,,," single/sweep.csv || fail "$p is not a Pareto point with 2 GHDL runs, 0 failed, 0 mismatches"
   done
   same_sweep_reports
   echo "sweep_rtl: 2 configurations in 1 shard, then 4 GHDL checks of the 2 Pareto points in 4 shards: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
+  ;;
+sweep_rtl_no_wait)
+  # sweep_rtl's command submitted with --no-wait (a Slurm runner): the first command submits
+  # the configurations' shards and returns; a --resume after them merges and submits the
+  # checks' shards; a second --resume after those renders the report
+  sweep_rtl_inputs
+  shards=1
+  both_no_wait sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1 \
+    --backend mcode --regression-set streams.txt
+  grep -q 'submitted' submit.log || fail "the first command did not say it submitted: $(head -3 submit.log)"
+  check_shards sharded/run/checks 4 ghdl
+  same_sweep_reports
+  echo "sweep_rtl_no_wait: submitted, then --resume twice: 4 GHDL checks in 4 shards: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
+  ;;
+sweep_verilator)
+  # the Verilator run of every Pareto point (m6 and the thesis configuration) on KITTI 01's
+  # first stereo pair, each as a check shard of its own; the trust cache emptied before each
+  # run, so both runs verilate and run both netlists
+  need "$data/kitti/sequences/01"
+  cat > spec.json <<'SPEC'
+{"name": "shard-verilator-test", "configs": [{"name": "m6", "m_drop": 6}], "data": {"sequence": "01", "pairs": "0:3"},
+ "trust": {"rtl": false, "verilator_pairs": "0:1", "verilator_gate": false}}
+SPEC
+  cache=$work/../sweep-verilator-shard-cache
+  between="rm -rf $cache/trust"
+  $between
+  shards=1
+  both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1
+  grep -q '^\[shards\] 2/2 done' sharded.log || fail "the sharded run did not report the 2 check shards done"
+  check_shards sharded/run/checks 2 verilator
+  same_sweep_reports
+  echo "sweep_verilator: 2 Pareto points, each netlist run on KITTI 01 pair 0 in a shard of its own: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
   ;;
 landmarks)
   need "$data/middlebury2006/half/Aloe"
