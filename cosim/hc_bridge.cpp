@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "cosim/session.hpp"
@@ -20,6 +22,19 @@ void fail(const char* where, const char* what) {
     std::fflush(stderr);
     g_status = 2;
 }
+
+// f()'s value, or none when it threw: the exception reported as `where`'s (fail).
+template <class F>
+std::optional<int32_t> guarded(const char* where, F f) {
+    try {
+        return f();
+    } catch (const std::exception& e) {
+        fail(where, e.what());
+    } catch (...) {
+        fail(where, "unknown exception");
+    }
+    return std::nullopt;
+}
 }  // namespace
 
 extern "C" int32_t hc_generic(int32_t index, int32_t value) {
@@ -31,38 +46,30 @@ extern "C" int32_t hc_generic(int32_t index, int32_t value) {
 }
 
 extern "C" int32_t hc_open(int32_t obs_w) {
-    try {
-        const char* path = std::getenv("HC_COSIM_CONFIG");
-        if (!path || !*path) throw std::runtime_error("HC_COSIM_CONFIG is not set (run through 'harris-cosim rtl')");
-        const std::string text = hc::util::read_file(path, std::string("run configuration '") + path + "'");
-        auto s = std::make_unique<hc::cosim::Session>(hc::cosim::run_config_from_json(text));
-        s->check_design(obs_w, g_generics);
-        g_session = std::move(s);
-        return 0;
-    } catch (const std::exception& e) {
-        fail("hc_open", e.what());
-        return 1;
-    } catch (...) {
-        fail("hc_open", "unknown exception");
-        return 1;
-    }
+    return guarded("hc_open", [&] {
+               const char* path = std::getenv("HC_COSIM_CONFIG");
+               if (!path || !*path) throw std::runtime_error("HC_COSIM_CONFIG is not set (run through 'harris-cosim rtl')");
+               const std::string text = hc::util::read_file(path, std::string("run configuration '") + path + "'");
+               auto s = std::make_unique<hc::cosim::Session>(hc::cosim::run_config_from_json(text));
+               s->check_design(obs_w, g_generics);
+               g_session = std::move(s);
+               return 0;
+           })
+        .value_or(1);
 }
 
 extern "C" int32_t hc_next(void) {
     if (!g_session) return HC_CMD_END;
-    try {
+    const auto cmd = guarded("hc_next", [] {
         switch (g_session->next()) {
             case hc::cosim::Command::write: return HC_CMD_WRITE;
             case hc::cosim::Command::idle: return HC_CMD_IDLE;
             case hc::cosim::Command::end: return HC_CMD_END;
         }
-    } catch (const std::exception& e) {
-        fail("hc_next", e.what());
-        g_session.reset();
-    } catch (...) {
-        fail("hc_next", "unknown exception");
-        g_session.reset();
-    }
+        return HC_CMD_END;
+    });
+    if (cmd) return *cmd;
+    g_session.reset();
     return HC_CMD_END;
 }
 
@@ -72,39 +79,25 @@ extern "C" int32_t hc_data(void) {
 
 extern "C" int32_t hc_observe(const uint8_t* obs) {
     if (!g_session) return 1;
-    try {
-        return g_session->observe(obs) ? 1 : 0;
-    } catch (const std::exception& e) {
-        fail("hc_observe", e.what());
-    } catch (...) {
-        fail("hc_observe", "unknown exception");
-    }
+    if (const auto r = guarded("hc_observe", [&] { return g_session->observe(obs) ? 1 : 0; })) return *r;
     g_session.reset();
     return 1;
 }
 
 extern "C" int32_t hc_observe_held(const uint8_t* obs, int32_t after_reset) {
     if (!g_session) return 1;
-    try {
-        return g_session->observe_held(obs, after_reset != 0) ? 1 : 0;
-    } catch (const std::exception& e) {
-        fail("hc_observe_held", e.what());
-    } catch (...) {
-        fail("hc_observe_held", "unknown exception");
-    }
+    if (const auto r = guarded("hc_observe_held", [&] { return g_session->observe_held(obs, after_reset != 0) ? 1 : 0; }))
+        return *r;
     g_session.reset();
     return 1;
 }
 
 extern "C" int32_t hc_close(void) {
     if (!g_session) return g_status;
-    try {
+    guarded("hc_close", [] {
         g_status = g_session->close();
-    } catch (const std::exception& e) {
-        fail("hc_close", e.what());
-    } catch (...) {
-        fail("hc_close", "unknown exception");
-    }
+        return 0;
+    });
     g_session.reset();
     std::fflush(stderr);
     return g_status;

@@ -12,22 +12,14 @@ namespace hc::cosim {
 
 using nlohmann::json;
 
+// RunConfig's fields but its geometry and formats, one key a field by its name.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RunConfig, frames_file, frame_names, backend, keep_going, compare_all, idle_every,
+                                   max_writes, post_mismatch, pre_mismatch, vcd_file, summary_file, reads_file, progress)
+
 std::string to_json(const RunConfig& c) {
-    json j = {{"geometry", {{"width", c.geometry.width}, {"height", c.geometry.height}}},
-              {"formats", fields_to_json(c.formats, format_fields())},
-              {"frames_file", c.frames_file},
-              {"frame_names", c.frame_names},
-              {"backend", c.backend},
-              {"keep_going", c.keep_going},
-              {"compare_all", c.compare_all},
-              {"idle_every", c.idle_every},
-              {"max_writes", c.max_writes},
-              {"post_mismatch", c.post_mismatch},
-              {"pre_mismatch", c.pre_mismatch},
-              {"vcd_file", c.vcd_file},
-              {"summary_file", c.summary_file},
-              {"reads_file", c.reads_file},
-              {"progress", c.progress}};
+    json j = c;
+    j["geometry"] = {{"width", c.geometry.width}, {"height", c.geometry.height}};
+    j["formats"] = fields_to_json(c.formats, format_fields());
     return j.dump(2);
 }
 
@@ -38,19 +30,7 @@ RunConfig run_config_from_json(const std::string& text) {
         c.geometry.width = j.at("geometry").at("width").get<int>();
         c.geometry.height = j.at("geometry").at("height").get<int>();
         c.formats = formats_from_json(j.at("formats"), "run configuration formats");
-        c.frames_file = j.at("frames_file").get<std::string>();
-        c.frame_names = j.at("frame_names").get<std::vector<std::string>>();
-        c.backend = j.at("backend").get<std::string>();
-        c.keep_going = j.at("keep_going").get<bool>();
-        c.compare_all = j.at("compare_all").get<bool>();
-        c.idle_every = j.at("idle_every").get<int>();
-        c.max_writes = j.at("max_writes").get<long>();
-        c.post_mismatch = j.at("post_mismatch").get<int>();
-        c.pre_mismatch = j.at("pre_mismatch").get<int>();
-        c.vcd_file = j.at("vcd_file").get<std::string>();
-        c.summary_file = j.at("summary_file").get<std::string>();
-        c.reads_file = j.at("reads_file").get<std::string>();
-        c.progress = j.at("progress").get<bool>();
+        from_json(j, c);
         c.geometry.validate();
         return c;
     } catch (const json::exception& e) {

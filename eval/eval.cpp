@@ -110,6 +110,113 @@ void start_at(const CycleCheckpoint* c, HarrisTop& top, Driver& drv) {
     }
 }
 
+/// The positions of the last kRecentWrites writes: write number w at ring[w % size], from
+/// a checkpoint's recent writes when a run starts from one.
+class WriteRing {
+public:
+    WriteRing(long begin, const CycleCheckpoint* start) : ring_(kRecentWrites), oldest_(begin + 1), newest_(begin) {
+        if (!start) return;
+        const auto& rec = start->recent;
+        oldest_ = begin + 1 - static_cast<long>(rec.size());
+        for (std::size_t i = 0; i < rec.size(); ++i) ring_[static_cast<std::size_t>(oldest_ + static_cast<long>(i)) & (kRing - 1)] = rec[i];
+    }
+    /// Write number `write` (the newest) went to `pos`.
+    void push(long write, const WritePos& pos) {
+        newest_ = write;
+        ring_[static_cast<std::size_t>(write) & (kRing - 1)] = pos;
+    }
+    const WritePos& pos_of(long write) const {
+        if (write < oldest_ || write <= newest_ - kRing || write > newest_)
+            throw InternalError("cycle span: a stage holds write " + std::to_string(write) +
+                                ", older than the recent writes kept");
+        return ring_[static_cast<std::size_t>(write) & (kRing - 1)];
+    }
+    /// The positions a checkpoint after write `last` keeps, oldest first.
+    std::vector<WritePos> recent(long last) const {
+        std::vector<WritePos> r;
+        for (long k = std::max(oldest_, last - kRing + 1); k <= last; ++k) r.push_back(ring_[static_cast<std::size_t>(k) & (kRing - 1)]);
+        return r;
+    }
+
+private:
+    static constexpr long kRing = static_cast<long>(kRecentWrites);
+    static_assert((kRecentWrites & (kRecentWrites - 1)) == 0, "the ring indexes by a mask");
+    std::vector<WritePos> ring_;
+    long oldest_;   // the oldest write whose position the ring holds
+    long newest_;   // the newest write in the ring
+};
+
+/// The frames of a span still open, from `first()` on; a frame is handed on once the driver
+/// writes the body of the frame two after it (no stage lags by a frame).
+class OpenFrames {
+public:
+    OpenFrames(const CycleSpan& span, std::size_t npix) : span_(span), npix_(npix), first_(span.first) {}
+    /// The open frame `frame` (opened with the ones before it when new); `what` names the
+    /// event in the error when the frame is complete already or outside the span.
+    CycleFrame& slot(int frame, const char* what) {
+        if (frame < first_ || frame >= span_.last)
+            throw InternalError(std::string("cycle span: ") + what + " of frame " + std::to_string(frame) +
+                                (frame < first_ ? " after the frame was complete" : " outside the span's frames [" +
+                                 std::to_string(span_.first) + ", " + std::to_string(span_.last) + ")"));
+        while (first_ + static_cast<int>(open_.size()) <= frame) {
+            CycleFrame c;
+            c.frame = first_ + static_cast<int>(open_.size());
+            c.mask.assign(npix_, 0);
+            c.thr_index.assign(npix_, 0);
+            open_.push_back(std::move(c));
+            thr_seen_.push_back(false);
+        }
+        return open_[static_cast<std::size_t>(frame - first_)];
+    }
+    /// Every open frame below `frame` (and inside the span) handed to `on_frame`.
+    void hand_on_below(int frame, const std::function<void(CycleFrame&&)>& on_frame) {
+        while (first_ < std::min(frame, span_.last)) {
+            slot(first_, "the end");
+            on_frame(std::move(open_.front()));
+            open_.pop_front();
+            thr_seen_.erase(thr_seen_.begin());
+            ++first_;
+        }
+    }
+    /// A find-max publication on a write of frame `fr`: the frame's, or the next frame's
+    /// (its preloaded columns) when `fr` is the span's end.
+    void publication(CycleCounts& r, int fr, std::int64_t max) {
+        ++r.max_publications;
+        if (fr == span_.last) {
+            ++r.next_publications;
+            r.next_max = max;
+        } else {
+            CycleFrame& c = slot(fr, "a publication");
+            ++c.publications;
+            c.max = max;
+        }
+    }
+    /// The window centred on `c` thresholded with `v`: its threshold remembered by image
+    /// position, and the frame's first threshold as the frame's.
+    void threshold(const Corner& c, int width, std::int64_t v) {
+        CycleFrame& s = slot(c.frame, "a thresholded window");
+        std::size_t idx = 0;
+        while (idx < s.thr_values.size() && s.thr_values[idx] != v) ++idx;
+        if (idx == s.thr_values.size()) {
+            if (idx == 255) throw InternalError("cycle run: more than 255 thresholds in frame " + std::to_string(c.frame));
+            s.thr_values.push_back(v);
+        }
+        s.thr_index[static_cast<size_t>(c.y) * width + c.x] = static_cast<std::uint8_t>(idx + 1);
+        const std::size_t k = static_cast<std::size_t>(c.frame - first_);
+        if (!thr_seen_[k]) {
+            thr_seen_[k] = true;
+            s.thr = v;
+        }
+    }
+
+private:
+    const CycleSpan& span_;
+    std::size_t npix_;
+    std::deque<CycleFrame> open_;
+    int first_;
+    std::vector<bool> thr_seen_;
+};
+
 }  // namespace
 
 CycleRun run_cycle(const Stream& s, const Formats& f, bool progress) {
@@ -164,53 +271,9 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
     start_at(span.start, top, feed);
     const size_t npix = static_cast<size_t>(g.width) * g.height;
     CycleCounts r;
-    // the positions of the last kRecentWrites writes: write number w at ring[w % size]
-    constexpr long kRing = static_cast<long>(kRecentWrites);
-    static_assert((kRecentWrites & (kRecentWrites - 1)) == 0, "the ring indexes by a mask");
-    std::vector<WritePos> ring(kRecentWrites);
     const long begin = span.start ? span.start->writes : 0;
-    long oldest = begin + 1;   // the oldest write whose position the ring holds
-    if (span.start) {
-        const auto& rec = span.start->recent;
-        oldest = begin + 1 - static_cast<long>(rec.size());
-        for (std::size_t i = 0; i < rec.size(); ++i) ring[static_cast<std::size_t>(oldest + static_cast<long>(i)) & (kRing - 1)] = rec[i];
-    }
-    long newest = begin;   // the newest write in the ring
-    const auto pos_of = [&](long write) -> const WritePos& {
-        if (write < oldest || write <= newest - kRing || write > newest)
-            throw InternalError("cycle span: a stage holds write " + std::to_string(write) +
-                                ", older than the recent writes kept");
-        return ring[static_cast<std::size_t>(write) & (kRing - 1)];
-    };
-    // the frames still open, from `open_first` on; a frame is handed on once the driver
-    // writes the body of the frame two after it (no stage lags by a frame)
-    std::deque<CycleFrame> open;
-    int open_first = span.first;
-    std::vector<bool> thr_seen;
-    const auto slot = [&](int frame, const char* what) -> CycleFrame& {
-        if (frame < open_first || frame >= span.last)
-            throw InternalError(std::string("cycle span: ") + what + " of frame " + std::to_string(frame) +
-                                (frame < open_first ? " after the frame was complete" : " outside the span's frames [" +
-                                 std::to_string(span.first) + ", " + std::to_string(span.last) + ")"));
-        while (open_first + static_cast<int>(open.size()) <= frame) {
-            CycleFrame c;
-            c.frame = open_first + static_cast<int>(open.size());
-            c.mask.assign(npix, 0);
-            c.thr_index.assign(npix, 0);
-            open.push_back(std::move(c));
-            thr_seen.push_back(false);
-        }
-        return open[static_cast<std::size_t>(frame - open_first)];
-    };
-    const auto hand_on_below = [&](int frame) {
-        while (open_first < std::min(frame, span.last)) {
-            slot(open_first, "the end");
-            on_frame(std::move(open.front()));
-            open.pop_front();
-            thr_seen.erase(thr_seen.begin());
-            ++open_first;
-        }
-    };
+    WriteRing ring(begin, span.start);
+    OpenFrames open(span, npix);
     std::vector<Corner> corners;
     BusEvent ev;
     long last_report = 0;
@@ -220,12 +283,11 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
     std::int64_t thr_now = top.thr().value();
     long count_before = top.find_max_count();
     while ((span.end_write == 0 || top.writes() < span.end_write) && feed.next(ev)) {
-        newest = top.writes() + 1;   // this write's number
-        ring[static_cast<std::size_t>(newest) & (kRing - 1)] = ev.pos;
+        ring.push(top.writes() + 1, ev.pos);   // this write's number
         const int fr = ev.pos.frame;
         if (!ev.pos.tail && fr != body_frame) {   // a frame's body starts
             body_frame = fr;
-            hand_on_below(fr - 1);
+            open.hand_on_below(fr - 1, on_frame);
         }
         const std::int64_t thr_before = thr_now;
         // a window whose response enters find-max on this write, mixing two frames: its
@@ -234,7 +296,7 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
         if (top.t() & (1U << 4)) {
             const WindowTag wt = top.tags().response;
             if (wt.valid()) {
-                const WritePos& p = pos_of(wt.write);
+                const WritePos& p = ring.pos_of(wt.write);
                 if (p.frame > 0 && p.i == 3 && p.j < 6) ++r.mixed_windows;
             }
         }
@@ -244,44 +306,19 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
         const bool published = count == 1 && count_before != 1;
         count_before = count;
         if (count == 1) thr_now = top.thr().value();   // the maximum changes only where the counter is 1
-        if (published) {
-            ++r.max_publications;
-            if (fr == span.last) {   // the next frame's preloaded columns
-                ++r.next_publications;
-                r.next_max = top.find_max().max.value();
-            } else {
-                CycleFrame& c = slot(fr, "a publication");
-                ++c.publications;
-                c.max = top.find_max().max.value();
-            }
-        }
+        if (published) open.publication(r, fr, top.find_max().max.value());
         // the window thresholded on this write: remember its threshold by image position
         const WindowTag th = top.tags().thresholded;
         if (th.valid()) {
-            const Corner c = drv.write_centre(pos_of(th.write), th.quadrant);
-            if (c.x >= 0 && c.y >= 0 && c.x < g.width && c.y < g.height) {
-                CycleFrame& s = slot(c.frame, "a thresholded window");
-                const std::int64_t v = thr_before;
-                std::size_t idx = 0;
-                while (idx < s.thr_values.size() && s.thr_values[idx] != v) ++idx;
-                if (idx == s.thr_values.size()) {
-                    if (idx == 255)
-                        throw InternalError("cycle run: more than 255 thresholds in frame " + std::to_string(c.frame));
-                    s.thr_values.push_back(v);
-                }
-                s.thr_index[static_cast<size_t>(c.y) * g.width + c.x] = static_cast<std::uint8_t>(idx + 1);
-                const std::size_t k = static_cast<std::size_t>(c.frame - open_first);
-                if (!thr_seen[k]) {
-                    thr_seen[k] = true;
-                    s.thr = v;
-                }
-            }
+            const Corner c = drv.write_centre(ring.pos_of(th.write), th.quadrant);
+            if (c.x >= 0 && c.y >= 0 && c.x < g.width && c.y < g.height)
+                open.threshold(c, g.width, thr_before);
         }
         if (ev.read) {
             ++r.reads;
             corners.clear();
             drv.decode(*ev.read, top.corner(), corners);
-            for (const Corner& c : corners) slot(c.frame, "a corner").mask[static_cast<size_t>(c.y) * g.width + c.x] = 1;
+            for (const Corner& c : corners) open.slot(c.frame, "a corner").mask[static_cast<size_t>(c.y) * g.width + c.x] = 1;
         }
         if (progress && top.writes() - last_report >= 2'000'000) {
             last_report = top.writes();
@@ -299,11 +336,10 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
         c.model = top.save_state();
         c.driver = drv.state();
         c.writes = top.writes();
-        for (long k = std::max(oldest, top.writes() - kRing + 1); k <= top.writes(); ++k)
-            c.recent.push_back(ring[static_cast<std::size_t>(k) & (kRing - 1)]);
+        c.recent = ring.recent(top.writes());
         r.end_digest = chain_digest(c);
     }
-    hand_on_below(span.last);
+    open.hand_on_below(span.last, on_frame);
     r.writes = top.writes() - begin;
     r.seconds = since(t0);
     return r;

@@ -29,6 +29,60 @@ Confusion confusion_of(const json& j) {
     return c;
 }
 
+/// Adds the counts of part `p` (all but the chain checks) to `into`.
+void add_counts(Part& into, const Part& p) {
+    into.lost_col += p.lost_col;
+    into.outside += p.outside;
+    into.drift += p.drift;
+    into.residual += p.residual;
+    into.diff_total += p.diff_total;
+    into.scored_frames += p.scored_frames;
+    into.mixed_windows += p.mixed_windows;
+    into.max_publications += p.max_publications;
+    into.writes += p.writes;
+    into.reads += p.reads;
+    into.rtl_mismatches += p.rtl_mismatches;
+}
+
+/// The cycle source's deviations from the spec (each with its count in `sum`) and notes.
+void add_cycle_deviations(Report& rep, const Part& sum, const std::set<std::pair<int, int>>& geometries) {
+    // the columns and borders each geometry loses, one clause per geometry
+    std::string lost, outside;
+    for (auto [w, h] : geometries) {
+        const Geometry g{w, h};
+        const int x_lost = w / 2 - 1, x_lost2 = x_lost + g.dj();
+        const int x_hw_max = w / 2 - 1 + g.dj(), y_hw_max = h / 2 - 1 + g.di();
+        const long outside_px = static_cast<long>((w - 4) - x_hw_max) * (h - 7) +
+                                static_cast<long>((h - 4) - y_hw_max) * (w - 7);
+        const std::string at = geometries.size() > 1 ? fmt::format(" ({}x{})", w, h) : "";
+        lost += fmt::format("{}columns x = {} and {} (rows 3..{}): {} pixels per frame{}", lost.empty() ? "" : "; ",
+                            x_lost, x_lost2, y_hw_max, 2 * (h / 2 - 3), at);
+        outside += fmt::format("{}x in {}..{} or y in {}..{}: {} pixels per frame{}", outside.empty() ? "" : "; ",
+                               x_hw_max + 1, w - 4, y_hw_max + 1, h - 4, outside_px, at);
+    }
+    rep.deviations.push_back({"window of a row's last column latched while load is high (never processed)", lost,
+                              sum.lost_col, "spec corners on those columns, summed over scored frames (the hardware reports none)"});
+    rep.deviations.push_back({"find-max period (h/2-3)(w/2+3)*4 != enabled steps per frame: threshold drifts",
+                              fmt::format("every processed pixel; {} maxima published over {} frames", sum.max_publications,
+                                          rep.frames.size()),
+                              sum.drift, "pixels where spec corners with the previous frame's maximum differ from spec corners with the threshold the cycle model applied to each window"});
+    rep.deviations.push_back({"windows mixing two frames at a frame start (load not raised at frame end)",
+                              fmt::format("{} windows entered find-max with columns of two frames", sum.mixed_windows), 0,
+                              "window provenance tags of the cycle model; their centres have x < 3 and are never read, they only feed find-max"});
+    rep.deviations.push_back({"border and last column/row of odd sizes (centres beyond the host's loops)", outside,
+                              sum.outside, "spec corners there, summed over scored frames"});
+    rep.deviations.push_back({"unexplained (cycle model vs spec model at the cycle model's thresholds)", "processed pixels",
+                              sum.residual, "must be 0: every remaining difference is a bug"});
+    rep.notes.push_back(fmt::format("Cycle vs spec corner masks differ on {} pixels of {} scored frames in total "
+                                    "(pixels x,y in 3..w-4, 3..h-4).", sum.diff_total, sum.scored_frames));
+    rep.notes.push_back(fmt::format("Cycle model: {} writes, {} reads.", sum.writes, sum.reads));
+    if (sum.chain_checked > 0)
+        rep.notes.push_back(fmt::format(
+            "Sharded cycle run: chain checked at {} boundaries (at each, the cycle model's registers, the host "
+            "driver's position and the recent writes where a part stopped equal the next part's starting checkpoint).",
+            sum.chain_checked));
+}
+
 }  // namespace
 
 std::vector<std::string> parse_sequences(const std::string& s) {
@@ -169,17 +223,7 @@ std::vector<Part> fold_sequences(const std::vector<Part>& parts, Source source) 
         q.next_max = p.next_max;
         q.end_digest = p.end_digest;
         for (std::size_t v = 0; v < p.ablation.size(); ++v) q.ablation[v].add(p.ablation[v]);
-        q.lost_col += p.lost_col;
-        q.outside += p.outside;
-        q.drift += p.drift;
-        q.residual += p.residual;
-        q.diff_total += p.diff_total;
-        q.scored_frames += p.scored_frames;
-        q.mixed_windows += p.mixed_windows;
-        q.max_publications += p.max_publications;
-        q.writes += p.writes;
-        q.reads += p.reads;
-        q.rtl_mismatches += p.rtl_mismatches;
+        add_counts(q, p);
     }
     return out;
 }
@@ -209,17 +253,7 @@ Report merge_parts(const std::vector<Part>& parts, Source source, bool ablation)
             if (p.ablation.size() != abl.size()) throw InputError("eval part: ablation rows differ from the variants");
             for (std::size_t v = 0; v < abl.size(); ++v) abl[v].add(p.ablation[v]);
         }
-        sum.lost_col += p.lost_col;
-        sum.outside += p.outside;
-        sum.drift += p.drift;
-        sum.residual += p.residual;
-        sum.diff_total += p.diff_total;
-        sum.scored_frames += p.scored_frames;
-        sum.mixed_windows += p.mixed_windows;
-        sum.max_publications += p.max_publications;
-        sum.writes += p.writes;
-        sum.reads += p.reads;
-        sum.rtl_mismatches += p.rtl_mismatches;
+        add_counts(sum, p);
         sum.chain_checked += p.chain_checked;
         geometries.insert({p.width, p.height});
     }
@@ -235,43 +269,7 @@ Report merge_parts(const std::vector<Part>& parts, Source source, bool ablation)
             rep.ablation.push_back({variants[v].name, variants[v].opt.describe(), abl[v]});
         rep.notes.push_back("Ablation rows score every pair but the first (the spec model has no incomplete last pair).");
     }
-    if (source == Source::cycle) {
-        // the columns and borders each geometry loses, one clause per geometry
-        std::string lost, outside;
-        for (auto [w, h] : geometries) {
-            const Geometry g{w, h};
-            const int x_lost = w / 2 - 1, x_lost2 = x_lost + g.dj();
-            const int x_hw_max = w / 2 - 1 + g.dj(), y_hw_max = h / 2 - 1 + g.di();
-            const long outside_px = static_cast<long>((w - 4) - x_hw_max) * (h - 7) +
-                                    static_cast<long>((h - 4) - y_hw_max) * (w - 7);
-            const std::string at = geometries.size() > 1 ? fmt::format(" ({}x{})", w, h) : "";
-            lost += fmt::format("{}columns x = {} and {} (rows 3..{}): {} pixels per frame{}", lost.empty() ? "" : "; ",
-                                x_lost, x_lost2, y_hw_max, 2 * (h / 2 - 3), at);
-            outside += fmt::format("{}x in {}..{} or y in {}..{}: {} pixels per frame{}", outside.empty() ? "" : "; ",
-                                   x_hw_max + 1, w - 4, y_hw_max + 1, h - 4, outside_px, at);
-        }
-        rep.deviations.push_back({"window of a row's last column latched while load is high (never processed)", lost,
-                                  sum.lost_col, "spec corners on those columns, summed over scored frames (the hardware reports none)"});
-        rep.deviations.push_back({"find-max period (h/2-3)(w/2+3)*4 != enabled steps per frame: threshold drifts",
-                                  fmt::format("every processed pixel; {} maxima published over {} frames", sum.max_publications,
-                                              rep.frames.size()),
-                                  sum.drift, "pixels where spec corners with the previous frame's maximum differ from spec corners with the threshold the cycle model applied to each window"});
-        rep.deviations.push_back({"windows mixing two frames at a frame start (load not raised at frame end)",
-                                  fmt::format("{} windows entered find-max with columns of two frames", sum.mixed_windows), 0,
-                                  "window provenance tags of the cycle model; their centres have x < 3 and are never read, they only feed find-max"});
-        rep.deviations.push_back({"border and last column/row of odd sizes (centres beyond the host's loops)", outside,
-                                  sum.outside, "spec corners there, summed over scored frames"});
-        rep.deviations.push_back({"unexplained (cycle model vs spec model at the cycle model's thresholds)", "processed pixels",
-                                  sum.residual, "must be 0: every remaining difference is a bug"});
-        rep.notes.push_back(fmt::format("Cycle vs spec corner masks differ on {} pixels of {} scored frames in total "
-                                        "(pixels x,y in 3..w-4, 3..h-4).", sum.diff_total, sum.scored_frames));
-        rep.notes.push_back(fmt::format("Cycle model: {} writes, {} reads.", sum.writes, sum.reads));
-        if (sum.chain_checked > 0)
-            rep.notes.push_back(fmt::format(
-                "Sharded cycle run: chain checked at {} boundaries (at each, the cycle model's registers, the host "
-                "driver's position and the recent writes where a part stopped equal the next part's starting checkpoint).",
-                sum.chain_checked));
-    }
+    if (source == Source::cycle) add_cycle_deviations(rep, sum, geometries);
     return rep;
 }
 

@@ -34,18 +34,9 @@ const mutate::Mutant& find(const mutate::Campaign& c, const std::string& id) {
 }
 
 json outcome_json(const std::string& id, const mutate::Outcome& o) {
-    return {{"id", id},           {"status", o.status}, {"stage", o.stage},
-            {"signal", o.signal}, {"write", o.write},   {"seconds", o.seconds}};
-}
-
-mutate::Outcome outcome_from(const json& j) {
-    mutate::Outcome o;
-    o.status = j.at("status");
-    o.stage = j.at("stage");
-    o.signal = j.at("signal");
-    o.write = j.at("write");
-    o.seconds = j.at("seconds");
-    return o;
+    json j = o;
+    j["id"] = id;
+    return j;
 }
 
 }  // namespace
@@ -74,8 +65,8 @@ mutate::Campaign mutate_campaign(const cluster::Manifest& m) { return campaign_o
 mutate::CampaignResult mutate_result(const cluster::Manifest& m, const json& merged) {
     const mutate::Campaign c = campaign_of(m.common);
     std::vector<mutate::Verdict> verdicts;
-    for (const auto& o : merged.at("mutants")) verdicts.push_back(mutate::judge(find(c, o.at("id")), outcome_from(o)));
-    return mutate::tally(outcome_from(merged.at("baseline")), std::move(verdicts));
+    for (const auto& o : merged.at("mutants")) verdicts.push_back(mutate::judge(find(c, o.at("id")), o.get<mutate::Outcome>()));
+    return mutate::tally(merged.at("baseline").get<mutate::Outcome>(), std::move(verdicts));
 }
 
 namespace detail {

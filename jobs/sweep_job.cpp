@@ -22,40 +22,18 @@ void array_from(const json& j, A& a) {
     for (std::size_t k = 0; k < a.size(); ++k) a[k] = j.at(k).get<std::uint64_t>();
 }
 
-json cost_json(const sweep::Cost& c) {
-    return {{"luts", c.luts},   {"inv", c.inv},     {"ffs", c.ffs},         {"dsps", c.dsps},
-            {"carry4", c.carry4}, {"muxf", c.muxf}, {"srl", c.srl},         {"cells", c.cells},
-            {"seconds", c.seconds}, {"cached", c.cached}, {"key", c.key}};
-}
-
-sweep::Cost cost_from(const json& j) {
-    sweep::Cost c;
-    c.luts = j.at("luts");
-    c.inv = j.at("inv");
-    c.ffs = j.at("ffs");
-    c.dsps = j.at("dsps");
-    c.carry4 = j.at("carry4");
-    c.muxf = j.at("muxf");
-    c.srl = j.at("srl");
-    c.cells = j.at("cells").get<std::map<std::string, long>>();
-    c.seconds = j.at("seconds");
-    c.cached = j.at("cached");
-    c.key = j.at("key");
-    return c;
-}
-
 json point_json(const sweep::PointResult& p) {
     json j = {{"name", p.config.name},
               {"formats", json::parse(formats_to_json(p.config.formats))},
               {"overflow", {{"wrapped", array_json(p.overflow.wrapped)}, {"sign_lost", array_json(p.overflow.sign_lost)},
                             {"values", array_json(p.overflow.values)}}},
               {"confusion", {{"tp", p.accuracy.tp}, {"tn", p.accuracy.tn}, {"fp", p.accuracy.fp}, {"fn", p.accuracy.fn}}},
-              {"cost", cost_json(p.cost)},
+              {"cost", json(p.cost)},
               {"register_bits", p.register_bits},
               {"wraps", p.wraps},
               {"eval_seconds", p.eval_seconds},
               {"overflow_seconds", p.overflow_seconds}};
-    if (p.has_cost_ghdl) j["cost_ghdl"] = cost_json(p.cost_ghdl);
+    if (p.has_cost_ghdl) j["cost_ghdl"] = json(p.cost_ghdl);
     if (p.has_ranges) j["ranges"] = sweep::range_report_to_json(p.ranges);
     if (p.has_landmarks) {
         const landmarks::Totals& l = p.landmarks;
@@ -78,13 +56,13 @@ sweep::PointResult point_from(const json& j) {
     p.accuracy.tn = c.at("tn");
     p.accuracy.fp = c.at("fp");
     p.accuracy.fn = c.at("fn");
-    p.cost = cost_from(j.at("cost"));
+    p.cost = j.at("cost").get<sweep::Cost>();
     p.register_bits = j.at("register_bits");
     p.wraps = j.at("wraps");
     p.eval_seconds = j.at("eval_seconds");
     p.overflow_seconds = j.at("overflow_seconds");
     if (j.contains("cost_ghdl")) {
-        p.cost_ghdl = cost_from(j.at("cost_ghdl"));
+        p.cost_ghdl = j.at("cost_ghdl").get<sweep::Cost>();
         p.has_cost_ghdl = true;
     }
     if (j.contains("ranges")) {

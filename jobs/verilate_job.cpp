@@ -54,12 +54,8 @@ json run_verilate_shard(const json& common, const json& shard, std::size_t) {
         const vl::RunResult& r = *res.run;
         json reported = json::array();
         for (const auto& m : r.reported) reported.push_back(m.describe());
-        d["complete"] = !r.stopped_early;
-        d["writes"] = r.writes;
-        d["reads"] = r.reads;
-        d["corners"] = r.corners;
+        d.update(vl::run_counts_json(r));
         d["mismatches"] = r.mismatches;
-        d["read_mismatches"] = r.read_mismatches;
         d["reported"] = reported;
     }
     return d;

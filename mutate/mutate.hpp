@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "frames/frames.hpp"
 
 namespace hc::mutate {
@@ -39,6 +41,8 @@ struct Outcome {
     long write = 0;
     double seconds = 0;
 };
+/// Its JSON (a shard's result): one key a field, by the field's name.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Outcome, status, stage, signal, write, seconds)
 /// The judgement of one mutant.
 struct Verdict {
     Mutant mutant;

@@ -270,6 +270,63 @@ private:
         }
     }
 
+    // The mutants of the operators and operands at token i: + and - swapped, * to +, numbers,
+    // logic operators, range bounds, resize widths and shift amounts.
+    void operand_mutants(std::size_t i) {
+        const Token& tk = t_[i];
+        if (tk.kind == Tk::op && (tk.text == "+" || tk.text == "-") && i > 0 && ends_operand(t_[i - 1])) {
+            add_token(MutantClass::arith, i, tk.text == "+" ? "-" : "+");
+        } else if (tk.kind == Tk::op && tk.text == "*") {
+            add_token(MutantClass::arith, i, "+");
+        } else if (tk.kind == Tk::number) {
+            number_mutants(i);
+        }
+        static const std::map<std::string, std::string> logic = {
+            {"and", "or"}, {"or", "and"}, {"nand", "nor"}, {"nor", "nand"}, {"xor", "xnor"}, {"xnor", "xor"}};
+        if (tk.kind == Tk::ident && logic.count(tk.lower)) add_token(MutantClass::logic, i, logic.at(tk.lower));
+
+        if (tk.text == "(") {   // a range inside parentheses: its bounds
+            const std::size_t close = matching_paren(i);
+            const std::size_t dir = find_at_depth0(i + 1, {"downto", "to", ")"});
+            if (dir < close && (is_kw(t_[dir], "downto") || is_kw(t_[dir], "to"))) {
+                const std::size_t a_end = dir - 1;
+                std::size_t a_begin = i + 1;
+                // the left bound starts after the last top-level comma before `downto`
+                for (std::size_t j = find_at_depth0(i + 1, {",", "downto", "to"}); j < dir;
+                     j = find_at_depth0(j + 1, {",", "downto", "to"}))
+                    if (t_[j].text == ",") a_begin = j + 1;
+                const std::size_t b_end = find_at_depth0(dir + 1, {",", "=>", ")", "|"}) - 1;
+                plus_minus_one(MutantClass::slice, a_begin, a_end);
+                plus_minus_one(MutantClass::slice, dir + 1, std::min(b_end, close - 1));
+            }
+        }
+        if (tk.kind == Tk::ident && i + 1 < t_.size() && t_[i + 1].text == "(") {
+            const std::size_t close = matching_paren(i + 1);
+            const std::size_t comma = find_at_depth0(i + 2, {","});
+            if (comma < close) {
+                if (tk.lower == "resize") {
+                    const std::size_t a = comma + 1, b = close - 1;
+                    if (!(a == b && t_[a].kind == Tk::number) && a <= b)
+                        add(MutantClass::resize, a, b, (a == b ? span(a, b) : "(" + span(a, b) + ")") + " - 1");
+                } else if (tk.lower == "shift_left" || tk.lower == "shift_right") {
+                    plus_minus_one(MutantClass::shift, comma + 1, close - 1);
+                }
+            }
+        }
+        static const std::set<std::string> shift_ops = {"sll", "srl", "sla", "sra", "rol", "ror"};
+        if (tk.kind == Tk::ident && shift_ops.count(tk.lower) && i + 1 < t_.size()) {
+            if (t_[i + 1].kind == Tk::number) {
+                const long n = std::stol(t_[i + 1].text);
+                add_token(MutantClass::shift, i + 1, std::to_string(n + 1));
+                if (n > 0) add_token(MutantClass::shift, i + 1, std::to_string(n - 1));
+            } else {
+                plus_minus_one(MutantClass::shift, i + 1, i + 1);
+            }
+        }
+    }
+
+    // function-length: a token state machine; the statement structure, the conditions and the
+    // register assignments are states one pass over the tokens changes, read in that order
     void walk() {
         std::vector<Region> stack;
         std::vector<IfFrame> ifs;                         // if-statements of the current process
@@ -387,56 +444,7 @@ private:
                 }
             }
 
-            // ---- operators and operands -----------------------------------------------
-            if (tk.kind == Tk::op && (tk.text == "+" || tk.text == "-") && i > 0 && ends_operand(t_[i - 1])) {
-                add_token(MutantClass::arith, i, tk.text == "+" ? "-" : "+");
-            } else if (tk.kind == Tk::op && tk.text == "*") {
-                add_token(MutantClass::arith, i, "+");
-            } else if (tk.kind == Tk::number) {
-                number_mutants(i);
-            }
-            static const std::map<std::string, std::string> logic = {
-                {"and", "or"}, {"or", "and"}, {"nand", "nor"}, {"nor", "nand"}, {"xor", "xnor"}, {"xnor", "xor"}};
-            if (tk.kind == Tk::ident && logic.count(tk.lower)) add_token(MutantClass::logic, i, logic.at(tk.lower));
-
-            if (tk.text == "(") {   // a range inside parentheses: its bounds
-                const std::size_t close = matching_paren(i);
-                const std::size_t dir = find_at_depth0(i + 1, {"downto", "to", ")"});
-                if (dir < close && (is_kw(t_[dir], "downto") || is_kw(t_[dir], "to"))) {
-                    const std::size_t a_end = dir - 1;
-                    std::size_t a_begin = i + 1;
-                    // the left bound starts after the last top-level comma before `downto`
-                    for (std::size_t j = find_at_depth0(i + 1, {",", "downto", "to"}); j < dir;
-                         j = find_at_depth0(j + 1, {",", "downto", "to"}))
-                        if (t_[j].text == ",") a_begin = j + 1;
-                    const std::size_t b_end = find_at_depth0(dir + 1, {",", "=>", ")", "|"}) - 1;
-                    plus_minus_one(MutantClass::slice, a_begin, a_end);
-                    plus_minus_one(MutantClass::slice, dir + 1, std::min(b_end, close - 1));
-                }
-            }
-            if (tk.kind == Tk::ident && i + 1 < t_.size() && t_[i + 1].text == "(") {
-                const std::size_t close = matching_paren(i + 1);
-                const std::size_t comma = find_at_depth0(i + 2, {","});
-                if (comma < close) {
-                    if (tk.lower == "resize") {
-                        const std::size_t a = comma + 1, b = close - 1;
-                        if (!(a == b && t_[a].kind == Tk::number) && a <= b)
-                            add(MutantClass::resize, a, b, (a == b ? span(a, b) : "(" + span(a, b) + ")") + " - 1");
-                    } else if (tk.lower == "shift_left" || tk.lower == "shift_right") {
-                        plus_minus_one(MutantClass::shift, comma + 1, close - 1);
-                    }
-                }
-            }
-            static const std::set<std::string> shift_ops = {"sll", "srl", "sla", "sra", "rol", "ror"};
-            if (tk.kind == Tk::ident && shift_ops.count(tk.lower) && i + 1 < t_.size()) {
-                if (t_[i + 1].kind == Tk::number) {
-                    const long n = std::stol(t_[i + 1].text);
-                    add_token(MutantClass::shift, i + 1, std::to_string(n + 1));
-                    if (n > 0) add_token(MutantClass::shift, i + 1, std::to_string(n - 1));
-                } else {
-                    plus_minus_one(MutantClass::shift, i + 1, i + 1);
-                }
-            }
+            operand_mutants(i);
         }
     }
 };

@@ -46,11 +46,12 @@ std::string tool_version(const std::string& tool, const std::string& flag, const
 json cost_to_json(const Cost& c, const Formats& f, const Geometry& g, Variant v) {
     json gen = json::object();
     for (const auto& [name, val] : generics(g, f)) gen[name] = val;
-    return {{"key", c.key},        {"variant", variant_name(v)}, {"generics", gen},
-            {"luts", c.luts},      {"inv", c.inv},               {"ffs", c.ffs},
-            {"dsps", c.dsps},      {"carry4", c.carry4},         {"muxf", c.muxf},
-            {"srl", c.srl},        {"cells", c.cells},           {"seconds", c.seconds},
-            {"flow", kFlowVersion}};
+    json j = c;   // Cost's JSON without the cache state, with what the entry was made from
+    j.erase("cached");
+    j["variant"] = variant_name(v);
+    j["generics"] = gen;
+    j["flow"] = kFlowVersion;
+    return j;
 }
 
 Cost cost_from_cells(const std::map<std::string, long>& cells) {

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "model/harris/harris_pkg.hpp"
 
 namespace hc::sweep {
@@ -49,6 +51,8 @@ struct Cost {
     bool cached = false;
     std::string key;
 };
+/// Its JSON (a shard's result): one key a field, by the field's name.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Cost, luts, inv, ffs, dsps, carry4, muxf, srl, cells, seconds, cached, key)
 
 /// The tool versions and RTL contents the key depends on; computed once per sweep.
 struct CostContext {

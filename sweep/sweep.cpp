@@ -163,43 +163,17 @@ void score_landmarks(std::vector<PointResult>& pts, const landmarks::Dataset& ds
     cv::setNumThreads(before);
 }
 
-PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& which, const SweepOptions& o) {
-    PointsRun res;
-    for (size_t i : which)
-        if (i >= spec.configs.size())
-            throw InputError(fmt::format("sweep: configuration {} does not exist ({} in the spec)", i, spec.configs.size()));
-    const size_t n = which.size();
-    cv::setNumThreads(1);   // frames run in parallel; OpenCV's own threads would oversubscribe
+namespace {
 
-    // ---- 1. frames and reference -------------------------------------------------------
-    auto t = Clock::now();
-    const util::Range pairs = spec.pairs.empty() ? util::Range{0, 1 << 30} : util::parse_range(spec.pairs, "data.pairs");
-    const eval::Stream stream = frames::load_kitti_stream(o.kitti, spec.sequence, pairs,
-                                                          "sweep spec data.pairs '" + spec.pairs + "'", o.threads, 2);
-    // the Verilator pairs are loaded after the cost phase: a range past the data is bad input now
-    if (o.trust && !spec.trust.verilator_pairs.empty())
-        (void)frames::stereo_stream(frames::open_kitti(o.kitti, spec.sequence),
-                                    util::parse_range(spec.trust.verilator_pairs, "trust.verilator_pairs"),
-                                    "sweep spec trust.verilator_pairs '" + spec.trust.verilator_pairs + "'");
-    res.stream = stream.description;
-    res.seconds_load = since(t);
-    progress(o.progress, stream.description);
-    t = Clock::now();
-    const auto ref = eval::run_reference(stream, spec::ReferenceOptions{}, o.threads);
-    res.seconds_reference = since(t);
-    std::vector<const Image*> frames;
-    for (const auto& f : stream.frames) frames.push_back(&f);
-    // scored frames: all but the first stereo pair, which only seeds the threshold
-    auto scored = [&](size_t k) { return stream.pair_index[k] != stream.pair_index.front(); };
-    for (size_t k = 0; k < frames.size(); ++k) res.scored_frames += scored(k);
+// ---- the phases of evaluate_points, each on every point of `res` ----------------------
 
-    res.points.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-        res.points[i].config = spec.configs[which[i]];
-        res.points[i].register_bits = datapath_register_bits(res.points[i].config.formats, spec.cost_geometry);
-    }
-    // ---- 2. cost -----------------------------------------------------------------------
-    t = Clock::now();
+// A scored frame: all but the first stereo pair's, which only seed the threshold.
+bool scored(const eval::Stream& s, size_t k) { return s.pair_index[k] != s.pair_index.front(); }
+
+// 2. cost: yosys synthesis (cached), and the thesis's configuration also as GHDL writes it.
+void cost_phase(PointsRun& res, const SweepSpec& spec, const SweepOptions& o) {
+    const size_t n = res.points.size();
+    const auto t = Clock::now();
     CostOptions co;
     co.rtl_sources = cosim::rtl_sources();
     co.cache_dir = o.cache / "synth";
@@ -229,8 +203,11 @@ PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& whic
                                          c.cached ? "(cached)" : fmt::format("({:.0f} s)", c.seconds)));
     });
     res.seconds_cost = since(t);
+}
 
-    // ---- 2b. derived ranges, cached under the synthesis key -------------------------
+// 2b. derived ranges, cached under the synthesis key.
+void ranges_phase(PointsRun& res, const SweepOptions& o) {
+    const size_t n = res.points.size();
     for (size_t i = 0; i < n; ++i) {
         PointResult& p = res.points[i];
         p.ranges = cached_ranges(p.config.formats, p.cost.key, o.cache / "ranges");
@@ -239,9 +216,15 @@ PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& whic
                                          p.ranges.cached ? "cached" : fmt::format("{:.2f} s", p.ranges.seconds_interval +
                                                                                                   p.ranges.seconds_search)));
     }
+}
 
-    // ---- 3. accuracy and overflow ------------------------------------------------------
-    t = Clock::now();
+// 3. accuracy against the OpenCV reference `ref` on the scored frames, and the overflow audit.
+void accuracy_phase(PointsRun& res, const eval::Stream& stream, const std::vector<std::vector<std::uint8_t>>& ref,
+                    const SweepOptions& o) {
+    const size_t n = res.points.size();
+    std::vector<const Image*> frames;
+    for (const auto& f : stream.frames) frames.push_back(&f);
+    const auto t = Clock::now();
     for (size_t i = 0; i < n; ++i) {
         PointResult& p = res.points[i];
         const auto ta = Clock::now();
@@ -253,16 +236,18 @@ PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& whic
         so.formats = p.config.formats;
         const eval::SourceRun run = eval::run_spec(stream, so, o.threads);
         for (size_t k = 0; k < frames.size(); ++k)
-            if (scored(k)) p.accuracy.add(eval::classify(run.masks[k], ref[k]));
+            if (scored(stream, k)) p.accuracy.add(eval::classify(run.masks[k], ref[k]));
         p.eval_seconds = since(tb);
         progress(o.progress, fmt::format("[accuracy {}/{}] {}: recall {:.4f} precision {:.4f} F1 {:.4f}{} ({:.1f} s + audit {:.1f} s)",
                                          i + 1, n, p.config.name, p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(),
                                          p.wraps ? " WRAPS: " + p.overflow.summary() : "", p.eval_seconds, p.overflow_seconds));
     }
     res.seconds_accuracy = since(t);
+}
 
-    // ---- 3b. downstream: correct stereo matches of the landmark chain -------------------
-    t = Clock::now();
+// 3b. downstream: correct stereo matches of the landmark chain.
+void landmarks_phase(PointsRun& res, const SweepSpec& spec, const SweepOptions& o) {
+    const auto t = Clock::now();
     if (!spec.landmarks.enabled) {
         res.landmark_pairs = "not scored (the spec's \"landmarks\" is false)";
     } else if (o.middlebury.empty()) {
@@ -277,6 +262,45 @@ PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& whic
                                              p.config.name, p.landmarks.correct, p.landmarks.truth_correct, p.landmarks.all));
     }
     res.seconds_landmarks = since(t);
+}
+
+}  // namespace
+
+PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& which, const SweepOptions& o) {
+    PointsRun res;
+    for (size_t i : which)
+        if (i >= spec.configs.size())
+            throw InputError(fmt::format("sweep: configuration {} does not exist ({} in the spec)", i, spec.configs.size()));
+    const size_t n = which.size();
+    cv::setNumThreads(1);   // frames run in parallel; OpenCV's own threads would oversubscribe
+
+    // ---- 1. frames and reference -------------------------------------------------------
+    auto t = Clock::now();
+    const util::Range pairs = spec.pairs.empty() ? util::Range{0, 1 << 30} : util::parse_range(spec.pairs, "data.pairs");
+    const eval::Stream stream = frames::load_kitti_stream(o.kitti, spec.sequence, pairs,
+                                                          "sweep spec data.pairs '" + spec.pairs + "'", o.threads, 2);
+    // the Verilator pairs are loaded after the cost phase: a range past the data is bad input now
+    if (o.trust && !spec.trust.verilator_pairs.empty())
+        (void)frames::stereo_stream(frames::open_kitti(o.kitti, spec.sequence),
+                                    util::parse_range(spec.trust.verilator_pairs, "trust.verilator_pairs"),
+                                    "sweep spec trust.verilator_pairs '" + spec.trust.verilator_pairs + "'");
+    res.stream = stream.description;
+    res.seconds_load = since(t);
+    progress(o.progress, stream.description);
+    t = Clock::now();
+    const auto ref = eval::run_reference(stream, spec::ReferenceOptions{}, o.threads);
+    res.seconds_reference = since(t);
+    for (size_t k = 0; k < stream.frames.size(); ++k) res.scored_frames += scored(stream, k);
+
+    res.points.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        res.points[i].config = spec.configs[which[i]];
+        res.points[i].register_bits = datapath_register_bits(res.points[i].config.formats, spec.cost_geometry);
+    }
+    cost_phase(res, spec, o);
+    ranges_phase(res, o);
+    accuracy_phase(res, stream, ref, o);
+    landmarks_phase(res, spec, o);
     cv::setNumThreads(1);
 
     return res;
@@ -357,6 +381,94 @@ CheckPlan plan_checks(const SweepResult& res, const SweepOptions& o) {
     return plan;
 }
 
+namespace {
+
+// The three-way gate of one configuration (its verdict recorded by vl::run_gate_cached).
+void gate_check(CheckOutcome& c, const Config& config, const SweepOptions& o, const fs::path& rel, std::mutex& verilator_m) {
+    TrustResult& one = c.one;
+    std::string& status = c.status;
+    c.log = rel / "gate.log";
+    std::ofstream glog(o.out / c.log);
+    std::string why;
+    if (!vl::toolchain_available(&why)) {
+        status = "no gate: " + why;
+    } else {
+        try {
+            std::lock_guard<std::mutex> l(verilator_m);
+            const vl::GateResult g = vl::run_gate_cached(config.formats, {}, vl::default_cache_dir(), glog, &c.gate_cached);
+            one.reads = g.reads;
+            one.cached = c.gate_cached;
+            status = g.verdict == vl::GateVerdict::pass ? "pass" : std::string(vl::verdict_name(g.verdict)) + ": " + g.first;
+            one.detail = g.verdict == vl::GateVerdict::pass
+                             ? fmt::format("pass: {} writes, {} reads agree three ways ({:.0f} s{})", g.writes, g.reads,
+                                           g.seconds, c.gate_cached ? ", recorded" : "")
+                             : std::string();
+            one.seconds = g.seconds;
+        } catch (const SimulatorError& e) {
+            status = e.what();
+        }
+    }
+}
+
+// The GHDL run of one configuration on one regression-set stream.
+void ghdl_check(CheckOutcome& c, const Config& config, const util::RegressionStream& s, const SweepOptions& o,
+                const fs::path& rel, const fs::path& dir) {
+    TrustResult& one = c.one;
+    std::string& status = c.status;
+    const std::string tag = fmt::format("rtl-{}-{}", s.stem(), s.idle_every);
+    c.log = rel / (tag + ".log");
+    fs::remove(o.out / c.log);
+    cosim::GhdlRun run;
+    run.frames = regress::stream_frames(s);
+    for (int f = 0; f < s.frames; ++f) run.frame_names.push_back(s.stem() + "#" + std::to_string(f));
+    run.formats = config.formats;
+    run.backend = o.ghdl_backend;
+    run.keep_going = true;
+    run.idle_every = s.idle_every;
+    run.progress = false;
+    run.log = o.out / c.log;
+    run.summary_json = dir / (tag + ".json");
+    run.vcd = dir / (tag + ".vcd");
+    try {
+        const cosim::GhdlResult r = cosim::run_ghdl(run);
+        one.mismatches = r.summary.mismatching_cycles + r.summary.read_mismatches;
+        one.reads = r.summary.reads;
+        const bool ok = r.summary.pass() && r.summary.complete && r.simulator_status == 0;
+        status = ok ? "pass" : r.summary.mismatching_cycles > 0 ? "mismatch" : "incomplete";
+    } catch (const SimulatorError& e) {
+        status = e.what();
+    }
+}
+
+// The Verilator run of one configuration on the trust spec's KITTI pairs.
+void verilator_check(CheckOutcome& c, const Config& config, const frames::Stream& stream, const SweepOptions& o,
+                     const fs::path& rel, std::mutex& verilator_m) {
+    TrustResult& one = c.one;
+    std::string& status = c.status;
+    c.log = rel / "verilate.log";
+    fs::remove(o.out / c.log);
+    vl::VerilateRun run;
+    run.frames = stream.frames;
+    run.frame_names = stream.names;
+    run.formats = config.formats;
+    run.gate = false;   // the gate is its own check
+    run.keep_going = true;
+    std::ofstream vlog(o.out / c.log);
+    try {
+        std::lock_guard<std::mutex> l(verilator_m);
+        const vl::VerilateResult r = vl::run_verilate(run, vlog);
+        if (r.run) {
+            one.mismatches = r.run->mismatches;
+            one.reads = r.run->reads;
+        }
+        status = r.status();
+    } catch (const SimulatorError& e) {
+        status = e.what();
+    }
+}
+
+}  // namespace
+
 struct CheckRunner::State {
     SweepSpec spec;
     SweepOptions o;
@@ -409,52 +521,9 @@ CheckOutcome CheckRunner::run(const CheckTask& j, const Config& config, const st
     one.runs = 1;
     std::string& status = c.status;
     if (j.kind == CheckKind::gate) {
-        c.log = rel / "gate.log";
-        std::ofstream glog(o.out / c.log);
-        std::string why;
-        if (!vl::toolchain_available(&why)) {
-            status = "no gate: " + why;
-        } else {
-            try {
-                std::lock_guard<std::mutex> l(s_->verilator_m);
-                const vl::GateResult g = vl::run_gate_cached(config.formats, {}, vl::default_cache_dir(), glog, &c.gate_cached);
-                one.reads = g.reads;
-                one.cached = c.gate_cached;
-                status = g.verdict == vl::GateVerdict::pass ? "pass" : std::string(vl::verdict_name(g.verdict)) + ": " + g.first;
-                one.detail = g.verdict == vl::GateVerdict::pass
-                                 ? fmt::format("pass: {} writes, {} reads agree three ways ({:.0f} s{})", g.writes, g.reads,
-                                               g.seconds, c.gate_cached ? ", recorded" : "")
-                                 : std::string();
-                one.seconds = g.seconds;
-            } catch (const SimulatorError& e) {
-                status = e.what();
-            }
-        }
+        gate_check(c, config, o, rel, s_->verilator_m);
     } else if (j.kind == CheckKind::ghdl) {
-        const util::RegressionStream& s = rset[j.stream];
-        const std::string tag = fmt::format("rtl-{}-{}", s.stem(), s.idle_every);
-        c.log = rel / (tag + ".log");
-        fs::remove(o.out / c.log);
-        cosim::GhdlRun run;
-        run.frames = regress::stream_frames(s);
-        for (int f = 0; f < s.frames; ++f) run.frame_names.push_back(s.stem() + "#" + std::to_string(f));
-        run.formats = config.formats;
-        run.backend = o.ghdl_backend;
-        run.keep_going = true;
-        run.idle_every = s.idle_every;
-        run.progress = false;
-        run.log = o.out / c.log;
-        run.summary_json = dir / (tag + ".json");
-        run.vcd = dir / (tag + ".vcd");
-        try {
-            const cosim::GhdlResult r = cosim::run_ghdl(run);
-            one.mismatches = r.summary.mismatching_cycles + r.summary.read_mismatches;
-            one.reads = r.summary.reads;
-            const bool ok = r.summary.pass() && r.summary.complete && r.simulator_status == 0;
-            status = ok ? "pass" : r.summary.mismatching_cycles > 0 ? "mismatch" : "incomplete";
-        } catch (const SimulatorError& e) {
-            status = e.what();
-        }
+        ghdl_check(c, config, rset[j.stream], o, rel, dir);
     } else {
         std::call_once(s_->vl_loaded, [&] {
             s_->vl_stream = frames::load_kitti_stream(o.kitti, spec.sequence,
@@ -462,26 +531,7 @@ CheckOutcome CheckRunner::run(const CheckTask& j, const Config& config, const st
                                                       "sweep spec trust.verilator_pairs '" + spec.trust.verilator_pairs + "'",
                                                       o.threads);
         });
-        c.log = rel / "verilate.log";
-        fs::remove(o.out / c.log);
-        vl::VerilateRun run;
-        run.frames = s_->vl_stream.frames;
-        run.frame_names = s_->vl_stream.names;
-        run.formats = config.formats;
-        run.gate = false;   // the gate is its own check
-        run.keep_going = true;
-        std::ofstream vlog(o.out / c.log);
-        try {
-            std::lock_guard<std::mutex> l(s_->verilator_m);
-            const vl::VerilateResult r = vl::run_verilate(run, vlog);
-            if (r.run) {
-                one.mismatches = r.run->mismatches;
-                one.reads = r.run->reads;
-            }
-            status = r.status();
-        } catch (const SimulatorError& e) {
-            status = e.what();
-        }
+        verilator_check(c, config, s_->vl_stream, o, rel, s_->verilator_m);
     }
     if (j.kind != CheckKind::gate) one.seconds = since(ts);
     if (status != "pass") one.failed = 1;

@@ -98,22 +98,8 @@ void expand_grid(const json& g, const Formats& base, const std::string& what, co
     }
 }
 
-}  // namespace
-
-SweepSpec parse_sweep_spec(const std::string& text, const std::string& what) {
-    json j;
-    try {
-        j = json::parse(text);
-    } catch (const json::exception& e) {
-        throw InputError(what + ": not valid JSON: " + e.what());
-    }
-    if (!j.is_object()) throw InputError(what + ": the sweep spec must be a JSON object");
-    check_keys(j, {"name", "base", "configs", "grid", "cost", "trust", "data", "landmarks", "comment"}, what, "top level");
-    SweepSpec s;
-    if (j.contains("name")) s.name = string_value(j["name"], what, "name");
-    Formats base;
-    if (j.contains("base")) apply(j["base"], base, what, "base");
-
+/// The configurations of "configs" and "grid" over `base`, each with where it came from.
+std::vector<std::pair<Config, std::string>> spec_entries(const json& j, const Formats& base, const std::string& what) {
     std::vector<std::pair<Config, std::string>> entries;   // config, where it came from
     if (j.contains("configs")) {
         const json& cs = j["configs"];
@@ -138,9 +124,12 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& what) {
             expand_grid(g, base, what, "grid", entries);
         }
     }
-    if (entries.empty()) throw InputError(what + ": no configuration: give \"configs\" and/or \"grid\"");
+    return entries;
+}
 
-    // validate every point, merge equal Formats, reject equal names
+/// The entries validated into s.configs (equal formats merged, equal names refused), with
+/// the thesis's configuration added when no entry has its formats.
+void add_configs(SweepSpec& s, std::vector<std::pair<Config, std::string>>& entries, const std::string& what) {
     std::map<std::string, std::string> names;   // name -> where
     for (auto& [c, where] : entries) {
         try {
@@ -167,63 +156,88 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& what) {
         s.configs.push_back({"thesis", Formats{}});
         s.notes.push_back("the thesis configuration was added as the yardstick");
     }
+}
 
-    if (j.contains("cost")) {
-        const json& c = j["cost"];
-        if (!c.is_object()) fail(what, "cost", "must be an object");
-        check_keys(c, {"img_width", "img_height"}, what, "cost");
-        if (c.contains("img_width")) s.cost_geometry.width = int_value(c["img_width"], what, "cost.img_width");
-        if (c.contains("img_height")) s.cost_geometry.height = int_value(c["img_height"], what, "cost.img_height");
+void parse_cost(const json& c, SweepSpec& s, const std::string& what) {
+    if (!c.is_object()) fail(what, "cost", "must be an object");
+    check_keys(c, {"img_width", "img_height"}, what, "cost");
+    if (c.contains("img_width")) s.cost_geometry.width = int_value(c["img_width"], what, "cost.img_width");
+    if (c.contains("img_height")) s.cost_geometry.height = int_value(c["img_height"], what, "cost.img_height");
+    try {
+        s.cost_geometry.validate();
+    } catch (const std::invalid_argument& e) {
+        fail(what, "cost", e.what());
+    }
+}
+
+void parse_trust(const json& t, SweepSpec& s, const std::string& what) {
+    if (!t.is_object()) fail(what, "trust", "must be an object");
+    check_keys(t, {"rtl", "verilator_pairs", "verilator_gate"}, what, "trust");
+    if (t.contains("rtl")) {
+        if (!t["rtl"].is_boolean()) fail(what, "trust.rtl", "must be true or false");
+        s.trust.rtl = t["rtl"].get<bool>();
+    }
+    if (t.contains("verilator_pairs")) s.trust.verilator_pairs = string_value(t["verilator_pairs"], what, "trust.verilator_pairs");
+    if (t.contains("verilator_gate")) {
+        if (!t["verilator_gate"].is_boolean()) fail(what, "trust.verilator_gate", "must be true or false");
+        s.trust.verilator_gate = t["verilator_gate"].get<bool>();
+    }
+}
+
+void parse_data(const json& d, SweepSpec& s, const std::string& what) {
+    if (!d.is_object()) fail(what, "data", "must be an object");
+    check_keys(d, {"sequence", "pairs"}, what, "data");
+    if (d.contains("sequence")) s.sequence = string_value(d["sequence"], what, "data.sequence");
+    if (d.contains("pairs")) s.pairs = string_value(d["pairs"], what, "data.pairs");
+}
+
+void parse_landmarks(const json& l, SweepSpec& s, const std::string& what) {
+    if (l.is_boolean()) {
+        s.landmarks.enabled = l.get<bool>();
+    } else {
+        if (!l.is_object()) fail(what, "landmarks", "must be false or an object {\"scenes\": [...], \"g\": 16, \"h\": 3}");
+        check_keys(l, {"scenes", "g", "h"}, what, "landmarks");
+        if (l.contains("scenes")) {
+            const json& sc = l["scenes"];
+            if (!sc.is_array() || sc.empty()) fail(what, "landmarks.scenes", "must be a non-empty list of scene names");
+            s.landmarks.scenes.clear();
+            for (size_t i = 0; i < sc.size(); ++i)
+                s.landmarks.scenes.push_back(string_value(sc[i], what, "landmarks.scenes[" + std::to_string(i) + "]"));
+        }
+        if (l.contains("g")) s.landmarks.g = int_value(l["g"], what, "landmarks.g");
+        if (l.contains("h")) s.landmarks.h = int_value(l["h"], what, "landmarks.h");
         try {
-            s.cost_geometry.validate();
-        } catch (const std::invalid_argument& e) {
-            fail(what, "cost", e.what());
+            landmarks::validate(landmarks::GridParams{s.landmarks.g, s.landmarks.h});
+        } catch (const landmarks::InputError& e) {
+            fail(what, "landmarks", e.what());
         }
     }
-    if (j.contains("trust")) {
-        const json& t = j["trust"];
-        if (!t.is_object()) fail(what, "trust", "must be an object");
-        check_keys(t, {"rtl", "verilator_pairs", "verilator_gate"}, what, "trust");
-        if (t.contains("rtl")) {
-            if (!t["rtl"].is_boolean()) fail(what, "trust.rtl", "must be true or false");
-            s.trust.rtl = t["rtl"].get<bool>();
-        }
-        if (t.contains("verilator_pairs")) s.trust.verilator_pairs = string_value(t["verilator_pairs"], what, "trust.verilator_pairs");
-        if (t.contains("verilator_gate")) {
-            if (!t["verilator_gate"].is_boolean()) fail(what, "trust.verilator_gate", "must be true or false");
-            s.trust.verilator_gate = t["verilator_gate"].get<bool>();
-        }
+}
+
+}  // namespace
+
+SweepSpec parse_sweep_spec(const std::string& text, const std::string& what) {
+    json j;
+    try {
+        j = json::parse(text);
+    } catch (const json::exception& e) {
+        throw InputError(what + ": not valid JSON: " + e.what());
     }
-    if (j.contains("data")) {
-        const json& d = j["data"];
-        if (!d.is_object()) fail(what, "data", "must be an object");
-        check_keys(d, {"sequence", "pairs"}, what, "data");
-        if (d.contains("sequence")) s.sequence = string_value(d["sequence"], what, "data.sequence");
-        if (d.contains("pairs")) s.pairs = string_value(d["pairs"], what, "data.pairs");
-    }
-    if (j.contains("landmarks")) {
-        const json& l = j["landmarks"];
-        if (l.is_boolean()) {
-            s.landmarks.enabled = l.get<bool>();
-        } else {
-            if (!l.is_object()) fail(what, "landmarks", "must be false or an object {\"scenes\": [...], \"g\": 16, \"h\": 3}");
-            check_keys(l, {"scenes", "g", "h"}, what, "landmarks");
-            if (l.contains("scenes")) {
-                const json& sc = l["scenes"];
-                if (!sc.is_array() || sc.empty()) fail(what, "landmarks.scenes", "must be a non-empty list of scene names");
-                s.landmarks.scenes.clear();
-                for (size_t i = 0; i < sc.size(); ++i)
-                    s.landmarks.scenes.push_back(string_value(sc[i], what, "landmarks.scenes[" + std::to_string(i) + "]"));
-            }
-            if (l.contains("g")) s.landmarks.g = int_value(l["g"], what, "landmarks.g");
-            if (l.contains("h")) s.landmarks.h = int_value(l["h"], what, "landmarks.h");
-            try {
-                landmarks::validate(landmarks::GridParams{s.landmarks.g, s.landmarks.h});
-            } catch (const landmarks::InputError& e) {
-                fail(what, "landmarks", e.what());
-            }
-        }
-    }
+    if (!j.is_object()) throw InputError(what + ": the sweep spec must be a JSON object");
+    check_keys(j, {"name", "base", "configs", "grid", "cost", "trust", "data", "landmarks", "comment"}, what, "top level");
+    SweepSpec s;
+    if (j.contains("name")) s.name = string_value(j["name"], what, "name");
+    Formats base;
+    if (j.contains("base")) apply(j["base"], base, what, "base");
+
+    std::vector<std::pair<Config, std::string>> entries = spec_entries(j, base, what);
+    if (entries.empty()) throw InputError(what + ": no configuration: give \"configs\" and/or \"grid\"");
+
+    add_configs(s, entries, what);
+    if (j.contains("cost")) parse_cost(j["cost"], s, what);
+    if (j.contains("trust")) parse_trust(j["trust"], s, what);
+    if (j.contains("data")) parse_data(j["data"], s, what);
+    if (j.contains("landmarks")) parse_landmarks(j["landmarks"], s, what);
     return s;
 }
 

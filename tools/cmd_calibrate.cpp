@@ -88,8 +88,7 @@ void run_calibrate(const CalibrateOptions& o) {
 }  // namespace
 
 void add_calibrate_command(CLI::App& app) {
-    auto o = std::make_shared<CalibrateOptions>();
-    CLI::App* cmd = app.add_subcommand(
+    const auto [cmd, o] = add_command<CalibrateOptions>(app,
         "calibrate", "stereo calibration from chessboard pairs (thesis 4.3): KITTI calib.txt, YAML/JSON with "
                      "distortion and Q, report");
     cmd->add_option("--left", o->left, "left images: files or quoted glob patterns, paired in sorted order")

@@ -124,8 +124,7 @@ void run_eval(const EvalOptions& o) {
 }  // namespace
 
 void add_eval_command(CLI::App& app) {
-    auto o = std::make_shared<EvalOptions>();
-    CLI::App* cmd = app.add_subcommand(
+    const auto [cmd, o] = add_command<EvalOptions>(app,
         "eval", "precision/recall of the co-processor against OpenCV's Harris (thesis 6.3.2), with ablation");
     cmd->add_option("--kitti", o->kitti, "KITTI odometry root holding sequences/ (default: <data>/kitti)");
     cmd->add_option("--sequence", o->sequence, "KITTI sequence")->capture_default_str();

@@ -17,9 +17,7 @@ void add_golden_command(CLI::App& app) {
         std::string set;
         bool check = false;
     };
-    auto o = std::make_shared<Opts>();
-    CLI::App* cmd = app.add_subcommand(
-        "golden",
+    const auto [cmd, o] = add_command<Opts>(app, "golden",
         "Regenerate the golden reference results from the cycle model (a deliberate act: review the diff),\n"
         "or with --check compare the model with the committed files (exit status 1 on any difference).");
     cmd->add_option("--out", o->out, "golden directory")->capture_default_str();

@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
@@ -142,9 +144,195 @@ void run_reobservation(const LandmarksOptions& o) {
     std::printf("%s", md.str().c_str());
 }
 
+/// The comparison's detectors, descriptors, grid, matcher and corner options from the flags.
+landmarks::ComparisonOptions comparison_options(const LandmarksOptions& o) {
+    landmarks::ComparisonOptions co;
+    co.detectors.clear();
+    co.descriptors.clear();
+    if (o.compare) {
+        co.detectors = {landmarks::Detector::sift512, landmarks::Detector::sift, landmarks::Detector::opencv};
+        co.descriptors = landmarks::comparison_descriptors();
+    } else {
+        for (const auto& s : split(o.corners)) co.detectors.push_back(landmarks::parse_detector(s));
+        for (const auto& s : split(o.descriptor)) co.descriptors.push_back(landmarks::parse_descriptor(s));
+    }
+    if (co.detectors.empty() || co.descriptors.empty()) throw InputError("--corners and --descriptor name at least one each");
+    co.grid = {o.g, o.h};
+    landmarks::validate(co.grid);
+    co.match.norm = landmarks::parse_norm(o.norm);
+    co.match.ratio = o.ratio;
+    co.match.drop_ties = o.drop_ties;
+    for (auto det : co.detectors)
+        for (auto d : co.descriptors) landmarks::check_combination(d, det, co.match.norm);
+    if (o.sigma <= 0) throw InputError("--sigma must be positive");
+    co.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
+    co.corners.progress = true;
+    co.threads = o.threads;
+    co.progress = [](const std::string& line) { std::fprintf(stderr, "landmarks: %s\n", line.c_str()); };
+    return co;
+}
+
+/// The comparison's rows run in shards (the run directory: --run-dir, or <out>/run); none when
+/// the shards are not all done.
+std::optional<std::vector<landmarks::ComparisonRow>> sharded_rows(const LandmarksOptions& o, const landmarks::Dataset& ds,
+                                                                  const fs::path& root, const landmarks::ComparisonOptions& co) {
+    if (o.study) throw InputError("--study runs in one process: leave out --runner and --shards");
+    if (!o.calib.empty()) throw InputError("--calib (a rig's pairs) runs in one process: leave out --runner and --shards");
+    jobs::LandmarksShards p;
+    p.dataset = o.dataset;
+    p.root = root;
+    p.need_truth = !o.no_truth;
+    p.sequence = o.sequence;
+    std::tie(p.first, p.last) = o.dataset == "kitti" ? pair_range(o.frames) : std::pair<int, int>{0, 0};
+    p.options = co;
+    p.pairs = ds.pairs.size();
+    p.shards = o.runner.shards;
+    const cluster::Manifest m = jobs::landmarks_manifest(p);
+    const fs::path dir = o.runner.run_dir.empty() ? fs::path(o.out) / "run" : fs::path(o.runner.run_dir);
+    const auto merged = run_sharded(dir, m, o.runner);
+    if (!merged) return std::nullopt;
+    return jobs::landmarks_rows(*merged);
+}
+
+/// The landmark files and match overlays of every row under <out>; the depth error table's
+/// rows (empty when no pair has a known disparity).
+std::string write_row_files(const LandmarksOptions& o, const landmarks::Dataset& ds,
+                            const std::vector<landmarks::ComparisonRow>& rows) {
+    landmarks::PipelineOptions po;
+    po.noise.sigma_px = o.sigma;
+    std::ostringstream depth;
+    for (const auto& row : rows) {
+        const std::string dir = landmarks::detector_name(row.detector) + "-" + landmarks::descriptor_name(row.descriptor);
+        for (size_t k = 0; k < row.pairs.size(); ++k) {
+            const auto& pr = row.pairs[k];
+            if (o.landmark_files) {
+                const auto lm = landmarks::landmarks_from(pr, ds.calib[k], po);
+                landmarks::write_atomic(fs::path(o.out) / dir / "landmarks" / (safe(pr.name) + ".csv"), landmarks::landmarks_csv(lm));
+                landmarks::write_atomic(fs::path(o.out) / dir / "landmarks" / (safe(pr.name) + ".ply"), landmarks::landmarks_ply(lm));
+            }
+            if (static_cast<int>(k) < o.overlays)
+                landmarks::write_png(fs::path(o.out) / dir / (safe(pr.name) + "-matches.png"),
+                                     landmarks::match_overlay(ds.pairs[k], pr));
+        }
+        const auto de = landmarks::depth_error(row, ds);
+        if (de.n) {
+            depth << fmt::format("| {} | {} | {} | {:.4f} | {:.4f} | {:.4f} |\n", landmarks::descriptor_name(row.descriptor),
+                                 landmarks::detector_name(row.detector), de.n, de.median, de.mean, de.p90);
+        }
+    }
+    return depth.str();
+}
+
+/// The g x h study of every detector: its Markdown section (with the held-out choice), its
+/// plots and <out>/study.csv. `secs` is the run's clock.
+std::string study_markdown(const LandmarksOptions& o, const landmarks::Dataset& ds, const landmarks::ComparisonOptions& co,
+                           const std::vector<std::vector<landmarks::PairKeypoints>>& kps,
+                           const std::vector<landmarks::ComparisonRow>& rows, const std::function<double()>& secs) {
+    std::ostringstream study_md, study_plots, held_out_md;
+    bool held_out_by_truth = true;
+    std::string study_csv;
+    landmarks::StudyOptions so;
+    so.corrected = o.corrected;
+    so.match = co.match;
+    so.threads = o.threads;
+    study_md << fmt::format("Grid descriptor ({}), g {}..{}, h {}..{}, summed over the dataset's pairs.\n\n",
+                            o.corrected ? "corrected g x g" : "thesis", so.g_min, so.g_max, so.h_min, so.h_max)
+             << "| detector | best (g, h), thesis-correct | correct | best (g, h), ground truth | correct (truth) | seconds |\n"
+                "|---|---|---:|---|---:|---:|\n";
+    for (size_t i = 0; i < co.detectors.size(); ++i) {
+        const auto det = co.detectors[i];
+        const std::string dn = landmarks::detector_name(det);
+        const double ts = secs();
+        const auto st = landmarks::study(ds, det, kps[i], so);
+        const double t_study = secs() - ts;
+        std::fprintf(stderr, "landmarks: study on %s corners: %zu cells in %.1f s\n", dn.c_str(), st.cells.size(), t_study);
+        double ref = -1, ref_truth = -1;   // the SIFT descriptor on the same corners, as the thesis's dashed line
+        for (const auto& r : rows)
+            if (r.detector == det && r.descriptor == landmarks::Descriptor::sift) {
+                ref = static_cast<double>(r.totals.correct);
+                ref_truth = r.totals.truth_known ? static_cast<double>(r.totals.truth_correct) : -1;
+            }
+        const std::string csv = landmarks::study_csv(ds.name, st);
+        study_csv += study_csv.empty() ? csv : csv.substr(csv.find('\n') + 1);
+        if (landmarks::plot_study(st, false, ref, ds.name + ": grid on " + dn + " corners, thesis-correct matches",
+                                  fs::path(o.out) / ("study-" + dn + ".png")))
+            study_plots << "![" << dn << "](study-" << dn << ".png)\n";
+        if (st.best_truth().truth_correct > 0 &&
+            landmarks::plot_study(st, true, ref_truth, ds.name + ": grid on " + dn + " corners, ground-truth-correct matches",
+                                  fs::path(o.out) / ("study-" + dn + "-truth.png")))
+            study_plots << "![" << dn << " ground truth](study-" << dn << "-truth.png)\n";
+        const auto bc = st.best_correct(), bt = st.best_truth();
+        study_md << fmt::format("| {} | ({}, {}) | {} | {} | {} | {:.1f} |\n", dn, bc.g, bc.h, bc.correct,
+                                bt.truth_correct ? fmt::format("({}, {})", bt.g, bt.h) : "n/a", bt.truth_correct, t_study);
+        // (g, h) chosen on half of the pairs, scored on the other half, both ways
+        if (ds.pairs.size() >= 2) {
+            const bool by_truth = bt.truth_correct > 0;
+            std::vector<size_t> even, odd;
+            for (size_t k = 0; k < ds.pairs.size(); ++k) (k % 2 ? odd : even).push_back(k);
+            const auto names = [&](const std::vector<size_t>& v) {
+                std::string out;
+                for (size_t k : v) out += (out.empty() ? "" : ", ") + ds.pairs[k].name;
+                return out;
+            };
+            const auto count = [&](const landmarks::StudyCell& c) { return by_truth ? c.truth_correct : c.correct; };
+            for (const auto& [choose, report] : {std::pair{even, odd}, std::pair{odd, even}}) {
+                const auto ho = landmarks::held_out_choice(st, choose, report, by_truth);
+                held_out_md << fmt::format("| {} | {} | {} | ({}, {}) | {} | {} | ({}, {}) | {} |\n", dn, names(choose),
+                                           names(report), ho.chosen.g, ho.chosen.h, count(ho.chosen),
+                                           count(ho.on_report), ho.report_best.g, ho.report_best.h,
+                                           count(ho.report_best));
+            }
+            held_out_by_truth = held_out_by_truth && by_truth;
+        }
+    }
+    if (!held_out_md.str().empty())
+        study_md << "\n(g, h) chosen on the pairs of one half and scored on the other ("
+                 << (held_out_by_truth ? "ground-truth-correct" : "thesis-correct")
+                 << " matches; 'best on scored' is what choosing on the scored pairs themselves would claim):\n\n"
+                    "| detector | chosen on | scored on | chosen (g, h) | count on chosen | count on scored | best on scored "
+                    "| its count |\n|---|---|---|---|---:|---:|---|---:|\n"
+                 << held_out_md.str();
+    study_md << "\n" << study_plots.str();
+    landmarks::write_atomic(fs::path(o.out) / "study.csv", study_csv);
+    return study_md.str();
+}
+
+/// The report's Markdown: the matching rules, the comparison table, the depth error and the study.
+std::string report_markdown(const LandmarksOptions& o, const landmarks::Dataset& ds,
+                            const std::vector<landmarks::ComparisonRow>& rows, const std::string& depth,
+                            const std::string& study, double t_compare, double t_total) {
+    std::ostringstream md;
+    md << "# Landmark acquisition: " << ds.name << "\n\n";
+    md << fmt::format("{} stereo pairs. Matches pass the cross-check and the 2-NN ratio test ({}{}); *correct (thesis)* "
+                      "adds the epipolar test |y_r - y_l| < 5; *correct (ground truth)* counts, of those with a known "
+                      "disparity, the ones with |x_l - x_r - d| <= 1 px and |y_r - y_l| <= 1 px; *x only* the ones with "
+                      "|x_l - x_r - d| <= 1 px whatever their rows. Time: extraction of both images + matching, one thread.\n\n",
+                      ds.pairs.size(),
+                      o.ratio > 0 ? fmt::format("ratio {} for every descriptor", o.ratio)
+                                  : std::string("ratio 1, the thesis's test of the grid, for every descriptor but "
+                                                "sift, which uses 0.8 as the thesis's SIFT reference (after Lowe); "
+                                                "sift-ratio1 is SIFT at ratio 1"),
+                      o.drop_ties ? "; ties dropped" : "; the test as printed");
+    if (ds.rig)
+        md << "A rig's unrectified pairs (`--calib " << o.calib
+           << "`): keypoints undistorted and rectified by cv::undistortPoints with the calibration's intrinsics, "
+              "distortion, rectifying rotations and projections (no image warped); the epipolar test, the triangulation "
+              "(its rectified projections) and the overlays use the rectified positions.\n\n";
+    md << fmt::format("Co-processor formats (spec, cycle, rtl corners): {}.\n\n",
+                      o.config.empty() ? "the thesis's" : "--config " + o.config);
+    md << landmarks::comparison_markdown(rows) << "\n";
+    if (!depth.empty())
+        md << "## Depth error against the ground truth\n\nRelative |Z - Z_gt| / Z_gt of correct (thesis) matches with a "
+              "known disparity.\n\n| descriptor | detector | n | median | mean | 90th percentile |\n|---|---|---:|---:|---:|---:|\n"
+           << depth << "\n";
+    if (o.study) md << "## Grid parameter study (g x h)\n\n" << study << "\n";
+    md << fmt::format("Wall time: comparison {:.1f} s, total {:.1f} s.\n", t_compare, t_total);
+    return md.str();
+}
+
 void run_landmarks(const LandmarksOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
-    const auto secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    const std::function<double()> secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     try {
         if (o.reobservation) {
             if (o.compare || o.study || o.sharded || !o.calib.empty())
@@ -152,29 +340,7 @@ void run_landmarks(const LandmarksOptions& o) {
             run_reobservation(o);
             return;
         }
-        landmarks::ComparisonOptions co;
-        co.detectors.clear();
-        co.descriptors.clear();
-        if (o.compare) {
-            co.detectors = {landmarks::Detector::sift512, landmarks::Detector::sift, landmarks::Detector::opencv};
-            co.descriptors = landmarks::comparison_descriptors();
-        } else {
-            for (const auto& s : split(o.corners)) co.detectors.push_back(landmarks::parse_detector(s));
-            for (const auto& s : split(o.descriptor)) co.descriptors.push_back(landmarks::parse_descriptor(s));
-        }
-        if (co.detectors.empty() || co.descriptors.empty()) throw InputError("--corners and --descriptor name at least one each");
-        co.grid = {o.g, o.h};
-        landmarks::validate(co.grid);
-        co.match.norm = landmarks::parse_norm(o.norm);
-        co.match.ratio = o.ratio;
-        co.match.drop_ties = o.drop_ties;
-        for (auto det : co.detectors)
-            for (auto d : co.descriptors) landmarks::check_combination(d, det, co.match.norm);
-        if (o.sigma <= 0) throw InputError("--sigma must be positive");
-        co.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
-        co.corners.progress = true;
-        co.threads = o.threads;
-        co.progress = [](const std::string& line) { std::fprintf(stderr, "landmarks: %s\n", line.c_str()); };
+        const landmarks::ComparisonOptions co = comparison_options(o);
 
         std::fprintf(stderr, "landmarks: loading %s...\n", o.calib.empty() ? o.dataset.c_str() : o.calib.c_str());
         fs::path root;
@@ -185,152 +351,19 @@ void run_landmarks(const LandmarksOptions& o) {
         std::vector<std::vector<landmarks::PairKeypoints>> kps;
         std::vector<landmarks::ComparisonRow> rows;
         if (o.sharded) {
-            if (o.study) throw InputError("--study runs in one process: leave out --runner and --shards");
-            if (!o.calib.empty()) throw InputError("--calib (a rig's pairs) runs in one process: leave out --runner and --shards");
-            jobs::LandmarksShards p;
-            p.dataset = o.dataset;
-            p.root = root;
-            p.need_truth = !o.no_truth;
-            p.sequence = o.sequence;
-            std::tie(p.first, p.last) = o.dataset == "kitti" ? pair_range(o.frames) : std::pair<int, int>{0, 0};
-            p.options = co;
-            p.pairs = ds.pairs.size();
-            p.shards = o.runner.shards;
-            const cluster::Manifest m = jobs::landmarks_manifest(p);
-            const fs::path dir = o.runner.run_dir.empty() ? fs::path(o.out) / "run" : fs::path(o.runner.run_dir);
-            const auto merged = run_sharded(dir, m, o.runner);
+            auto merged = sharded_rows(o, ds, root, co);
             if (!merged) return;
-            rows = jobs::landmarks_rows(*merged);
+            rows = std::move(*merged);
         } else {
             rows = landmarks::compare(ds, co, &kps);
         }
         const double t_compare = secs();
-
-        // landmarks and overlays of every row
-        landmarks::PipelineOptions po;
-        po.noise.sigma_px = o.sigma;
-        std::ostringstream depth;
-        bool any_truth = false;
-        for (const auto& row : rows) {
-            const std::string dir = landmarks::detector_name(row.detector) + "-" + landmarks::descriptor_name(row.descriptor);
-            for (size_t k = 0; k < row.pairs.size(); ++k) {
-                const auto& pr = row.pairs[k];
-                if (o.landmark_files) {
-                    const auto lm = landmarks::landmarks_from(pr, ds.calib[k], po);
-                    landmarks::write_atomic(fs::path(o.out) / dir / "landmarks" / (safe(pr.name) + ".csv"), landmarks::landmarks_csv(lm));
-                    landmarks::write_atomic(fs::path(o.out) / dir / "landmarks" / (safe(pr.name) + ".ply"), landmarks::landmarks_ply(lm));
-                }
-                if (static_cast<int>(k) < o.overlays)
-                    landmarks::write_png(fs::path(o.out) / dir / (safe(pr.name) + "-matches.png"),
-                                         landmarks::match_overlay(ds.pairs[k], pr));
-            }
-            const auto de = landmarks::depth_error(row, ds);
-            if (de.n) {
-                any_truth = true;
-                depth << fmt::format("| {} | {} | {} | {:.4f} | {:.4f} | {:.4f} |\n", landmarks::descriptor_name(row.descriptor),
-                                     landmarks::detector_name(row.detector), de.n, de.median, de.mean, de.p90);
-            }
-        }
-
-        // the g x h study
-        std::ostringstream study_md, study_plots, held_out_md;
-        bool held_out_by_truth = true;
-        std::string study_csv;
-        if (o.study) {
-            landmarks::StudyOptions so;
-            so.corrected = o.corrected;
-            so.match = co.match;
-            so.threads = o.threads;
-            study_md << fmt::format("Grid descriptor ({}), g {}..{}, h {}..{}, summed over the dataset's pairs.\n\n",
-                                    o.corrected ? "corrected g x g" : "thesis", so.g_min, so.g_max, so.h_min, so.h_max)
-                     << "| detector | best (g, h), thesis-correct | correct | best (g, h), ground truth | correct (truth) | seconds |\n"
-                        "|---|---|---:|---|---:|---:|\n";
-            for (size_t i = 0; i < co.detectors.size(); ++i) {
-                const auto det = co.detectors[i];
-                const std::string dn = landmarks::detector_name(det);
-                const double ts = secs();
-                const auto st = landmarks::study(ds, det, kps[i], so);
-                const double t_study = secs() - ts;
-                std::fprintf(stderr, "landmarks: study on %s corners: %zu cells in %.1f s\n", dn.c_str(), st.cells.size(), t_study);
-                double ref = -1, ref_truth = -1;   // the SIFT descriptor on the same corners, as the thesis's dashed line
-                for (const auto& r : rows)
-                    if (r.detector == det && r.descriptor == landmarks::Descriptor::sift) {
-                        ref = static_cast<double>(r.totals.correct);
-                        ref_truth = r.totals.truth_known ? static_cast<double>(r.totals.truth_correct) : -1;
-                    }
-                const std::string csv = landmarks::study_csv(ds.name, st);
-                study_csv += study_csv.empty() ? csv : csv.substr(csv.find('\n') + 1);
-                if (landmarks::plot_study(st, false, ref, ds.name + ": grid on " + dn + " corners, thesis-correct matches",
-                                          fs::path(o.out) / ("study-" + dn + ".png")))
-                    study_plots << "![" << dn << "](study-" << dn << ".png)\n";
-                if (st.best_truth().truth_correct > 0 &&
-                    landmarks::plot_study(st, true, ref_truth, ds.name + ": grid on " + dn + " corners, ground-truth-correct matches",
-                                          fs::path(o.out) / ("study-" + dn + "-truth.png")))
-                    study_plots << "![" << dn << " ground truth](study-" << dn << "-truth.png)\n";
-                const auto bc = st.best_correct(), bt = st.best_truth();
-                study_md << fmt::format("| {} | ({}, {}) | {} | {} | {} | {:.1f} |\n", dn, bc.g, bc.h, bc.correct,
-                                        bt.truth_correct ? fmt::format("({}, {})", bt.g, bt.h) : "n/a", bt.truth_correct, t_study);
-                // (g, h) chosen on half of the pairs, scored on the other half, both ways
-                if (ds.pairs.size() >= 2) {
-                    const bool by_truth = bt.truth_correct > 0;
-                    std::vector<size_t> even, odd;
-                    for (size_t k = 0; k < ds.pairs.size(); ++k) (k % 2 ? odd : even).push_back(k);
-                    const auto names = [&](const std::vector<size_t>& v) {
-                        std::string out;
-                        for (size_t k : v) out += (out.empty() ? "" : ", ") + ds.pairs[k].name;
-                        return out;
-                    };
-                    const auto count = [&](const landmarks::StudyCell& c) { return by_truth ? c.truth_correct : c.correct; };
-                    for (const auto& [choose, report] : {std::pair{even, odd}, std::pair{odd, even}}) {
-                        const auto ho = landmarks::held_out_choice(st, choose, report, by_truth);
-                        held_out_md << fmt::format("| {} | {} | {} | ({}, {}) | {} | {} | ({}, {}) | {} |\n", dn, names(choose),
-                                                   names(report), ho.chosen.g, ho.chosen.h, count(ho.chosen),
-                                                   count(ho.on_report), ho.report_best.g, ho.report_best.h,
-                                                   count(ho.report_best));
-                    }
-                    held_out_by_truth = held_out_by_truth && by_truth;
-                }
-            }
-            if (!held_out_md.str().empty())
-                study_md << "\n(g, h) chosen on the pairs of one half and scored on the other ("
-                         << (held_out_by_truth ? "ground-truth-correct" : "thesis-correct")
-                         << " matches; 'best on scored' is what choosing on the scored pairs themselves would claim):\n\n"
-                            "| detector | chosen on | scored on | chosen (g, h) | count on chosen | count on scored | best on scored "
-                            "| its count |\n|---|---|---|---|---:|---:|---|---:|\n"
-                         << held_out_md.str();
-            study_md << "\n" << study_plots.str();
-            landmarks::write_atomic(fs::path(o.out) / "study.csv", study_csv);
-        }
+        const std::string depth = write_row_files(o, ds, rows);   // landmarks and overlays of every row
+        const std::string study = o.study ? study_markdown(o, ds, co, kps, rows, secs) : std::string();
         const double t_total = secs();
 
-        // report
-        std::ostringstream md;
-        md << "# Landmark acquisition: " << ds.name << "\n\n";
-        md << fmt::format("{} stereo pairs. Matches pass the cross-check and the 2-NN ratio test ({}{}); *correct (thesis)* "
-                          "adds the epipolar test |y_r - y_l| < 5; *correct (ground truth)* counts, of those with a known "
-                          "disparity, the ones with |x_l - x_r - d| <= 1 px and |y_r - y_l| <= 1 px; *x only* the ones with "
-                          "|x_l - x_r - d| <= 1 px whatever their rows. Time: extraction of both images + matching, one thread.\n\n",
-                          ds.pairs.size(),
-                          o.ratio > 0 ? fmt::format("ratio {} for every descriptor", o.ratio)
-                                      : std::string("ratio 1, the thesis's test of the grid, for every descriptor but "
-                                                    "sift, which uses 0.8 as the thesis's SIFT reference (after Lowe); "
-                                                    "sift-ratio1 is SIFT at ratio 1"),
-                          o.drop_ties ? "; ties dropped" : "; the test as printed");
-        if (ds.rig)
-            md << "A rig's unrectified pairs (`--calib " << o.calib
-               << "`): keypoints undistorted and rectified by cv::undistortPoints with the calibration's intrinsics, "
-                  "distortion, rectifying rotations and projections (no image warped); the epipolar test, the triangulation "
-                  "(its rectified projections) and the overlays use the rectified positions.\n\n";
-        md << fmt::format("Co-processor formats (spec, cycle, rtl corners): {}.\n\n",
-                          o.config.empty() ? "the thesis's" : "--config " + o.config);
-        md << landmarks::comparison_markdown(rows) << "\n";
-        if (any_truth)
-            md << "## Depth error against the ground truth\n\nRelative |Z - Z_gt| / Z_gt of correct (thesis) matches with a "
-                  "known disparity.\n\n| descriptor | detector | n | median | mean | 90th percentile |\n|---|---|---:|---:|---:|---:|\n"
-               << depth.str() << "\n";
-        if (o.study) md << "## Grid parameter study (g x h)\n\n" << study_md.str() << "\n";
-        md << fmt::format("Wall time: comparison {:.1f} s, total {:.1f} s.\n", t_compare, t_total);
-        landmarks::write_atomic(fs::path(o.out) / "report.md", md.str());
+        const std::string md = report_markdown(o, ds, rows, depth, study, t_compare, t_total);
+        landmarks::write_atomic(fs::path(o.out) / "report.md", md);
         landmarks::write_atomic(fs::path(o.out) / "results.csv", landmarks::comparison_csv(ds.name, rows));
         landmarks::write_atomic(fs::path(o.out) / "results.json", landmarks::comparison_json(ds.name, rows));
         std::printf("%s", landmarks::comparison_markdown(rows).c_str());
@@ -344,8 +377,7 @@ void run_landmarks(const LandmarksOptions& o) {
 }  // namespace
 
 void add_landmarks_command(CLI::App& app) {
-    auto o = std::make_shared<LandmarksOptions>();
-    CLI::App* cmd = app.add_subcommand(
+    const auto [cmd, o] = add_command<LandmarksOptions>(app,
         "landmarks", "corners -> descriptor -> stereo matches -> 3D landmarks, scored against ground truth (thesis 6.4)");
     cmd->add_option("--corners", o->corners, "corner sources, comma-separated: opencv, sift, sift512, orb, brisk, spec, cycle, rtl")
         ->capture_default_str();

@@ -17,9 +17,7 @@ void add_mutate_command(CLI::App& app) {
         std::vector<std::string> only;
         GeneratedFlags gen;   ///< gen.runner: the sharding flags of both campaigns
     };
-    auto o = std::make_shared<Opts>();
-    CLI::App* cmd = app.add_subcommand(
-        "mutate",
+    const auto [cmd, o] = add_command<Opts>(app, "mutate",
         "Mutation campaign: apply each single-point RTL mutation to a scratch copy, co-simulate it (GHDL mcode)\n"
         "against the cycle model, and check the co-simulation catches it and names the mutated stage first.\n"
         "Exit status 0 when every mutant is caught and localised (equivalent ones pass), 1 otherwise.\n"

@@ -22,9 +22,7 @@ void add_ranges_command(CLI::App& app) {
         int pixel_max = 255;
         double search_seconds = 5;
     };
-    auto o = std::make_shared<Opts>();
-    CLI::App* cmd = app.add_subcommand(
-        "ranges",
+    const auto [cmd, o] = add_command<Opts>(app, "ranges",
         "Derived ranges of every datapath register for every input: an interval bound through the model's\n"
         "stage functions; where it does not fit, a search for a pixel window that wraps the register.\n"
         "Each register is proven (cannot wrap), wraps (witness window) or open (bound, best value reached).");

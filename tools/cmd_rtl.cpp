@@ -182,9 +182,7 @@ void run_model(const ModelOptions& o) {
 }  // namespace
 
 void add_rtl_command(CLI::App& app) {
-    auto o = std::make_shared<RtlOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "rtl",
+    const auto [cmd, o] = add_command<RtlOptions>(app, "rtl",
         "Co-simulate the VHDL co-processor in GHDL against the cycle-accurate model, comparing every\n"
         "inter-stage register after every write. Exit status: 0 all equal, 1 mismatch, 2 bad input,\n"
         "3 simulator failure (including a simulator older than the RTL: rebuild).");
@@ -212,8 +210,7 @@ void add_rtl_command(CLI::App& app) {
 }
 
 void add_model_command(CLI::App& app) {
-    auto o = std::make_shared<ModelOptions>();
-    CLI::App* cmd = app.add_subcommand(
+    const auto [cmd, o] = add_command<ModelOptions>(app,
         "model", "Run the cycle-accurate model alone through the host driver's write order (no simulator).");
     add_frame_source_options(cmd, o->src);
     cmd->add_option("--config", o->config, "JSON file of bit widths and shifts (default: the thesis's)");

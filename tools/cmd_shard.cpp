@@ -14,9 +14,7 @@ void add_shard_command(CLI::App& app) {
         std::string dir;
         std::size_t index = 0;
     };
-    auto o = std::make_shared<Opts>();
-    CLI::App* cmd = app.add_subcommand(
-        "shard",
+    const auto [cmd, o] = add_command<Opts>(app, "shard",
         "The ends of a sharded run (see --runner on eval, verilate, sweep, mutate, landmarks, slam):\n"
         "`run DIR INDEX` computes one shard, `merge DIR` folds all results into DIR/merged.json,\n"
         "`status DIR` lists the shards still without a result.");

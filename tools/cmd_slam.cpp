@@ -255,8 +255,7 @@ void run_slam(const SlamOptions& o) {
 }  // namespace
 
 void add_slam_command(CLI::App& app) {
-    auto o = std::make_shared<SlamOptions>();
-    CLI::App* cmd = app.add_subcommand(
+    const auto [cmd, o] = add_command<SlamOptions>(app,
         "slam", "2-D EKF-SLAM (thesis 2.5, 5.4): Monte-Carlo consistency in the simulator, or a KITTI trajectory");
     cmd->add_flag("--simulate", o->simulate, "Monte-Carlo runs in the simulator (NEES, RMSE, plots)");
     cmd->add_option("--sequences,--sequence", o->sequences,

@@ -115,9 +115,7 @@ void run(const SweepCli& c) {
 }  // namespace
 
 void add_sweep_command(CLI::App& app) {
-    auto c = std::make_shared<SweepCli>();
-    auto* s = app.add_subcommand(
-        "sweep",
+    const auto [s, c] = add_command<SweepCli>(app, "sweep",
         "Bit-width exploration: per configuration of a JSON sweep spec, recall/precision against OpenCV on KITTI\n"
         "(spec model), correct stereo matches of the landmark chain on Middlebury pairs, overflow audit, yosys\n"
         "synth_xilinx cost (cached); Pareto front, each Pareto point verified on the RTL (GHDL co-simulation +\n"

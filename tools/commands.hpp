@@ -7,7 +7,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <memory>
 #include <string>
+#include <utility>
 
 namespace hc::tools {
 
@@ -29,6 +31,13 @@ inline CLI::Validator whole_number(long min) {
             return {};
         },
         "N >= " + std::to_string(min));
+}
+
+/// A subcommand `name` of `app` with its help, and the options its flags fill, which its
+/// callback shares.
+template <class Options>
+std::pair<CLI::App*, std::shared_ptr<Options>> add_command(CLI::App& app, const std::string& name, const std::string& help) {
+    return {app.add_subcommand(name, help), std::make_shared<Options>()};
 }
 
 void add_rtl_command(CLI::App& app);        // GHDL co-simulation (cmd_rtl.cpp)

@@ -25,19 +25,13 @@ int main(int argc, char** argv) {
         "Exit status: 0 pass, 1 mismatch, 2 bad input, 3 simulator failure, 4 translation fault, 5 internal fault."};
     app.require_subcommand(1);
     app.set_version_flag("--version", "harris-cosim " HC_VERSION);
-    hc::tools::add_rtl_command(app);
-    hc::tools::add_model_command(app);
-    hc::tools::add_golden_command(app);
-    hc::tools::add_mutate_command(app);
-    hc::tools::add_verilate_command(app);
-    hc::tools::add_eval_command(app);
-    hc::tools::add_sweep_command(app);
-    hc::tools::add_ranges_command(app);
-    hc::tools::add_calibrate_command(app);
-    hc::tools::add_slam_command(app);
-    hc::tools::add_landmarks_command(app);
-    hc::tools::add_shard_command(app);
-    hc::tools::set_program_path(argc > 0 ? argv[0] : nullptr);
+    namespace t = hc::tools;
+    // the commands, in the order --help lists them
+    for (auto add : {t::add_rtl_command, t::add_model_command, t::add_golden_command, t::add_mutate_command,
+                     t::add_verilate_command, t::add_eval_command, t::add_sweep_command, t::add_ranges_command,
+                     t::add_calibrate_command, t::add_slam_command, t::add_landmarks_command, t::add_shard_command})
+        add(app);
+    t::set_program_path(argc > 0 ? argv[0] : nullptr);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {   // --help, --version

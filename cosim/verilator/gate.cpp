@@ -116,119 +116,146 @@ const char* verdict_name(GateVerdict v) {
     return "?";
 }
 
+namespace {
+
+// One gate case's stream, once, shared by the three sides.
+std::vector<BusEvent> case_stream(const GateCase& gc) {
+    std::vector<Image> imgs;
+    for (std::size_t k = 0; k < gc.patterns.size(); ++k)
+        imgs.push_back(make_pattern(gc.patterns[k], gc.g.width, gc.g.height, static_cast<int>(k), 7));
+    std::vector<const Image*> ptrs;
+    for (const auto& im : imgs) ptrs.push_back(&im);
+    HostDriver drv(gc.g, ptrs);
+    std::vector<BusEvent> events;
+    for (BusEvent ev; drv.next(ev);) events.push_back(ev);
+    return events;
+}
+
+// GHDL: the stream replayed through the VHDL (library `lib`), one sample a write.
+std::vector<Sample> ghdl_replay(const GateCase& gc, const Formats& f, const fs::path& lib, const fs::path& cache_dir,
+                                const std::vector<BusEvent>& events) {
+    const fs::path run_dir = cache_dir / ("gate_run" + std::to_string(getpid()));
+    fs::create_directories(run_dir);
+    {
+        std::ofstream stim(run_dir / "stim.txt");
+        char buf[16];
+        for (const auto& ev : events) {
+            std::snprintf(buf, sizeof buf, "%08X\n", ev.data);
+            stim << buf;
+        }
+    }
+    // mcode takes top-level generics as run options, after the unit name
+    std::vector<std::string> cmd = {HCVL_GHDL, "--elab-run", "--std=08", "--workdir=" + lib.string(),
+                                    "ghdl_replay_tb"};
+    for (const auto& [name, value] : generics(gc.g, f)) cmd.push_back("-g" + name + "=" + std::to_string(value));
+    // power-up 'U' values make numeric_std warn at time 0 only; they say nothing here
+    cmd.insert(cmd.end(), {"-gOBSERVE=true", "-gSTIM=stim.txt", "-gRESULT=result.txt",
+                           "--ieee-asserts=disable-at-0"});
+    fs::remove(run_dir / "ghdl.log");
+    must(util::run_process(cmd, {.cwd = run_dir, .log = run_dir / "ghdl.log"}), "GHDL simulation of " + gc.name, run_dir / "ghdl.log");
+    std::vector<Sample> ghdl;
+    {
+        std::ifstream in(run_dir / "result.txt");
+        std::string line;
+        while (std::getline(in, line)) {
+            Sample s;
+            s.corner = static_cast<std::uint32_t>(std::stoul(line.substr(0, 8), nullptr, 16));
+            if (line.size() > 9) s.obs = line.substr(9);
+            ghdl.push_back(std::move(s));
+        }
+    }
+    fs::remove_all(run_dir);
+    if (ghdl.size() != events.size())
+        throw std::runtime_error("GHDL replay of " + gc.name + " returned " + std::to_string(ghdl.size()) +
+                                 " writes, expected " + std::to_string(events.size()));
+    return ghdl;
+}
+
+// The first disagreements of a case: GHDL against Verilator (translation), GHDL against the
+// model (RTL); empty where none.
+struct CaseFaults {
+    std::string translation, rtl;
+    long reads = 0, obs_compared = 0;
+};
+
+// Verilator: the netlist this geometry and these formats synthesise to, in lock step with
+// the model, against GHDL's samples, until both kinds of fault are found.
+CaseFaults compare_case(const GateCase& gc, const Formats& f, const std::vector<fs::path>& variants,
+                        const fs::path& cache_dir, std::ostream& log, const std::vector<BusEvent>& events,
+                        const std::vector<Sample>& ghdl) {
+    const auto layout = obs_layout(f);
+    const NetlistConfig nc = gate_netlist(gc, f, variants);
+    VerilatedDesign dut(build_netlist(nc, cache_dir, log), config_key(nc));
+    const int nbits = dut.obs_bits();
+    const auto slots = obs_slots(f, nbits);
+    HarrisTop model(gc.g, f);
+
+    CaseFaults c;
+    for (std::size_t w = 0; w < events.size(); ++w) {
+        model.write(events[w].data);
+        dut.write(events[w].data);
+        if (events[w].read) ++c.reads;
+        const std::string where = gc.name + ", write " + std::to_string(w + 1) +
+                                  (events[w].read ? " (a read)" : "");
+        const std::uint32_t cg = ghdl[w].corner, cv = dut.corner(), cm = model.corner();
+        if (c.translation.empty() && cg != cv)
+            c.translation = where + ": corner GHDL " + hex(cg) + ", Verilator " + hex(cv) + ", model " + hex(cm);
+        if (c.rtl.empty() && cg != cm)
+            c.rtl = where + ": corner GHDL " + hex(cg) + ", model " + hex(cm);
+        // observation port: GHDL vs Verilator bit by bit (defined GHDL bits only), and
+        // GHDL vs model element by element
+        if (ghdl[w].obs.size() != static_cast<std::size_t>(nbits))
+            throw std::runtime_error("GHDL obs is " + std::to_string(ghdl[w].obs.size()) + " bits, netlist " +
+                                     std::to_string(nbits));
+        const auto& words = dut.obs();
+        const FlatObservation flat = flatten(model.observe(), f);
+        for (std::size_t k = 0; k < slots.size(); ++k) {
+            if (!c.translation.empty() && !c.rtl.empty()) break;
+            const auto g = ghdl_value(ghdl[w].obs, slots[k], nbits);
+            if (!g) continue;
+            const std::uint64_t v = obs_value(words, slots[k]);
+            const std::uint64_t m = flat.bits[k] & (slots[k].width >= 64 ? ~0ULL : (1ULL << slots[k].width) - 1);
+            const ObsField& fld = layout[static_cast<std::size_t>(slots[k].field)];
+            const std::string sig = element_name(fld, slots[k]) + " (" + fld.stage + ")";
+            if (c.translation.empty() && *g != v)
+                c.translation = where + ": " + sig + " GHDL " + hex(*g) + ", Verilator " + hex(v) + ", model " +
+                                (flat.defined[k] ? hex(m) : std::string("undefined")) +
+                                (flat.defined[k] && m == *g ? " (GHDL agrees with the model)" : "");
+            if (c.rtl.empty() && flat.defined[k] && *g != m)
+                c.rtl = where + ": " + sig + " GHDL " + hex(*g) + ", model " + hex(m);
+        }
+        ++c.obs_compared;
+        if (!c.translation.empty() && !c.rtl.empty()) break;
+    }
+    return c;
+}
+
+}  // namespace
+
 GateResult run_gate(const Formats& f, const std::vector<fs::path>& variants, const fs::path& cache_dir,
                     std::ostream& log) {
     const auto t0 = std::chrono::steady_clock::now();
     GateResult res;
     std::string first_rtl;
-    const auto layout = obs_layout(f);
     NetlistConfig base{Geometry{}, f, true, variants};
     const fs::path lib = ghdl_library(vhdl_sources(base), cache_dir, log);
 
     for (const GateCase& gc : gate_cases()) {
-        // -- the stream, once, shared by the three sides
-        std::vector<Image> imgs;
-        for (std::size_t k = 0; k < gc.patterns.size(); ++k)
-            imgs.push_back(make_pattern(gc.patterns[k], gc.g.width, gc.g.height, static_cast<int>(k), 7));
-        std::vector<const Image*> ptrs;
-        for (const auto& im : imgs) ptrs.push_back(&im);
-        HostDriver drv(gc.g, ptrs);
-        std::vector<BusEvent> events;
-        for (BusEvent ev; drv.next(ev);) events.push_back(ev);
-
-        // -- GHDL: replay the stream through the VHDL
-        const fs::path run_dir = cache_dir / ("gate_run" + std::to_string(getpid()));
-        fs::create_directories(run_dir);
-        {
-            std::ofstream stim(run_dir / "stim.txt");
-            char buf[16];
-            for (const auto& ev : events) {
-                std::snprintf(buf, sizeof buf, "%08X\n", ev.data);
-                stim << buf;
-            }
-        }
-        // mcode takes top-level generics as run options, after the unit name
-        std::vector<std::string> cmd = {HCVL_GHDL, "--elab-run", "--std=08", "--workdir=" + lib.string(),
-                                        "ghdl_replay_tb"};
-        for (const auto& [name, value] : generics(gc.g, f)) cmd.push_back("-g" + name + "=" + std::to_string(value));
-        // power-up 'U' values make numeric_std warn at time 0 only; they say nothing here
-        cmd.insert(cmd.end(), {"-gOBSERVE=true", "-gSTIM=stim.txt", "-gRESULT=result.txt",
-                               "--ieee-asserts=disable-at-0"});
-        fs::remove(run_dir / "ghdl.log");
-        must(util::run_process(cmd, {.cwd = run_dir, .log = run_dir / "ghdl.log"}), "GHDL simulation of " + gc.name, run_dir / "ghdl.log");
-        std::vector<Sample> ghdl;
-        {
-            std::ifstream in(run_dir / "result.txt");
-            std::string line;
-            while (std::getline(in, line)) {
-                Sample s;
-                s.corner = static_cast<std::uint32_t>(std::stoul(line.substr(0, 8), nullptr, 16));
-                if (line.size() > 9) s.obs = line.substr(9);
-                ghdl.push_back(std::move(s));
-            }
-        }
-        fs::remove_all(run_dir);
-        if (ghdl.size() != events.size())
-            throw std::runtime_error("GHDL replay of " + gc.name + " returned " + std::to_string(ghdl.size()) +
-                                     " writes, expected " + std::to_string(events.size()));
-
-        // -- Verilator: the netlist this geometry and these formats synthesise to
-        const NetlistConfig nc = gate_netlist(gc, f, variants);
-        VerilatedDesign dut(build_netlist(nc, cache_dir, log), config_key(nc));
-        const int nbits = dut.obs_bits();
-        const auto slots = obs_slots(f, nbits);
-        HarrisTop model(gc.g, f);
-
-        long reads = 0;
-        std::string case_translation, case_rtl;
-        for (std::size_t w = 0; w < events.size(); ++w) {
-            model.write(events[w].data);
-            dut.write(events[w].data);
-            if (events[w].read) ++reads;
-            const std::string where = gc.name + ", write " + std::to_string(w + 1) +
-                                      (events[w].read ? " (a read)" : "");
-            const std::uint32_t cg = ghdl[w].corner, cv = dut.corner(), cm = model.corner();
-            if (case_translation.empty() && cg != cv)
-                case_translation = where + ": corner GHDL " + hex(cg) + ", Verilator " + hex(cv) + ", model " +
-                                   hex(cm);
-            if (case_rtl.empty() && cg != cm)
-                case_rtl = where + ": corner GHDL " + hex(cg) + ", model " + hex(cm);
-            // observation port: GHDL vs Verilator bit by bit (defined GHDL bits only), and
-            // GHDL vs model element by element
-            if (ghdl[w].obs.size() != static_cast<std::size_t>(nbits))
-                throw std::runtime_error("GHDL obs is " + std::to_string(ghdl[w].obs.size()) + " bits, netlist " +
-                                         std::to_string(nbits));
-            const auto& words = dut.obs();
-            const FlatObservation flat = flatten(model.observe(), f);
-            for (std::size_t k = 0; k < slots.size(); ++k) {
-                if (!case_translation.empty() && !case_rtl.empty()) break;
-                const auto g = ghdl_value(ghdl[w].obs, slots[k], nbits);
-                if (!g) continue;
-                const std::uint64_t v = obs_value(words, slots[k]);
-                const std::uint64_t m = flat.bits[k] & (slots[k].width >= 64 ? ~0ULL : (1ULL << slots[k].width) - 1);
-                const ObsField& fld = layout[static_cast<std::size_t>(slots[k].field)];
-                const std::string sig = element_name(fld, slots[k]) + " (" + fld.stage + ")";
-                if (case_translation.empty() && *g != v)
-                    case_translation = where + ": " + sig + " GHDL " + hex(*g) + ", Verilator " + hex(v) + ", model " +
-                                       (flat.defined[k] ? hex(m) : std::string("undefined")) +
-                                       (flat.defined[k] && m == *g ? " (GHDL agrees with the model)" : "");
-                if (case_rtl.empty() && flat.defined[k] && *g != m)
-                    case_rtl = where + ": " + sig + " GHDL " + hex(*g) + ", model " + hex(m);
-            }
-            ++res.obs_compared;
-            if (!case_translation.empty() && !case_rtl.empty()) break;
-        }
+        const std::vector<BusEvent> events = case_stream(gc);
+        const std::vector<Sample> ghdl = ghdl_replay(gc, f, lib, cache_dir, events);
+        const CaseFaults c = compare_case(gc, f, variants, cache_dir, log, events, ghdl);
+        res.obs_compared += c.obs_compared;
         res.writes += static_cast<long>(events.size());
-        res.reads += reads;
-        std::string line = gc.name + ": " + std::to_string(events.size()) + " writes, " + std::to_string(reads) +
+        res.reads += c.reads;
+        std::string line = gc.name + ": " + std::to_string(events.size()) + " writes, " + std::to_string(c.reads) +
                            " reads: ";
-        if (!case_translation.empty()) {
-            line += "TRANSLATION FAULT (GHDL != Verilator) at " + case_translation;
-            if (res.verdict != GateVerdict::translation_fault) res.first = "translation fault: " + case_translation;
+        if (!c.translation.empty()) {
+            line += "TRANSLATION FAULT (GHDL != Verilator) at " + c.translation;
+            if (res.verdict != GateVerdict::translation_fault) res.first = "translation fault: " + c.translation;
             res.verdict = GateVerdict::translation_fault;
-        } else if (!case_rtl.empty()) {
-            line += "RTL FAULT (GHDL == Verilator != model) at " + case_rtl;
-            if (first_rtl.empty()) first_rtl = "RTL fault: " + case_rtl;
+        } else if (!c.rtl.empty()) {
+            line += "RTL FAULT (GHDL == Verilator != model) at " + c.rtl;
+            if (first_rtl.empty()) first_rtl = "RTL fault: " + c.rtl;
             if (res.verdict == GateVerdict::pass) res.verdict = GateVerdict::rtl_fault;
         } else {
             line += "GHDL, Verilator and model agree on every read and every observed register";

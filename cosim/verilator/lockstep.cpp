@@ -2,6 +2,7 @@
 #include "cosim/verilator/lockstep.hpp"
 
 #include <chrono>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -35,6 +36,118 @@ const WindowTag* tag_of(const std::string& field, const StageTags& t) {
 int centre_offset(int n, int rc) { return n == 7 ? rc - 4 : n == 5 ? rc - 3 : rc - 2; }
 
 constexpr int kRing = 256;   // writes of position history: far more than the pipeline depth
+
+// One empty FrameStats a frame, named from `names` where it has a name.
+std::vector<FrameStats> frame_stats(int count, const std::vector<std::string>& names) {
+    std::vector<FrameStats> frames(static_cast<std::size_t>(count));
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        frames[k].index = static_cast<int>(k);
+        frames[k].source = k < names.size() ? names[k] : "";
+    }
+    return frames;
+}
+
+// A mismatch counted, and kept for the report while fewer than `max_reported` are.
+void record(RunResult& res, Mismatch m, int max_reported) {
+    ++res.mismatches;
+    if (static_cast<int>(res.reported.size()) < max_reported) res.reported.push_back(std::move(m));
+}
+
+// The mismatch of a corner read: the first differing corner bit (bit 3 = quadrant 0); other
+// bits of the word (31..4 must be 0) are reported as the whole word.
+Mismatch read_mismatch(const HostDriver& drv, const ReadPos& r, std::uint32_t expected, std::uint32_t actual, long write) {
+    const std::uint32_t diff = actual ^ expected;
+    Mismatch m;
+    m.kind = "read";
+    m.write = write;
+    int bit = -1;
+    for (int b = 3; b >= 0; --b)
+        if ((diff >> b) & 1U) {
+            bit = b;
+            break;
+        }
+    if (bit >= 0) {
+        const Corner c = drv.quadrant_centre(r, 3 - bit);
+        m.frame = c.frame;
+        m.x = c.x;
+        m.y = c.y;
+        m.quadrant = 3 - bit;
+        m.signal = "corner(" + std::to_string(bit) + ")";
+        m.expected = std::to_string((expected >> bit) & 1U);
+        m.actual = std::to_string((actual >> bit) & 1U);
+    } else {
+        m.frame = r.frame;
+        m.x = r.x;
+        m.y = r.y;
+        m.signal = "corner";
+        m.expected = hex(expected);
+        m.actual = hex(actual);
+    }
+    m.stage = "corner_shift_register";
+    return m;
+}
+
+// A corner read counted in the run's and its frame's figures, decoded, and passed to the
+// options' read hooks.
+void count_read(RunResult& res, FrameStats& fs, const HostDriver& drv, const ReadPos& r, std::uint32_t actual,
+                std::vector<Corner>& corners, const RunOptions& opt) {
+    ++res.reads;
+    ++fs.reads;
+    corners.clear();
+    drv.decode(r, actual, corners);
+    res.corners += static_cast<long>(corners.size());
+    fs.corners += static_cast<long>(corners.size());
+    if (opt.on_read) opt.on_read(r, actual);
+    if (opt.read_rows) {
+        std::ostringstream row;
+        row << res.writes << ',' << r.frame << ',' << r.x << ',' << r.y << ',' << actual;
+        opt.read_rows->push_back(row.str());
+    }
+}
+
+// The first element of the observation port that differs from the model's after a write, or
+// none: later stages follow from it. Its pixel is the window's, traced back through the ring
+// of write positions, or the write's own column for control/max/threshold/corner.
+std::optional<Mismatch> first_obs_mismatch(const HarrisTop& model, const Formats& f, const std::vector<ObsField>& layout,
+                                           const std::vector<ObsSlot>& slots, const std::vector<std::uint32_t>& words,
+                                           const HostDriver& drv, const std::vector<WritePos>& ring, const WritePos& pos,
+                                           long write) {
+    const FlatObservation flat = flatten(model.observe(), f);
+    for (std::size_t k = 0; k < slots.size(); ++k) {
+        if (!flat.defined[k]) continue;   // 'U' in the RTL: no value to compare
+        const ObsSlot& s = slots[k];
+        const std::uint64_t mask = s.width >= 64 ? ~0ULL : (std::uint64_t{1} << s.width) - 1;
+        const std::uint64_t want = flat.bits[k] & mask, got = obs_value(words, s);
+        if (want == got) continue;
+        const ObsField& fld = layout[static_cast<std::size_t>(s.field)];
+        Mismatch m;
+        m.kind = "obs";
+        m.write = write;
+        m.signal = fld.name + (fld.elements() > 1 ? "(" + std::to_string(s.row) + "," +
+                                                         std::to_string(s.col) + ")"
+                                                   : "");
+        m.stage = fld.stage;
+        m.expected = hex(want);
+        m.actual = hex(got);
+        const WindowTag* tag = tag_of(fld.name, model.tags());
+        if (tag && tag->valid() && write - tag->write < kRing) {
+            const WritePos& wp = ring[static_cast<std::size_t>(tag->write % kRing)];
+            const Corner c = drv.write_centre(wp, tag->quadrant);
+            m.frame = c.frame;
+            m.quadrant = tag->quadrant;
+            m.x = c.x + centre_offset(fld.cols, s.col);
+            m.y = c.y + centre_offset(fld.rows, s.row);
+        } else {   // control/max/threshold/corner: the write's own column
+            const Corner c = drv.write_centre(pos, 0);
+            m.frame = c.frame;
+            m.x = c.x;
+            m.y = c.y;
+        }
+        return m;
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 std::vector<ObsSlot> obs_slots(const Formats& f, int obs_bits) {
@@ -97,11 +210,7 @@ RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut
     std::vector<ObsSlot> slots;
     if (opt.compare_obs) slots = obs_slots(f, dut.obs_bits());
 
-    res.frames.resize(static_cast<std::size_t>(count));
-    for (std::size_t k = 0; k < res.frames.size(); ++k) {
-        res.frames[k].index = static_cast<int>(k);
-        res.frames[k].source = k < names.size() ? names[k] : "";
-    }
+    res.frames = frame_stats(count, names);
     std::vector<WritePos> ring(kRing);
     std::vector<Corner> corners;
     const auto t_start = Clock::now();
@@ -109,10 +218,6 @@ RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut
     Clock::duration t_dut{}, t_model{};
     int open_frame = 0;   // lowest frame whose reads are not all done
 
-    auto record = [&](Mismatch m) {
-        ++res.mismatches;
-        if (static_cast<int>(res.reported.size()) < opt.max_reported) res.reported.push_back(std::move(m));
-    };
     auto finish_frames_below = [&](int limit) {
         while (open_frame < limit) {
             const auto now = Clock::now();
@@ -145,103 +250,22 @@ RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut
             const ReadPos& r = *ev.read;
             const std::uint32_t expected = model.corner();
             FrameStats& fs = res.frames[static_cast<std::size_t>(r.frame)];
-            ++res.reads;
-            ++fs.reads;
-            corners.clear();
-            drv.decode(r, actual, corners);
-            res.corners += static_cast<long>(corners.size());
-            fs.corners += static_cast<long>(corners.size());
-            if (opt.on_read) opt.on_read(r, actual);
-            if (opt.read_rows) {
-                std::ostringstream row;
-                row << res.writes << ',' << r.frame << ',' << r.x << ',' << r.y << ',' << actual;
-                opt.read_rows->push_back(row.str());
-            }
+            count_read(res, fs, drv, r, actual, corners, opt);
             if (actual != expected) {
                 ++fs.mismatches;
                 ++res.read_mismatches;
-                // report the first differing corner bit (bit 3 = quadrant 0); other bits of
-                // the word (31..4 must be 0) are reported as the whole word
-                const std::uint32_t diff = actual ^ expected;
-                Mismatch m;
-                m.kind = "read";
-                m.write = res.writes;
-                int bit = -1;
-                for (int b = 3; b >= 0; --b)
-                    if ((diff >> b) & 1U) {
-                        bit = b;
-                        break;
-                    }
-                if (bit >= 0) {
-                    const Corner c = drv.quadrant_centre(r, 3 - bit);
-                    m.frame = c.frame;
-                    m.x = c.x;
-                    m.y = c.y;
-                    m.quadrant = 3 - bit;
-                    m.signal = "corner(" + std::to_string(bit) + ")";
-                    m.expected = std::to_string((expected >> bit) & 1U);
-                    m.actual = std::to_string((actual >> bit) & 1U);
-                } else {
-                    m.frame = r.frame;
-                    m.x = r.x;
-                    m.y = r.y;
-                    m.signal = "corner";
-                    m.expected = hex(expected);
-                    m.actual = hex(actual);
-                }
-                m.stage = "corner_shift_register";
-                record(std::move(m));
-                if (!opt.keep_going) {
-                    res.stopped_early = true;
-                    break;
-                }
+                record(res, read_mismatch(drv, r, expected, actual, res.writes), opt.max_reported);
+                res.stopped_early = !opt.keep_going;
+                if (res.stopped_early) break;
             }
         }
 
         if (opt.compare_obs) {
-            const FlatObservation flat = flatten(model.observe(), f);
-            const auto& words = dut.obs();
-            bool bad = false;
-            for (std::size_t k = 0; k < slots.size(); ++k) {
-                if (!flat.defined[k]) continue;   // 'U' in the RTL: no value to compare
-                const ObsSlot& s = slots[k];
-                const std::uint64_t mask = s.width >= 64 ? ~0ULL : (std::uint64_t{1} << s.width) - 1;
-                const std::uint64_t want = flat.bits[k] & mask, got = obs_value(words, s);
-                if (want == got) continue;
-                const ObsField& fld = layout[static_cast<std::size_t>(s.field)];
-                Mismatch m;
-                m.kind = "obs";
-                m.write = res.writes;
-                m.signal = fld.name + (fld.elements() > 1 ? "(" + std::to_string(s.row) + "," +
-                                                                 std::to_string(s.col) + ")"
-                                                           : "");
-                m.stage = fld.stage;
-                m.expected = hex(want);
-                m.actual = hex(got);
-                const WindowTag* tag = tag_of(fld.name, model.tags());
-                if (tag && tag->valid() && res.writes - tag->write < kRing) {
-                    const WritePos& wp = ring[static_cast<std::size_t>(tag->write % kRing)];
-                    const Corner c = drv.write_centre(wp, tag->quadrant);
-                    m.frame = c.frame;
-                    m.quadrant = tag->quadrant;
-                    m.x = c.x + centre_offset(fld.cols, s.col);
-                    m.y = c.y + centre_offset(fld.rows, s.row);
-                } else {   // control/max/threshold/corner: the write's own column
-                    const Corner c = drv.write_centre(ev.pos, 0);
-                    m.frame = c.frame;
-                    m.x = c.x;
-                    m.y = c.y;
-                }
-                record(std::move(m));
-                bad = true;
-                break;   // first differing element of this write: later stages follow from it
-            }
-            if (bad) {
+            if (std::optional<Mismatch> m = first_obs_mismatch(model, f, layout, slots, dut.obs(), drv, ring, ev.pos, res.writes)) {
+                record(res, std::move(*m), opt.max_reported);
                 ++res.frames[static_cast<std::size_t>(ev.pos.frame)].mismatches;
-                if (!opt.keep_going) {
-                    res.stopped_early = true;
-                    break;
-                }
+                res.stopped_early = !opt.keep_going;
+                if (res.stopped_early) break;
             }
         }
     }

@@ -51,4 +51,12 @@ VerilateResult run_verilate(const VerilateRun& r, std::ostream& log) {
     return res;
 }
 
+nlohmann::json run_counts_json(const RunResult& r) {
+    return {{"complete", !r.stopped_early},
+            {"writes", r.writes},
+            {"reads", r.reads},
+            {"corners", r.corners},
+            {"read_mismatches", r.read_mismatches}};
+}
+
 }  // namespace hc::vl

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cosim/verilator/gate.hpp"
 #include "cosim/verilator/lockstep.hpp"
 #include "cosim/verilator/netlist.hpp"
@@ -51,5 +53,9 @@ inline constexpr long kUnoptimisedWrites = 100000;
 
 /// The flow; progress lines go to `log`.
 VerilateResult run_verilate(const VerilateRun& r, std::ostream& log);
+
+/// The counts of a lock-step run both verilate summaries give: complete, writes, reads,
+/// corners, read_mismatches.
+nlohmann::json run_counts_json(const RunResult& r);
 
 }  // namespace hc::vl

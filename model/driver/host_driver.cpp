@@ -107,6 +107,17 @@ void HostDriver::restore(const DriverState& s) {
     column_open_ = s.column_open;
 }
 
+namespace {
+
+// The bus word of the four quadrants' pixels at (r0, c): (r0, c) in bits 7..0, then
+// (r0 + di, c), (r0, c + dj) and (r0 + di, c + dj).
+std::uint32_t bus_word(const Image& im, int r0, int c, int di, int dj) {
+    return static_cast<std::uint32_t>(im.at(r0, c)) | static_cast<std::uint32_t>(im.at(r0 + di, c)) << 8 |
+           static_cast<std::uint32_t>(im.at(r0, c + dj)) << 16 | static_cast<std::uint32_t>(im.at(r0 + di, c + dj)) << 24;
+}
+
+}  // namespace
+
 bool HostDriver::next(BusEvent& ev) {
     if (done_) return false;
     const int last_frame = static_cast<int>(frames_.size()) - 1;
@@ -133,10 +144,7 @@ bool HostDriver::next(BusEvent& ev) {
             }
             const Image& im = *frames_[frame_];
             const int r0 = i_ + k_;
-            ev.data = static_cast<std::uint32_t>(im.at(r0, j_)) |
-                      static_cast<std::uint32_t>(im.at(r0 + di_, j_)) << 8 |
-                      static_cast<std::uint32_t>(im.at(r0, j_ + dj_)) << 16 |
-                      static_cast<std::uint32_t>(im.at(r0 + di_, j_ + dj_)) << 24;
+            ev.data = bus_word(im, r0, j_, di_, dj_);
             ev.pos = WritePos{frame_, i_, j_, k_, false};
             ev.read.reset();
             if (k_ == 3) {
@@ -163,10 +171,7 @@ bool HostDriver::next(BusEvent& ev) {
         const Image& nx = *frames_[frame_ + 1];
         const int r0 = k_ + 3;
         const int c = tail_col_;
-        ev.data = static_cast<std::uint32_t>(nx.at(r0, c)) |
-                  static_cast<std::uint32_t>(nx.at(r0 + di_, c)) << 8 |
-                  static_cast<std::uint32_t>(nx.at(r0, c + dj_)) << 16 |
-                  static_cast<std::uint32_t>(nx.at(r0 + di_, c + dj_)) << 24;
+        ev.data = bus_word(nx, r0, c, di_, dj_);
         ev.pos = WritePos{frame_ + 1, 3, c, k_, true};
         ev.read.reset();
         if (k_ == 3) {

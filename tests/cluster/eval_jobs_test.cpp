@@ -54,6 +54,25 @@ const fs::path& standin() {
     return root;
 }
 
+// An evaluation of `source` over the stand-in's `sequences`, one thread a shard.
+jobs::EvalJob standin_job(std::vector<std::string> sequences, const std::string& source, bool ablation) {
+    jobs::EvalJob j;
+    j.kitti = standin();
+    j.sequences = std::move(sequences);
+    j.source = source;
+    j.ablation = ablation;
+    j.threads = 1;
+    return j;
+}
+
+// The manifests of `j` in as few shards as it splits into and in `shards` shards.
+std::pair<cluster::Manifest, cluster::Manifest> single_and_sharded(jobs::EvalJob j, int shards) {
+    j.shards = 0;
+    cluster::Manifest single = jobs::eval_manifest(j);
+    j.shards = shards;
+    return {std::move(single), jobs::eval_manifest(j)};
+}
+
 eval::Stream pattern_stream(int w, int h, int frames) {
     eval::Stream s;
     for (int k = 0; k < frames; ++k) {
@@ -281,16 +300,10 @@ TEST_CASE("a list or range of sequences is parsed and missing sequences are name
 }
 
 TEST_CASE("spec and cycle evaluations sharded within sequences merge to the single-process data", "[cluster]") {
-    jobs::EvalJob j;
-    j.kitti = standin();
-    j.sequences = {"02", "03"};
-    j.threads = 1;
+    jobs::EvalJob j = standin_job({"02", "03"}, "spec", true);
     for (const char* source : {"spec", "cycle"}) {
         j.source = source;
-        j.shards = 0;
-        const cluster::Manifest single = jobs::eval_manifest(j);
-        j.shards = 5;
-        const cluster::Manifest sharded = jobs::eval_manifest(j);
+        const auto [single, sharded] = single_and_sharded(j, 5);
         REQUIRE(single.shards.size() == 2);
         REQUIRE(sharded.shards.size() == 5);
         if (std::string(source) == "cycle") CHECK_FALSE(sharded.shards[1].at("start").is_null());
@@ -302,12 +315,7 @@ TEST_CASE("spec and cycle evaluations sharded within sequences merge to the sing
 }
 
 TEST_CASE("a sharded cycle run checks its chain at every boundary and refuses a checkpoint from too short a warm-up", "[cluster]") {
-    jobs::EvalJob j;
-    j.kitti = standin();
-    j.sequences = {"02"};
-    j.source = "cycle";
-    j.ablation = false;
-    j.threads = 1;
+    jobs::EvalJob j = standin_job({"02"}, "cycle", false);
     j.shards = 3;
     cluster::Manifest m = jobs::eval_manifest(j);
     REQUIRE(m.shards.size() == 3);
@@ -341,13 +349,7 @@ TEST_CASE("a sharded cycle run checks its chain at every boundary and refuses a 
 }
 
 TEST_CASE("rtl evaluations and verilate runs sharded by sequence merge to the single-process data", "[cluster][rtl]") {
-    jobs::EvalJob j;
-    j.kitti = standin();
-    j.sequences = {"02", "03"};
-    j.source = "rtl";
-    j.ablation = false;
-    j.threads = 1;
-    const cluster::Manifest m = jobs::eval_manifest(j);
+    const cluster::Manifest m = jobs::eval_manifest(standin_job({"02", "03"}, "rtl", false));
     REQUIRE(m.shards.size() == 2);
     jobs::prepare_rtl(m);
     check_sharded_equals_single(m, m, cluster::RunnerKind::local, "local-rtl");
@@ -370,21 +372,13 @@ TEST_CASE("a Slurm array of cycle shards within KITTI 01 merges to the single-pr
     j.source = "cycle";
     j.ablation = false;
     j.threads = 1;
-    const cluster::Manifest single = jobs::eval_manifest(j);
-    j.shards = 4;
-    const cluster::Manifest sharded = jobs::eval_manifest(j);
+    const auto [single, sharded] = single_and_sharded(j, 4);
     REQUIRE(sharded.shards.size() == 4);
     check_sharded_equals_single(sharded, single, cluster::RunnerKind::slurm, "slurm-cycle");
 }
 
 TEST_CASE("a Slurm array of rtl shards, one per sequence, merges to the single-process data", "[slurm]") {
-    jobs::EvalJob j;
-    j.kitti = standin();
-    j.sequences = {"02", "03"};
-    j.source = "rtl";
-    j.ablation = false;
-    j.threads = 1;
-    const cluster::Manifest m = jobs::eval_manifest(j);
+    const cluster::Manifest m = jobs::eval_manifest(standin_job({"02", "03"}, "rtl", false));
     jobs::prepare_rtl(m);
     check_sharded_equals_single(m, m, cluster::RunnerKind::slurm, "slurm-rtl");
 }

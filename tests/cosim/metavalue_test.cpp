@@ -45,6 +45,17 @@ cosim::GhdlResult run_copy(const fs::path& rtl, const fs::path& sim) {
     return cosim::run_ghdl(run);
 }
 
+// The summary of a run of the copy of rtl/ in `dir`/`name` with `find` replaced by `replace`
+// in `file`, which must fail and name its first mismatch.
+cosim::Summary failing_edit(const fs::path& dir, const std::string& name, const std::string& file,
+                            const std::string& find, const std::string& replace) {
+    copy_rtl(dir / ("rtl" + name), file, find, replace);
+    const cosim::GhdlResult r = run_copy(dir / ("rtl" + name), dir / ("sim" + name));
+    CHECK_FALSE(r.summary.pass());
+    REQUIRE(r.summary.first_mismatch.has_value());
+    return r.summary;
+}
+
 }  // namespace
 
 TEST_CASE("a register without reset in a copy of the RTL is a METAVALUE failure naming the register",
@@ -58,17 +69,15 @@ TEST_CASE("a register without reset in a copy of the RTL is a METAVALUE failure 
     CHECK(ok.summary.metavalue_elements == 0);
 
     // control_shift_register's enables `tt` lose their asynchronous reset: 'U' at power-up
-    copy_rtl(scratch.path() / "rtl-noreset", "control_shift_register.vhd",
-             "    if rst = '0' then\n      tt <= (others => '0');\n    elsif clk'event and clk = '1' then",
-             "    if clk'event and clk = '1' then");
-    const cosim::GhdlResult r = run_copy(scratch.path() / "rtl-noreset", scratch.path() / "sim-noreset");
-    CHECK_FALSE(r.summary.pass());
-    CHECK(r.summary.metavalue_elements > 0);
-    REQUIRE(r.summary.first_mismatch.has_value());
-    CHECK(r.summary.first_mismatch->stage == "control_shift_register");
-    CHECK(r.summary.first_mismatch->signal == "t");
-    CHECK_THAT(r.summary.first_mismatch->report, Catch::Contains("(METAVALUE)"));
-    CHECK_THAT(r.summary.first_mismatch->report, Catch::Contains("control_shift_register"));
+    const cosim::Summary r =
+        failing_edit(scratch.path(), "-noreset", "control_shift_register.vhd",
+                     "    if rst = '0' then\n      tt <= (others => '0');\n    elsif clk'event and clk = '1' then",
+                     "    if clk'event and clk = '1' then");
+    CHECK(r.metavalue_elements > 0);
+    CHECK(r.first_mismatch->stage == "control_shift_register");
+    CHECK(r.first_mismatch->signal == "t");
+    CHECK_THAT(r.first_mismatch->report, Catch::Contains("(METAVALUE)"));
+    CHECK_THAT(r.first_mismatch->report, Catch::Contains("control_shift_register"));
 }
 
 TEST_CASE("a register clocked on the falling edge in a copy of the RTL fails while the clock is low",
@@ -76,23 +85,17 @@ TEST_CASE("a register clocked on the falling edge in a copy of the RTL fails whi
     // with the inputs changing while the clock is low, such a register holds after the next
     // rising edge what the design holds: only the look at the port between the edges sees it
     util::ScratchDir scratch("hc-falling-edge");
-    copy_rtl(scratch.path() / "rtl", "corner_shift_register.vhd", "elsif clk'event and clk = '1' then",
-             "elsif clk'event and clk = '0' then");
-    const cosim::GhdlResult r = run_copy(scratch.path() / "rtl", scratch.path() / "sim");
-    CHECK_FALSE(r.summary.pass());
-    REQUIRE(r.summary.first_mismatch.has_value());
-    CHECK(r.summary.first_mismatch->stage == "corner_shift_register");
-    CHECK_THAT(r.summary.first_mismatch->report, Catch::Contains("while the clock was low"));
+    const cosim::Summary r = failing_edit(scratch.path(), "", "corner_shift_register.vhd",
+                                          "elsif clk'event and clk = '1' then", "elsif clk'event and clk = '0' then");
+    CHECK(r.first_mismatch->stage == "corner_shift_register");
+    CHECK_THAT(r.first_mismatch->report, Catch::Contains("while the clock was low"));
 }
 
 TEST_CASE("a wrong reset value in a copy of the RTL fails after reset, before the first edge", "[cosim][metavalue]") {
     // threshold's output register resets to 1 instead of 0; the first write overwrites it
     util::ScratchDir scratch("hc-reset-value");
-    copy_rtl(scratch.path() / "rtl", "threshold.vhd", "      r1       <= to_signed(0, RESP_W);",
-             "      r1       <= to_signed(1, RESP_W);");
-    const cosim::GhdlResult r = run_copy(scratch.path() / "rtl", scratch.path() / "sim");
-    CHECK_FALSE(r.summary.pass());
-    REQUIRE(r.summary.first_mismatch.has_value());
-    CHECK(r.summary.first_mismatch->write == 0);
-    CHECK_THAT(r.summary.first_mismatch->report, Catch::Contains("after reset, before the first clock edge"));
+    const cosim::Summary r = failing_edit(scratch.path(), "", "threshold.vhd", "      r1       <= to_signed(0, RESP_W);",
+                                          "      r1       <= to_signed(1, RESP_W);");
+    CHECK(r.first_mismatch->write == 0);
+    CHECK_THAT(r.first_mismatch->report, Catch::Contains("after reset, before the first clock edge"));
 }

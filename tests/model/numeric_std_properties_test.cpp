@@ -187,6 +187,12 @@ std::string describe(const Formats& f) {
       << " thr_shift=" << f.thr_shift1 << "," << f.thr_shift2 << "\n";
     return s.str();
 }
+/// any_formats(), logged: a failing property's report names its formats.
+Formats any_logged_formats() {
+    const Formats f = any_formats();
+    RC_LOG() << describe(f);
+    return f;
+}
 hc::Pixels3 any_pixels() {
     hc::Pixels3 p;
     for (auto& row : p)
@@ -301,8 +307,7 @@ TEST_CASE("sobel_x and sobel_y equal the wide-integer reference for any pixels a
 TEST_CASE("m_products equal the wide-integer reference for any gradients and any formats",
           "[model][m_products][property]") {
     rc::prop("m_products against reference", [] {
-        const Formats f = any_formats();
-        RC_LOG() << describe(f);
+        const Formats f = any_logged_formats();
         const Pair ix = signed_word(f.sobel_w), iy = signed_word(f.sobel_w);
         const hc::MProducts m = hc::m_products(ix.w, iy.w, f);
         RC_ASSERT(m.a.value() == ref::m_product(ix.v, ix.v, f.sobel_w, f));
@@ -324,8 +329,7 @@ TEST_CASE("m_products equal the wide-integer reference for any gradients and any
 TEST_CASE("block_filter equals the wide-integer reference for any nine inputs and any formats",
           "[model][block_filter][property]") {
     rc::prop("block_filter against reference", [] {
-        const Formats f = any_formats();
-        RC_LOG() << describe(f);
+        const Formats f = any_logged_formats();
         hc::Matrix3 m;
         std::array<ref::i128, 9> v{};
         for (int k = 0; k < 9; ++k) {
@@ -342,8 +346,7 @@ TEST_CASE("block_filter equals the wide-integer reference for any nine inputs an
 TEST_CASE("harris_response_terms and harris_response equal the wide-integer reference for any formats",
           "[model][harris_response][property]") {
     rc::prop("step 1 against reference", [] {
-        const Formats f = any_formats();
-        RC_LOG() << describe(f);
+        const Formats f = any_logged_formats();
         const Pair a = signed_word(f.bf_w()), b = signed_word(f.bf_w()), c = signed_word(f.bf_w());
         const hc::ResponseTerms t = hc::harris_response_terms(a.w, b.w, c.w, f);
         const ref::Terms r = ref::response_terms(a.v, b.v, c.v, f);
@@ -354,8 +357,7 @@ TEST_CASE("harris_response_terms and harris_response equal the wide-integer refe
         RC_ASSERT(t.ktr2.width() == f.ktr_w);
     });
     rc::prop("step 2 against reference", [] {
-        const Formats f = any_formats();
-        RC_LOG() << describe(f);
+        const Formats f = any_logged_formats();
         const Pair ac = signed_word(f.prod_w()), bb = signed_word(f.prod_w()), k = signed_word(f.ktr_w);
         const hc::ResponseTerms t{ac.w, bb.w, k.w};
         const Word r = hc::harris_response(t, f);
@@ -367,8 +369,7 @@ TEST_CASE("harris_response_terms and harris_response equal the wide-integer refe
 TEST_CASE("threshold_value and threshold equal the wide-integer reference for any formats",
           "[model][threshold][property]") {
     rc::prop("threshold against reference", [] {
-        const Formats f = any_formats();
-        RC_LOG() << describe(f);
+        const Formats f = any_logged_formats();
         const Pair max = signed_word(f.resp_w), r = signed_word(f.resp_w);
         const Word thr = hc::threshold_value(max.w, f);
         const std::int64_t thr_ref = ref::threshold_value(max.v, f);

@@ -5,17 +5,13 @@
 // pixels): +1020 at {0,0,255; 0,0,255; 0,0,255} and -1020 at its mirror, hence 11 bits.
 #include <catch2/catch.hpp>
 
+#include "tests/model/windows.hpp"
 #include "model/harris/sobel_x.hpp"
 
 using namespace hc;
+using hc::test::px;
 
 namespace {
-Pixels3 px(std::initializer_list<int> v) {
-    Pixels3 p{};
-    int k = 0;
-    for (int x : v) p[k / 3][k % 3] = static_cast<Pixel>(x), ++k;
-    return p;
-}
 Formats with_sobel_w(int w) {
     Formats f;
     f.sobel_w = w;

@@ -4,19 +4,12 @@
 // Appendix A: +1020 at {255,255,255; 0,0,0; 0,0,0}, -1020 at the bottom-row twin.
 #include <catch2/catch.hpp>
 
+#include "tests/model/windows.hpp"
 #include "model/harris/sobel_x.hpp"
 #include "model/harris/sobel_y.hpp"
 
 using namespace hc;
-
-namespace {
-Pixels3 px(std::initializer_list<int> v) {
-    Pixels3 p{};
-    int k = 0;
-    for (int x : v) p[k / 3][k % 3] = static_cast<Pixel>(x), ++k;
-    return p;
-}
-}  // namespace
+using hc::test::px;
 
 TEST_CASE("sobel_y of the appendix A argmax window (bright top row) is +1020", "[model][sobel_y]") {
     const Word iy = sobel_y(px({255, 255, 255, 0, 0, 0, 0, 0, 0}), Formats{});

@@ -167,6 +167,19 @@ int32_t check(const std::uint8_t* out) {
     return 0;
 }
 
+// f()'s value, or `on_error` when it threw: the exception reported as `where`'s (fail).
+template <class F>
+int32_t guarded(const char* where, int32_t on_error, F f) {
+    try {
+        return f();
+    } catch (const std::exception& e) {
+        fail(std::string(where) + ": " + e.what());
+    } catch (...) {
+        fail(std::string(where) + ": exception");
+    }
+    return on_error;
+}
+
 }  // namespace
 
 extern "C" {
@@ -186,7 +199,7 @@ int32_t stage_generic(int32_t index, int32_t value) {
 }
 
 int32_t stage_open(int32_t entity, int32_t out_w) {
-    try {
+    return guarded("stage_open", 1, [&]() -> int32_t {
         Run& r = run();
         for (int g : required_generics(entity)) {
             if (!r.given[g]) {
@@ -224,25 +237,15 @@ int32_t stage_open(int32_t entity, int32_t out_w) {
         }
         r.start = std::chrono::steady_clock::now();
         return 0;
-    } catch (const std::exception& e) {
-        fail(std::string("stage_open: ") + e.what());
-    } catch (...) {
-        fail("stage_open: exception");
-    }
-    return 1;
+    });
 }
 
 int32_t stage_next(void) {
-    try {
+    return guarded("stage_next", 0, []() -> int32_t {
         Run& r = run();
         if (!r.bench || r.error) return 0;
         return r.bench->next(r.in) ? 1 : 0;
-    } catch (const std::exception& e) {
-        fail(std::string("stage_next: ") + e.what());
-    } catch (...) {
-        fail("stage_next: exception");
-    }
-    return 0;
+    });
 }
 
 int32_t stage_input(int32_t k) {
@@ -257,15 +260,10 @@ int32_t stage_input(int32_t k) {
 }
 
 int32_t stage_check(const uint8_t* out) {
-    try {
+    return guarded("stage_check", 1, [&]() -> int32_t {
         if (!run().bench) return 1;
         return check(out);
-    } catch (const std::exception& e) {
-        fail(std::string("stage_check: ") + e.what());
-    } catch (...) {
-        fail("stage_check: exception");
-    }
-    return 1;
+    });
 }
 
 int32_t stage_close(void) {

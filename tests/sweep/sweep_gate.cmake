@@ -1,13 +1,9 @@
 # sweep_gate.cmake: the sweep gates its Pareto points: every Pareto point of the spec has a
 # passing three-way gate in sweep.json and a Gate column in sweep.md.
 #   cmake -DCLI=harris-cosim -DSPEC=spec.json -DKITTI=dir -DOUT=dir -P sweep_gate.cmake
+include(${CMAKE_CURRENT_LIST_DIR}/../run_expecting.cmake)
 file(REMOVE_RECURSE ${OUT})
-execute_process(COMMAND ${CLI} sweep --config ${SPEC} --kitti ${KITTI} --out ${OUT} --cache ${OUT}-cache
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message(STATUS "${out}${err}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "sweep exited with status ${rc}")
-endif()
+hc_run_expecting(0 "sweep" "" ${CLI} sweep --config ${SPEC} --kitti ${KITTI} --out ${OUT} --cache ${OUT}-cache)
 file(READ ${OUT}/sweep.json j)
 string(JSON n LENGTH "${j}" points)
 math(EXPR last "${n} - 1")

@@ -45,34 +45,37 @@ TEST_CASE("a comma list drops empty items", "[model][util]") {
     CHECK(util::split_csv("").empty());
 }
 
+namespace {
+// The regression set `text`, written to `p` and read back.
+std::vector<util::RegressionStream> regression_set(const fs::path& p, const std::string& text) {
+    util::write_file_atomic(p, text);
+    return util::read_regression_set(p);
+}
+}  // namespace
+
 TEST_CASE("the regression set reads every stream line and names a bad line", "[model][util]") {
     const util::ScratchDir d;
     const fs::path p = d.path() / "set.txt";
-    util::write_file_atomic(p, "# comment\nrandom 40x30 3 0\nflat 33x21 2 5\n");
-    const auto set = util::read_regression_set(p);
+    const auto set = regression_set(p, "# comment\nrandom 40x30 3 0\nflat 33x21 2 5\n");
     REQUIRE(set.size() == 2);
     CHECK(set[0].stem() == "random_40x30");
     CHECK(set[1].frames == 2);
     CHECK(set[1].idle_every == 5);
-    util::write_file_atomic(p, "random 40x30 3 0\nflat 33x21\n");
-    CHECK_THROWS_WITH(util::read_regression_set(p), Catch::Matchers::Contains("set.txt:2: expected"));
+    CHECK_THROWS_WITH(regression_set(p, "random 40x30 3 0\nflat 33x21\n"), Catch::Matchers::Contains("set.txt:2: expected"));
 }
 
 TEST_CASE("an image stream of the regression set names its file and the configuration it breaks", "[model][util]") {
     const util::ScratchDir d;
     const fs::path p = d.path() / "set.txt";
-    util::write_file_atomic(p, "w/a_sobel_x.pgm 16x12 2 0 breaks=w/a.json\nw/b.pgm 16x12 1 0\nrandom 40x30 3 0\n");
-    const auto set = util::read_regression_set(p);
+    const auto set = regression_set(p, "w/a_sobel_x.pgm 16x12 2 0 breaks=w/a.json\nw/b.pgm 16x12 1 0\nrandom 40x30 3 0\n");
     REQUIRE(set.size() == 3);
     CHECK(set[0].image == d.path() / "w/a_sobel_x.pgm");
     CHECK(set[0].breaks == d.path() / "w/a.json");
     CHECK(set[0].stem() == "a_sobel_x_16x12");
     CHECK(set[1].breaks.empty());
     CHECK(set[2].image.empty());
-    util::write_file_atomic(p, "random 40x30 3 0 breaks=a.json\n");
-    CHECK_THROWS_WITH(util::read_regression_set(p), Catch::Matchers::Contains("set.txt:1: unexpected 'breaks=a.json'"));
-    util::write_file_atomic(p, "w/a.pgm 16x12 2 0 breaks=a.json more\n");
-    CHECK_THROWS_WITH(util::read_regression_set(p), Catch::Matchers::Contains("set.txt:1: unexpected 'more'"));
+    CHECK_THROWS_WITH(regression_set(p, "random 40x30 3 0 breaks=a.json\n"), Catch::Matchers::Contains("set.txt:1: unexpected 'breaks=a.json'"));
+    CHECK_THROWS_WITH(regression_set(p, "w/a.pgm 16x12 2 0 breaks=a.json more\n"), Catch::Matchers::Contains("set.txt:1: unexpected 'more'"));
 }
 
 TEST_CASE("a file read back is the bytes written, and a missing one is bad input naming it", "[model][util]") {

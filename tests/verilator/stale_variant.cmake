@@ -4,27 +4,20 @@
 # place (same path, new contents) and the gate must report an RTL fault (status 1), not
 # "recorded earlier".
 #   cmake -DCLI=harris-cosim -DRTL=<src>/rtl -DWORK=dir -P stale_variant.cmake
+include(${CMAKE_CURRENT_LIST_DIR}/../run_expecting.cmake)
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 configure_file(${RTL}/m_products.vhd ${WORK}/m_products.vhd COPYONLY)
-execute_process(COMMAND ${CLI} verilate --gate-only --variant ${WORK}/m_products.vhd --json ${WORK}/before.json
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message(STATUS "unedited copy: status ${rc}\n${err}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the gate does not pass on an unedited copy of the RTL: status ${rc}")
-endif()
+hc_run_expecting(0 "the gate on an unedited copy of the RTL" ""
+                 ${CLI} verilate --gate-only --variant ${WORK}/m_products.vhd --json ${WORK}/before.json)
 file(READ ${WORK}/m_products.vhd text)
 string(REPLACE "b <= b_full(M_PROD_W - 1 downto M_DROP);" "b <= b_full(M_PROD_W - 2 downto M_DROP - 1);" edited "${text}")
 if(edited STREQUAL text)
   message(FATAL_ERROR "the edit did not apply: m_products.vhd has no `b <= b_full(M_PROD_W - 1 downto M_DROP);`")
 endif()
 file(WRITE ${WORK}/m_products.vhd "${edited}")
-execute_process(COMMAND ${CLI} verilate --gate-only --variant ${WORK}/m_products.vhd --json ${WORK}/after.json
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message(STATUS "edited copy: status ${rc}\n${err}")
-if(NOT rc EQUAL 1)
-  message(FATAL_ERROR "the edited RTL was not reported as an RTL fault: status ${rc} (0 would be a stale pass)")
-endif()
+hc_run_expecting(1 "the gate on the edited copy" " (an RTL fault; 0 would be a stale pass)"
+                 ${CLI} verilate --gate-only --variant ${WORK}/m_products.vhd --json ${WORK}/after.json)
 if(err MATCHES "recorded earlier")
   message(FATAL_ERROR "the edited RTL's gate verdict came from the record of the unedited one")
 endif()
