@@ -2,6 +2,7 @@
 // and bound over the gated candidates (the joint innovation's covariance grown by one
 // pairing at a time through its Cholesky factor).
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <numeric>
 #include <unordered_map>
@@ -18,11 +19,12 @@ namespace {
 /// sub-state (robot + the candidates' landmarks).
 struct Pairing {
     int obs = 0, id = 0, sub = 0;   ///< sub: column of the landmark's x in the sub-state
+    int g = 0;                      ///< index among all pairings of the frame
     Vec2 z;                         ///< innovation
     Mat23 Hr;
     Mat2 Hl;
     double d2 = 0;                  ///< individual Mahalanobis distance
-    Eigen::Matrix<double, 2, Eigen::Dynamic> HP;   ///< H · P_sub
+    Eigen::Matrix<double, 2, Eigen::Dynamic> HP;   ///< H · P_sub (moved to the search's matrix)
 };
 
 }  // namespace
@@ -91,10 +93,34 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
     std::vector<double> chi2(N + 1, 0);
     for (int k = 1; k <= N; ++k) chi2[k] = chi2_quantile(joint_probability, 2.0 * k);
 
-    Eigen::MatrixXd L = Eigen::MatrixXd::Zero(2 * N, 2 * N);   // Cholesky factor of the joint S
+    // Cholesky factor of the joint S, row-major: the forward substitution reads it by rows
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> L =
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Zero(2 * N, 2 * N);
     Eigen::VectorXd w = Eigen::VectorXd::Zero(2 * N);         // L⁻¹ z
+    // Per pairing g, its row X = B L⁻ᵀ of the joint factor against the chosen pairings (B its
+    // block row of the joint S), solved by forward substitution, and the running sums of
+    // X Xᵀ and X w after each block. Block q depends only on the pairings chosen at depths
+    // 0..q, so it is kept while they stay: stamp[q] names the pairing pushed at depth q,
+    // block_stamp[g][q] the one block q of g was computed under.
+    int G = 0;
+    for (auto& ps : pairings)
+        for (Pairing& p : ps) p.g = G++;
+    // every pairing's H·P_sub in one column-major matrix, rows 2g and 2g+1: the search reads
+    // one landmark's columns for consecutive pairings, which are then adjacent in memory
+    Eigen::MatrixXd HP(2 * static_cast<Eigen::Index>(G), P.cols());
+    for (auto& ps : pairings)
+        for (Pairing& p : ps) {
+            HP.middleRows<2>(2 * p.g) = p.HP;
+            p.HP.resize(2, 0);
+        }
+    const int W = 2 * N;
+    std::vector<double> Xc(static_cast<size_t>(G) * 2 * W);            // g: row 0 at [2gW], row 1 at [(2g+1)W]
+    std::vector<std::array<double, 5>> sums(static_cast<size_t>(G) * (N + 1), {0, 0, 0, 0, 0});   // x00 x01 x11 xw0 xw1
+    std::vector<long> block_stamp(static_cast<size_t>(G) * N, 0);
+    std::vector<long> stamp(N, 0);
+    long next_stamp = 0;
+    std::vector<char> used_sub(idx.size(), 0);   // by the landmark's column in the sub-state
     std::vector<const Pairing*> chosen;
-    std::unordered_map<int, char> used;
     Association best;
     best.landmark.assign(N, -1);
     int best_k = -1;
@@ -103,7 +129,7 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
     bool stopped = false;
 
     const auto S_between = [&](const Pairing& a, const Pairing& b) -> Mat2 {
-        return a.HP.leftCols<3>() * b.Hr.transpose() + a.HP.middleCols<2>(b.sub) * b.Hl.transpose();
+        return HP.block<2, 3>(2 * a.g, 0) * b.Hr.transpose() + HP.block<2, 2>(2 * a.g, b.sub) * b.Hl.transpose();
     };
     const std::function<void(int, double)> search = [&](int i, double d2) {
         if (stopped) return;
@@ -123,29 +149,64 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
         }
         if (k + rem[i] > best_k) {
             for (const Pairing& p : pairings[i]) {
-                if (used[p.id]) continue;
-                // the new block row of the joint covariance and of its Cholesky factor
-                Eigen::Matrix<double, 2, Eigen::Dynamic> B(2, 2 * k);
-                for (int q = 0; q < k; ++q) B.middleCols<2>(2 * q) = S_between(p, *chosen[q]);
-                Eigen::Matrix<double, 2, Eigen::Dynamic> X(2, 2 * k);
-                if (k > 0)
-                    X = L.topLeftCorner(2 * k, 2 * k).triangularView<Eigen::Lower>().solve(B.transpose()).transpose();
+                if (used_sub[p.sub]) continue;
+                // the new block row of the joint covariance and of its Cholesky factor: the
+                // blocks still valid for the chosen prefix are reused, the others solved
+                long* bs = &block_stamp[static_cast<size_t>(p.g) * N];
+                int q0 = k;
+                while (q0 > 0 && bs[q0 - 1] != stamp[q0 - 1]) --q0;
+                double* X0 = &Xc[static_cast<size_t>(2 * p.g) * W];
+                double* X1 = X0 + W;
+                std::array<double, 5>* sm = &sums[static_cast<size_t>(p.g) * (N + 1)];
+                for (int q = q0; q < k; ++q) {
+                    const Mat2 Bq = S_between(p, *chosen[q]);
+                    double x00 = sm[q][0], x01 = sm[q][1], x11 = sm[q][2], xw0 = sm[q][3], xw1 = sm[q][4];
+                    for (int c = 0; c < 2; ++c) {
+                        const int j = 2 * q + c;
+                        const double* Lj = &L(j, 0);
+                        double s0 = Bq(0, c), s1 = Bq(1, c);
+                        for (int m = 0; m < j; ++m) {
+                            s0 -= Lj[m] * X0[m];
+                            s1 -= Lj[m] * X1[m];
+                        }
+                        const double a = s0 / Lj[j], b = s1 / Lj[j];
+                        X0[j] = a;
+                        X1[j] = b;
+                        x00 += a * a;
+                        x01 += a * b;
+                        x11 += b * b;
+                        xw0 += a * w(j);
+                        xw1 += b * w(j);
+                    }
+                    sm[q + 1] = {x00, x01, x11, xw0, xw1};
+                    bs[q] = stamp[q];
+                }
                 Mat2 S22 = S_between(p, p) + obs[i].R;
-                if (k > 0) S22 -= X * X.transpose();
+                Vec2 r2 = p.z;
+                if (k > 0) {
+                    S22(0, 0) -= sm[k][0];
+                    S22(0, 1) -= sm[k][1];
+                    S22(1, 0) -= sm[k][1];
+                    S22(1, 1) -= sm[k][2];
+                    r2(0) -= sm[k][3];
+                    r2(1) -= sm[k][4];
+                }
                 const Eigen::LLT<Mat2> llt(S22);
                 if (llt.info() != Eigen::Success) continue;
-                Vec2 r2 = p.z;
-                if (k > 0) r2 -= X * w.head(2 * k);
                 const Vec2 w2 = llt.matrixL().solve(r2);
                 const double d2n = d2 + w2.squaredNorm();
                 if (!(d2n <= chi2[k + 1])) continue;
-                if (k > 0) L.block(2 * k, 0, 2, 2 * k) = X;
+                for (int m = 0; m < 2 * k; ++m) {
+                    L(2 * k, m) = X0[m];
+                    L(2 * k + 1, m) = X1[m];
+                }
                 L.block<2, 2>(2 * k, 2 * k) = llt.matrixL();
+                stamp[k] = ++next_stamp;
                 w.segment<2>(2 * k) = w2;
                 chosen.push_back(&p);
-                used[p.id] = 1;
+                used_sub[p.sub] = 1;
                 search(i + 1, d2n);
-                used[p.id] = 0;
+                used_sub[p.sub] = 0;
                 chosen.pop_back();
                 if (stopped) return;
             }
