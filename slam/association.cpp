@@ -3,7 +3,9 @@
 // pairing at a time through its Cholesky factor).
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
+#include <memory>
 #include <numeric>
 #include <unordered_map>
 
@@ -114,8 +116,10 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
             p.HP.resize(2, 0);
         }
     const int W = 2 * N;
-    std::vector<double> Xc(static_cast<size_t>(G) * 2 * W);            // g: row 0 at [2gW], row 1 at [(2g+1)W]
-    std::vector<std::array<double, 5>> sums(static_cast<size_t>(G) * (N + 1), {0, 0, 0, 0, 0});   // x00 x01 x11 xw0 xw1
+    // written before read, so left uninitialised: X of g, row 0 at [2gW], row 1 at [(2g+1)W];
+    // the sums x00 x01 x11 xw0 xw1 of g after blocks 0..q-1 at [g(N+1) + q] (q = 0: zero)
+    const std::unique_ptr<double[]> Xc(new double[static_cast<size_t>(G) * 2 * W]);
+    const std::unique_ptr<std::array<double, 5>[]> sums(new std::array<double, 5>[static_cast<size_t>(G) * (N + 1)]);
     std::vector<long> block_stamp(static_cast<size_t>(G) * N, 0);
     std::vector<long> stamp(N, 0);
     long next_stamp = 0;
@@ -160,7 +164,8 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
                 std::array<double, 5>* sm = &sums[static_cast<size_t>(p.g) * (N + 1)];
                 for (int q = q0; q < k; ++q) {
                     const Mat2 Bq = S_between(p, *chosen[q]);
-                    double x00 = sm[q][0], x01 = sm[q][1], x11 = sm[q][2], xw0 = sm[q][3], xw1 = sm[q][4];
+                    double x00 = 0, x01 = 0, x11 = 0, xw0 = 0, xw1 = 0;
+                    if (q > 0) x00 = sm[q][0], x01 = sm[q][1], x11 = sm[q][2], xw0 = sm[q][3], xw1 = sm[q][4];
                     for (int c = 0; c < 2; ++c) {
                         const int j = 2 * q + c;
                         const double* Lj = &L(j, 0);
@@ -191,18 +196,26 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
                     r2(0) -= sm[k][3];
                     r2(1) -= sm[k][4];
                 }
-                const Eigen::LLT<Mat2> llt(S22);
-                if (llt.info() != Eigen::Success) continue;
-                const Vec2 w2 = llt.matrixL().solve(r2);
-                const double d2n = d2 + w2.squaredNorm();
+                // S22 = l lᵀ (Cholesky of the 2×2, from its lower triangle) and l⁻¹ r2
+                if (S22(0, 0) <= 0) continue;
+                const double l00 = std::sqrt(S22(0, 0)), l10 = S22(1, 0) / l00;
+                const double e11 = S22(1, 1) - l10 * l10;
+                if (e11 <= 0) continue;
+                const double l11 = std::sqrt(e11);
+                const double w0 = r2(0) / l00, w1 = (r2(1) - l10 * w0) / l11;
+                const double d2n = d2 + (w0 * w0 + w1 * w1);
                 if (!(d2n <= chi2[k + 1])) continue;
                 for (int m = 0; m < 2 * k; ++m) {
                     L(2 * k, m) = X0[m];
                     L(2 * k + 1, m) = X1[m];
                 }
-                L.block<2, 2>(2 * k, 2 * k) = llt.matrixL();
+                L(2 * k, 2 * k) = l00;
+                L(2 * k, 2 * k + 1) = 0;
+                L(2 * k + 1, 2 * k) = l10;
+                L(2 * k + 1, 2 * k + 1) = l11;
                 stamp[k] = ++next_stamp;
-                w.segment<2>(2 * k) = w2;
+                w(2 * k) = w0;
+                w(2 * k + 1) = w1;
                 chosen.push_back(&p);
                 used_sub[p.sub] = 1;
                 search(i + 1, d2n);
