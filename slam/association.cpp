@@ -26,8 +26,14 @@ struct Pairing {
     Mat23 Hr;
     Mat2 Hl;
     double d2 = 0;                  ///< individual Mahalanobis distance
-    Eigen::Matrix<double, 2, Eigen::Dynamic> HP;   ///< H · P_sub (moved to the search's matrix)
+    Mat23 HPr;                      ///< H · P_sub's robot columns
 };
+
+/// Columns c..c+C-1 of a pairing's H · P_sub = Hr P_sub[0:3, :] + Hl P_sub[sub:sub+2, :].
+template <int C>
+Eigen::Matrix<double, 2, C> HP_cols(const Eigen::MatrixXd& P, const Pairing& p, int c) {
+    return p.Hr * P.block<3, C>(0, c) + p.Hl * P.block<2, C>(p.sub, c);
+}
 
 }  // namespace
 
@@ -81,8 +87,8 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
             const Vec2 yh = observe(r, x.segment<2>(ekf.state_index(id)), &p.Hr, &p.Hl);
             p.z = obs[i].y - yh;
             p.z(1) = wrap_angle(p.z(1));
-            p.HP = p.Hr * P.topRows<3>() + p.Hl * P.middleRows<2>(p.sub);
-            const Mat2 S = p.HP.leftCols<3>() * p.Hr.transpose() + p.HP.middleCols<2>(p.sub) * p.Hl.transpose() + obs[i].R;
+            p.HPr = HP_cols<3>(P, p, 0);
+            const Mat2 S = p.HPr * p.Hr.transpose() + HP_cols<2>(P, p, p.sub) * p.Hl.transpose() + obs[i].R;
             p.d2 = p.z.dot(S.ldlt().solve(p.z));
             pairings[i].push_back(std::move(p));
         }
@@ -107,14 +113,6 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
     int G = 0;
     for (auto& ps : pairings)
         for (Pairing& p : ps) p.g = G++;
-    // every pairing's H·P_sub in one column-major matrix, rows 2g and 2g+1: the search reads
-    // one landmark's columns for consecutive pairings, which are then adjacent in memory
-    Eigen::MatrixXd HP(2 * static_cast<Eigen::Index>(G), P.cols());
-    for (auto& ps : pairings)
-        for (Pairing& p : ps) {
-            HP.middleRows<2>(2 * p.g) = p.HP;
-            p.HP.resize(2, 0);
-        }
     const int W = 2 * N;
     // written before read, so left uninitialised: X of g, row 0 at [2gW], row 1 at [(2g+1)W];
     // the sums x00 x01 x11 xw0 xw1 of g after blocks 0..q-1 at [g(N+1) + q] (q = 0: zero)
@@ -133,7 +131,7 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
     bool stopped = false;
 
     const auto S_between = [&](const Pairing& a, const Pairing& b) -> Mat2 {
-        return HP.block<2, 3>(2 * a.g, 0) * b.Hr.transpose() + HP.block<2, 2>(2 * a.g, b.sub) * b.Hl.transpose();
+        return a.HPr * b.Hr.transpose() + HP_cols<2>(P, a, b.sub) * b.Hl.transpose();
     };
     const std::function<void(int, double)> search = [&](int i, double d2) {
         if (stopped) return;
