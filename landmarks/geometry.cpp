@@ -61,7 +61,9 @@ Triangulated triangulate(const StereoCalib& c, cv::Point2d l, cv::Point2d r, con
     t.p = cv::Vec3d(s.p[0], s.p[1], s.p[2]);
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 4; ++k) t.J(i, k) = s.J[i][k];
-    t.cov = (t.J * t.J.t()) * (n.sigma_px * n.sigma_px);
+    double cov[3][3];
+    n.covariance(s, cov);
+    t.cov = cv::Matx33d(&cov[0][0]);
     t.valid = true;
     return t;
 }

@@ -40,6 +40,7 @@
 
 #include "calib/calib.hpp"
 #include "model/harris/harris_pkg.hpp"
+#include "stereo/stereo.hpp"
 
 namespace hc::landmarks {
 
@@ -225,16 +226,9 @@ StereoCalib load_kitti_calib(const std::filesystem::path& calib_txt);
 /// camera's cx at cx + dmin * s so that Z = b f s / (x_l - x_r + dmin s). Units: metres.
 StereoCalib middlebury_calib(double scale, double dmin_full, cv::Size image);
 
-/// Pixel-noise model: each measured corner coordinate (x_l, y_l, x_r, y_r) carries independent
-/// zero-mean Gaussian noise of standard deviation sigma_px (corner localisation noise); y
-/// enters the point through the mean of y_l and y_r, so in (u = x_l, v, d = x_l - x_r) the
-/// covariance is sigma^2 [[1, 0, 1], [0, 1/2, 0], [1, 0, 2]]. The landmark covariance is
-/// J diag(sigma^2) J^T with J = d(X,Y,Z)/d(x_l, y_l, x_r, y_r). The default 0.5 px is an
-/// assumed value, not a measured one; it is not the rounding of integer corner positions
-/// (a uniform error in [-0.5, 0.5) px has sigma 1/sqrt(12) = 0.289 px).
-struct PixelNoise {
-    double sigma_px = 0.5;
-};
+/// The pixel-noise model (sigma_px on each of x_l, y_l, x_r, y_r): hc::stereo's, shared
+/// with the EKF-SLAM side's synthetic measurements.
+using PixelNoise = stereo::PixelNoise;
 
 /// A triangulated point in the left rectified camera's frame (x right, y down, z forward).
 struct Triangulated {

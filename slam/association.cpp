@@ -2,7 +2,10 @@
 // and bound over the gated candidates (the joint innovation's covariance grown by one
 // pairing at a time through its Cholesky factor).
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <functional>
+#include <memory>
 #include <numeric>
 #include <unordered_map>
 
@@ -18,12 +21,19 @@ namespace {
 /// sub-state (robot + the candidates' landmarks).
 struct Pairing {
     int obs = 0, id = 0, sub = 0;   ///< sub: column of the landmark's x in the sub-state
+    int g = 0;                      ///< index among all pairings of the frame
     Vec2 z;                         ///< innovation
     Mat23 Hr;
     Mat2 Hl;
     double d2 = 0;                  ///< individual Mahalanobis distance
-    Eigen::Matrix<double, 2, Eigen::Dynamic> HP;   ///< H · P_sub
+    Mat23 HPr;                      ///< H · P_sub's robot columns
 };
+
+/// Columns c..c+C-1 of a pairing's H · P_sub = Hr P_sub[0:3, :] + Hl P_sub[sub:sub+2, :].
+template <int C>
+Eigen::Matrix<double, 2, C> HP_cols(const Eigen::MatrixXd& P, const Pairing& p, int c) {
+    return p.Hr * P.block<3, C>(0, c) + p.Hl * P.block<2, C>(p.sub, c);
+}
 
 }  // namespace
 
@@ -77,8 +87,8 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
             const Vec2 yh = observe(r, x.segment<2>(ekf.state_index(id)), &p.Hr, &p.Hl);
             p.z = obs[i].y - yh;
             p.z(1) = wrap_angle(p.z(1));
-            p.HP = p.Hr * P.topRows<3>() + p.Hl * P.middleRows<2>(p.sub);
-            const Mat2 S = p.HP.leftCols<3>() * p.Hr.transpose() + p.HP.middleCols<2>(p.sub) * p.Hl.transpose() + obs[i].R;
+            p.HPr = HP_cols<3>(P, p, 0);
+            const Mat2 S = p.HPr * p.Hr.transpose() + HP_cols<2>(P, p, p.sub) * p.Hl.transpose() + obs[i].R;
             p.d2 = p.z.dot(S.ldlt().solve(p.z));
             pairings[i].push_back(std::move(p));
         }
@@ -91,10 +101,28 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
     std::vector<double> chi2(N + 1, 0);
     for (int k = 1; k <= N; ++k) chi2[k] = chi2_quantile(joint_probability, 2.0 * k);
 
-    Eigen::MatrixXd L = Eigen::MatrixXd::Zero(2 * N, 2 * N);   // Cholesky factor of the joint S
+    // Cholesky factor of the joint S, row-major: the forward substitution reads it by rows
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> L =
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Zero(2 * N, 2 * N);
     Eigen::VectorXd w = Eigen::VectorXd::Zero(2 * N);         // L⁻¹ z
+    // Per pairing g, its row X = B L⁻ᵀ of the joint factor against the chosen pairings (B its
+    // block row of the joint S), solved by forward substitution, and the running sums of
+    // X Xᵀ and X w after each block. Block q depends only on the pairings chosen at depths
+    // 0..q, so it is kept while they stay: stamp[q] names the pairing pushed at depth q,
+    // block_stamp[g][q] the one block q of g was computed under.
+    int G = 0;
+    for (auto& ps : pairings)
+        for (Pairing& p : ps) p.g = G++;
+    const int W = 2 * N;
+    // written before read, so left uninitialised: X of g, row 0 at [2gW], row 1 at [(2g+1)W];
+    // the sums x00 x01 x11 xw0 xw1 of g after blocks 0..q-1 at [g(N+1) + q] (q = 0: zero)
+    const std::unique_ptr<double[]> Xc(new double[static_cast<size_t>(G) * 2 * W]);
+    const std::unique_ptr<std::array<double, 5>[]> sums(new std::array<double, 5>[static_cast<size_t>(G) * (N + 1)]);
+    std::vector<long> block_stamp(static_cast<size_t>(G) * N, 0);
+    std::vector<long> stamp(N, 0);
+    long next_stamp = 0;
+    std::vector<char> used_sub(idx.size(), 0);   // by the landmark's column in the sub-state
     std::vector<const Pairing*> chosen;
-    std::unordered_map<int, char> used;
     Association best;
     best.landmark.assign(N, -1);
     int best_k = -1;
@@ -103,7 +131,7 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
     bool stopped = false;
 
     const auto S_between = [&](const Pairing& a, const Pairing& b) -> Mat2 {
-        return a.HP.leftCols<3>() * b.Hr.transpose() + a.HP.middleCols<2>(b.sub) * b.Hl.transpose();
+        return a.HPr * b.Hr.transpose() + HP_cols<2>(P, a, b.sub) * b.Hl.transpose();
     };
     const std::function<void(int, double)> search = [&](int i, double d2) {
         if (stopped) return;
@@ -123,29 +151,73 @@ Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
         }
         if (k + rem[i] > best_k) {
             for (const Pairing& p : pairings[i]) {
-                if (used[p.id]) continue;
-                // the new block row of the joint covariance and of its Cholesky factor
-                Eigen::Matrix<double, 2, Eigen::Dynamic> B(2, 2 * k);
-                for (int q = 0; q < k; ++q) B.middleCols<2>(2 * q) = S_between(p, *chosen[q]);
-                Eigen::Matrix<double, 2, Eigen::Dynamic> X(2, 2 * k);
-                if (k > 0)
-                    X = L.topLeftCorner(2 * k, 2 * k).triangularView<Eigen::Lower>().solve(B.transpose()).transpose();
+                if (used_sub[p.sub]) continue;
+                // the new block row of the joint covariance and of its Cholesky factor: the
+                // blocks still valid for the chosen prefix are reused, the others solved
+                long* bs = &block_stamp[static_cast<size_t>(p.g) * N];
+                int q0 = k;
+                while (q0 > 0 && bs[q0 - 1] != stamp[q0 - 1]) --q0;
+                double* X0 = &Xc[static_cast<size_t>(2 * p.g) * W];
+                double* X1 = X0 + W;
+                std::array<double, 5>* sm = &sums[static_cast<size_t>(p.g) * (N + 1)];
+                for (int q = q0; q < k; ++q) {
+                    const Mat2 Bq = S_between(p, *chosen[q]);
+                    double x00 = 0, x01 = 0, x11 = 0, xw0 = 0, xw1 = 0;
+                    if (q > 0) x00 = sm[q][0], x01 = sm[q][1], x11 = sm[q][2], xw0 = sm[q][3], xw1 = sm[q][4];
+                    for (int c = 0; c < 2; ++c) {
+                        const int j = 2 * q + c;
+                        const double* Lj = &L(j, 0);
+                        double s0 = Bq(0, c), s1 = Bq(1, c);
+                        for (int m = 0; m < j; ++m) {
+                            s0 -= Lj[m] * X0[m];
+                            s1 -= Lj[m] * X1[m];
+                        }
+                        const double a = s0 / Lj[j], b = s1 / Lj[j];
+                        X0[j] = a;
+                        X1[j] = b;
+                        x00 += a * a;
+                        x01 += a * b;
+                        x11 += b * b;
+                        xw0 += a * w(j);
+                        xw1 += b * w(j);
+                    }
+                    sm[q + 1] = {x00, x01, x11, xw0, xw1};
+                    bs[q] = stamp[q];
+                }
                 Mat2 S22 = S_between(p, p) + obs[i].R;
-                if (k > 0) S22 -= X * X.transpose();
-                const Eigen::LLT<Mat2> llt(S22);
-                if (llt.info() != Eigen::Success) continue;
                 Vec2 r2 = p.z;
-                if (k > 0) r2 -= X * w.head(2 * k);
-                const Vec2 w2 = llt.matrixL().solve(r2);
-                const double d2n = d2 + w2.squaredNorm();
+                if (k > 0) {
+                    S22(0, 0) -= sm[k][0];
+                    S22(0, 1) -= sm[k][1];
+                    S22(1, 0) -= sm[k][1];
+                    S22(1, 1) -= sm[k][2];
+                    r2(0) -= sm[k][3];
+                    r2(1) -= sm[k][4];
+                }
+                // S22 = l lᵀ (Cholesky of the 2×2, from its lower triangle) and l⁻¹ r2
+                if (S22(0, 0) <= 0) continue;
+                const double l00 = std::sqrt(S22(0, 0)), l10 = S22(1, 0) / l00;
+                const double e11 = S22(1, 1) - l10 * l10;
+                if (e11 <= 0) continue;
+                const double l11 = std::sqrt(e11);
+                const double w0 = r2(0) / l00, w1 = (r2(1) - l10 * w0) / l11;
+                const double d2n = d2 + (w0 * w0 + w1 * w1);
                 if (!(d2n <= chi2[k + 1])) continue;
-                if (k > 0) L.block(2 * k, 0, 2, 2 * k) = X;
-                L.block<2, 2>(2 * k, 2 * k) = llt.matrixL();
-                w.segment<2>(2 * k) = w2;
+                for (int m = 0; m < 2 * k; ++m) {
+                    L(2 * k, m) = X0[m];
+                    L(2 * k + 1, m) = X1[m];
+                }
+                L(2 * k, 2 * k) = l00;
+                L(2 * k, 2 * k + 1) = 0;
+                L(2 * k + 1, 2 * k) = l10;
+                L(2 * k + 1, 2 * k + 1) = l11;
+                stamp[k] = ++next_stamp;
+                w(2 * k) = w0;
+                w(2 * k + 1) = w1;
                 chosen.push_back(&p);
-                used[p.id] = 1;
+                used_sub[p.sub] = 1;
                 search(i + 1, d2n);
-                used[p.id] = 0;
+                used_sub[p.sub] = 0;
                 chosen.pop_back();
                 if (stopped) return;
             }

@@ -263,15 +263,15 @@ void Ekf::remove_landmark(int id) {
     const auto it = index_.find(id);
     if (it == index_.end()) return;
     const int k = it->second, l = 3 + 2 * k;
-    std::vector<int> keep;
-    keep.reserve(n_ - 2);
-    for (int i = 0; i < n_; ++i)
-        if (i != l && i != l + 1) keep.push_back(i);
-    const Eigen::MatrixXd P = full_covariance();
-    const Eigen::VectorXd x = x_.head(n_);
     const int m = n_ - 2;
-    P_.topLeftCorner(m, m) = P(keep, keep);
-    x_.head(m) = x(keep);
+    // rows and columns l, l+1 taken out of the lower triangle in place (the only part read):
+    // new (i, j) = old (i + 2 if i >= l, j + 2 if j >= l); columns in increasing order, rows
+    // downwards, so no source is overwritten before it is read
+    for (int j = 0; j < m; ++j) {
+        const int sj = j < l ? j : j + 2;
+        for (int i = std::max(j, l); i < m; ++i) P_(i, j) = P_(i + 2, sj);
+    }
+    for (int i = l; i < m; ++i) x_(i) = x_(i + 2);
     ids_.erase(ids_.begin() + k);
     index_.erase(it);
     for (int j = k; j < static_cast<int>(ids_.size()); ++j) index_[ids_[j]] = j;

@@ -335,29 +335,29 @@ SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<Ster
     return run_filter(frames, u, std::vector<Mat3>(u.size(), odometry.covariance()), truth[0], association, truth);
 }
 
-StereoLandmarkObs triangulate(const StereoCamera& cam, double u, double v, double d) {
-    // hc::stereo's triangulation of (u_l, v_l, u_r, v_r) = (u, v, u - d, v) on the rig
-    // P0 = [fx 0 cx 0; 0 fx cy 0; 0 0 1 0], P1 = P0 with tx1 = -fx b
-    stereo::RectifiedRig rig;
-    rig.fx = rig.fy = cam.fx;
-    rig.cx0 = rig.cx1 = cam.cx;
-    rig.cy = cam.cy;
-    rig.tx1 = -cam.fx * cam.baseline;
-    const stereo::Point3 t = stereo::triangulate(rig, u, v, u - d, v);
-    // J = d(x, y, z)/d(u, v, d) = d(x, y, z)/d(u_l, v_l, u_r, v_r) * d(u_l, v_l, u_r, v_r)/d(u, v, d)
-    Eigen::Matrix<double, 3, 4> J4;
-    for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 4; ++k) J4(i, k) = t.J[i][k];
-    Eigen::Matrix<double, 4, 3> M;
-    M << 1, 0, 0,   //
-        0, 1, 0,    //
-        1, 0, -1,   //
-        0, 1, 0;
-    const Eigen::Matrix3d J = J4 * M;
+stereo::RectifiedRig StereoCamera::rig() const {
+    stereo::RectifiedRig r;
+    r.fx = r.fy = fx;
+    r.cx0 = r.cx1 = cx;
+    r.cy = cy;
+    r.tx1 = -fx * baseline;
+    return r;
+}
+
+StereoLandmarkObs triangulate(const StereoCamera& cam, const stereo::StereoPixels& m) {
+    const stereo::Point3 t = stereo::triangulate(cam.rig(), m.u_l, m.v_l, m.u_r, m.v_r);
     StereoLandmarkObs o;
     o.p_cam = Eigen::Vector3d(t.p[0], t.p[1], t.p[2]);
-    o.cov = cam.sigma_pixel * cam.sigma_pixel * J * J.transpose();
+    double cov[3][3];
+    cam.noise.covariance(t, cov);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) o.cov(i, j) = cov[i][j];
     return o;
+}
+
+stereo::StereoPixels project(const StereoCamera& cam, const Eigen::Vector3d& p) {
+    const double q[3] = {p.x(), p.y(), p.z()};
+    return stereo::project(cam.rig(), q);
 }
 
 std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const StereoCamera& cam,
@@ -367,7 +367,6 @@ std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& pose
     std::mt19937_64 rng(seed);
     std::uniform_int_distribution<int> pick(0, static_cast<int>(poses.size()) - 1), byte(0, 255), bit(0, 255);
     std::uniform_real_distribution<double> lateral(4, 30), forward(0, 40), height(-3, 1), side(0, 1);
-    std::normal_distribution<double> g(0.0, cam.sigma_pixel);
     std::vector<Eigen::Vector3d> world;
     std::vector<std::vector<uint8_t>> desc;
     for (int i = 0; i < count; ++i) {
@@ -386,12 +385,11 @@ std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& pose
         for (int i = 0; i < count; ++i) {
             const Eigen::Vector3d p = Rt * (world[i] - T.col(3));
             if (p.z() < 2 || p.z() > 60) continue;
-            const double u = cam.fx * p.x() / p.z() + cam.cx, v = cam.fx * p.y() / p.z() + cam.cy;
-            const double d = cam.fx * cam.baseline / p.z();
-            if (u < 0 || u >= cam.width || u - d < 0 || v < 0 || v >= cam.height) continue;
-            const double un = u + g(rng), vn = v + g(rng), dn = d + g(rng);
-            if (dn < 1) continue;
-            StereoLandmarkObs o = triangulate(cam, un, vn, dn);
+            const stereo::StereoPixels m = project(cam, p);
+            if (m.u_l < 0 || m.u_l >= cam.width || m.u_r < 0 || m.v_l < 0 || m.v_l >= cam.height) continue;
+            const stereo::StereoPixels n = cam.noise.perturb(m, rng);
+            if (n.u_l - n.u_r < 1) continue;
+            StereoLandmarkObs o = triangulate(cam, n);
             o.descriptor = desc[i];
             o.id_hint = i;
             for (int b = 0; b < flip_bits; ++b) {

@@ -25,4 +25,32 @@ Point3 triangulate(const RectifiedRig& c, double u_l, double v_l, double u_r, do
     return t;
 }
 
+StereoPixels project(const RectifiedRig& c, const double p[3]) {
+    StereoPixels m;
+    m.u_l = (c.fx * p[0] + c.cx0 * p[2] + c.tx0) / p[2];
+    m.u_r = (c.fx * p[0] + c.cx1 * p[2] + c.tx1) / p[2];
+    m.v_l = m.v_r = (c.fy * p[1] + c.cy * p[2] + c.ty) / p[2];
+    return m;
+}
+
+void PixelNoise::covariance(const Point3& t, double cov[3][3]) const {
+    const double s2 = sigma_px * sigma_px;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double s = 0;
+            for (int k = 0; k < 4; ++k) s += t.J[i][k] * t.J[j][k];
+            cov[i][j] = s * s2;
+        }
+}
+
+StereoPixels PixelNoise::perturb(const StereoPixels& e, std::mt19937_64& rng) const {
+    std::normal_distribution<double> g(0.0, 1.0);
+    StereoPixels n = e;
+    n.u_l += sigma_px * g(rng);
+    n.v_l += sigma_px * g(rng);
+    n.u_r += sigma_px * g(rng);
+    n.v_r += sigma_px * g(rng);
+    return n;
+}
+
 }  // namespace hc::stereo

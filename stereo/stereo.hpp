@@ -10,7 +10,12 @@
 //   u_l = (fx X + cx0 Z + tx0) / Z,   u_r = (fx X + cx1 Z + tx1) / Z,   v = (fy Y + cy Z + ty) / Z.
 // With the effective disparity D = u_l - u_r - (cx0 - cx1) and B = tx0 - tx1 (= fx * baseline):
 //   Z = B / D,   X = ((u_l - cx0) Z - tx0) / fx,   Y = ((v - cy) Z - ty) / fy,   v = (v_l + v_r) / 2.
+//
+// Pixel-noise model (PixelNoise): the one both libraries use for a point's covariance and
+// the SLAM side's synthetic measurements.
 #pragma once
+
+#include <random>
 
 namespace hc::stereo {
 
@@ -33,5 +38,31 @@ struct Point3 {
 /// The point seen at (u_l, v_l) in the left image and (u_r, v_r) in the right one (rectified
 /// pixels). Invalid when the effective disparity D is not positive (at or beyond infinity).
 Point3 triangulate(const RectifiedRig& rig, double u_l, double v_l, double u_r, double v_r);
+
+/// The four measured image coordinates of one point: left (u_l, v_l), right (u_r, v_r), pixels.
+struct StereoPixels {
+    double u_l = 0, v_l = 0, u_r = 0, v_r = 0;
+};
+
+/// Where the rig sees the point p = (X, Y, Z) of the left rectified camera's frame (Z > 0):
+/// the projections above, v_l = v_r = v (triangulate's inverse).
+StereoPixels project(const RectifiedRig& rig, const double p[3]);
+
+/// Pixel-noise model: each measured corner coordinate (u_l, v_l, u_r, v_r) carries
+/// independent zero-mean Gaussian noise of standard deviation sigma_px (corner localisation
+/// noise). v enters the point through the mean of v_l and v_r, so in (u = u_l, v,
+/// d = u_l - u_r) the covariance is sigma^2 [[1, 0, 1], [0, 1/2, 0], [1, 0, 2]]. The point's
+/// covariance is first-order propagation, sigma^2 J J^T with J = Point3::J. The default
+/// 0.5 px is an assumed value, not a measured one; it is not the rounding of integer corner
+/// positions (a uniform error in [-0.5, 0.5) px has sigma 1/sqrt(12) = 0.289 px).
+struct PixelNoise {
+    double sigma_px = 0.5;
+    /// sigma^2 J J^T of a valid point (row-major 3x3, J J^T summed over the four coordinates
+    /// in order, then scaled by sigma^2).
+    void covariance(const Point3& t, double cov[3][3]) const;
+    /// `exact` with this model's noise: one standard normal draw from `rng` per coordinate,
+    /// in the order u_l, v_l, u_r, v_r, times sigma_px.
+    StereoPixels perturb(const StereoPixels& exact, std::mt19937_64& rng) const;
+};
 
 }  // namespace hc::stereo

@@ -99,16 +99,55 @@ TEST_CASE("trajectories are written in the KITTI and TUM formats", "[slam]") {
           Approx(std::sqrt(25.0 / 2)));
 }
 
-TEST_CASE("triangulation covariance is the pixel noise through the Jacobian of (u, v, d)", "[slam]") {
+TEST_CASE("triangulation covariance is the pixel noise on u_l, v_l, u_r, v_r through the Jacobian", "[slam]") {
     const StereoCamera cam;
-    const double u = 800, v = 150, d = 20;
-    const StereoLandmarkObs o = triangulate(cam, u, v, d);
-    CHECK(o.p_cam.z() == Approx(cam.fx * cam.baseline / d));
-    const auto f = [&](const Eigen::Vector3d& x) { return triangulate(cam, x(0), x(1), x(2)).p_cam; };
-    const Eigen::Matrix3d J = numeric_jacobian<3, 3>(f, Eigen::Vector3d(u, v, d));
-    CHECK((o.cov - cam.sigma_pixel * cam.sigma_pixel * J * J.transpose()).norm() < 1e-6 * o.cov.norm());
-    // depth error grows with z²: σ_z = z²/(f b) σ_d
-    CHECK(std::sqrt(o.cov(2, 2)) == Approx(o.p_cam.z() * o.p_cam.z() / (cam.fx * cam.baseline) * cam.sigma_pixel));
+    const Eigen::Vector4d m(800, 150, 780, 151);   // disparity 20 px, rows one apart
+    const auto f = [&](const Eigen::Vector4d& x) { return triangulate(cam, {x(0), x(1), x(2), x(3)}).p_cam; };
+    const StereoLandmarkObs o = triangulate(cam, {m(0), m(1), m(2), m(3)});
+    const double z = cam.fx * cam.baseline / 20, s = cam.noise.sigma_px;
+    CHECK(o.p_cam.z() == Approx(z));
+    CHECK(o.p_cam.y() == Approx((150.5 - cam.cy) * z / cam.fx));   // v = (v_l + v_r) / 2
+    const Eigen::Matrix<double, 3, 4> J = numeric_jacobian<3, 4>(f, m);
+    CHECK((o.cov - s * s * J * J.transpose()).norm() < 1e-6 * o.cov.norm());
+    // the disparity u_l - u_r has variance 2 σ²: σ_z = √2 z²/(f b) σ (σ on the disparity
+    // itself would give z²/(f b) σ); y from the mean of two rows and from z:
+    // σ_y² = σ² (z²/(2 f²) + 2 ((v - cy)/f)² z⁴/(f b)²)
+    CHECK(std::sqrt(o.cov(2, 2)) == Approx(std::sqrt(2.0) * z * z / (cam.fx * cam.baseline) * s).epsilon(1e-12));
+    const double yv = o.p_cam.y() / z;   // (v - cy) / f
+    CHECK(o.cov(1, 1) == Approx(s * s * (z * z / (2 * cam.fx * cam.fx) + 2 * yv * yv * z * z * z * z /
+                                                                            (cam.fx * cam.baseline * cam.fx * cam.baseline)))
+                             .epsilon(1e-12));
+}
+
+TEST_CASE("the pixel noise is σ on each of u_l, v_l, u_r, v_r: Σ(u, v, d) = σ² [[1,0,1],[0,½,0],[1,0,2]]",
+          "[slam]") {
+    StereoCamera cam;
+    cam.noise.sigma_px = 0.7;
+    const hc::stereo::StereoPixels exact{600, 200, 580, 200};
+    std::mt19937_64 rng(5);
+    const int n = 200000;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+    for (int k = 0; k < n; ++k) {
+        const hc::stereo::StereoPixels m = cam.noise.perturb(exact, rng);
+        // error of (u, v, d) = (u_l, (v_l + v_r)/2, u_l - u_r)
+        const Eigen::Vector3d e(m.u_l - exact.u_l, (m.v_l + m.v_r) / 2 - 200, (m.u_l - m.u_r) - 20);
+        mean += e;
+        second += e * e.transpose();
+    }
+    mean /= n;
+    const Eigen::Matrix3d C = second / n - mean * mean.transpose();
+    Eigen::Matrix3d model;
+    model << 1, 0, 1, 0, 0.5, 0, 1, 0, 2;
+    model *= 0.49;
+    INFO("sample covariance\n" << C);
+    CHECK(mean.norm() < 0.01);
+    // 200,000 draws: each entry within 0.01 (its standard error is below 0.0045)
+    CHECK((C - model).cwiseAbs().maxCoeff() < 0.01);
+    // a zero σ leaves the pixels exact
+    cam.noise.sigma_px = 0;
+    const hc::stereo::StereoPixels same = cam.noise.perturb(exact, rng);
+    CHECK((same.u_l == exact.u_l && same.v_l == exact.v_l && same.u_r == exact.u_r && same.v_r == exact.v_r));
 }
 
 TEST_CASE("the Hamming distance counts differing bits and extra bytes", "[slam]") {
@@ -123,7 +162,7 @@ TEST_CASE("association matches inside the gate and refuses a descriptor that dif
     LandmarkSlam s(Pose::Zero(), ac);
     StereoFrame f0;
     const StereoCamera cam;
-    StereoLandmarkObs a = triangulate(cam, 700, 200, 30), b = triangulate(cam, 400, 200, 25);
+    StereoLandmarkObs a = triangulate(cam, {700, 200, 670, 200}), b = triangulate(cam, {400, 200, 375, 200});
     a.descriptor = std::vector<uint8_t>(32, 0x00);
     b.descriptor = std::vector<uint8_t>(32, 0xff);
     f0 = {a, b};
@@ -156,7 +195,7 @@ TEST_CASE("landmarks unseen for forget_after frames are removed", "[slam]") {
     ac.forget_after = 2;
     LandmarkSlam s(Pose::Zero(), ac);
     const StereoCamera cam;
-    StereoLandmarkObs a = triangulate(cam, 700, 200, 30);
+    StereoLandmarkObs a = triangulate(cam, {700, 200, 670, 200});
     s.first_frame({a});
     CHECK(s.next_frame(Motion::Zero(), Q0, {}).removed == 0);
     const FrameStats f = s.next_frame(Motion::Zero(), Q0, {});
