@@ -259,6 +259,26 @@ CycleRun run_cycle(const Stream& s, const Formats& f, const CycleSpan& span, boo
 
 std::string chain_digest(const CycleCheckpoint& c) { return util::hex64(util::fnv1a(to_json(c).dump())); }
 
+namespace {
+
+/// The digest of the state a span with an end write leaves for the next part (empty
+/// without one); InternalError when the stream ended before that write.
+std::string end_digest(const CycleSpan& span, const HarrisTop& top, const HostDriver& drv, const WriteRing& ring) {
+    if (!span.end_write) return "";
+    if (top.writes() != span.end_write)
+        throw InternalError("cycle span: the stream ended after " + std::to_string(top.writes()) + " writes, before " +
+                            std::to_string(span.end_write));
+    CycleCheckpoint c;
+    c.frame = span.last;
+    c.model = top.save_state();
+    c.driver = drv.state();
+    c.writes = top.writes();
+    c.recent = ring.recent(top.writes());
+    return chain_digest(c);
+}
+
+}  // namespace
+
 CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f, const CycleSpan& span, bool progress,
                       const std::function<void(CycleFrame&&)>& on_frame) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -327,18 +347,7 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
         }
     }
     if (progress) std::fprintf(stderr, "\n");
-    if (span.end_write && top.writes() != span.end_write)
-        throw InternalError("cycle span: the stream ended after " + std::to_string(top.writes()) + " writes, before " +
-                            std::to_string(span.end_write));
-    if (span.end_write) {   // the state the next part must start from
-        CycleCheckpoint c;
-        c.frame = span.last;
-        c.model = top.save_state();
-        c.driver = drv.state();
-        c.writes = top.writes();
-        c.recent = ring.recent(top.writes());
-        r.end_digest = chain_digest(c);
-    }
+    r.end_digest = end_digest(span, top, drv, ring);
     open.hand_on_below(span.last, on_frame);
     r.writes = top.writes() - begin;
     r.seconds = since(t0);

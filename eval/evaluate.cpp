@@ -370,6 +370,57 @@ private:
     std::thread t_;
 };
 
+/// The cycle source of a part: the model streams the part's frames (decoded ahead) and
+/// hands them to the scorer `batch` at a time, scored on a second thread while the model
+/// runs on when there are two; the counts and digests go into `p`.
+void run_cycle_source(const PartInput& in, frames::FrameFeed& feed, PartScorer& scorer, int batch, Part& p) {
+    const bool overlap = tbb::this_task_arena::max_concurrency() > 1 && in.threads != 1;
+    std::vector<SourceFrame> pending;
+    int pending_first = in.first;
+    std::optional<Background> scoring;   // scores a batch while the model runs on
+    if (overlap) scoring.emplace();
+    const auto submit = [&] {
+        if (pending.empty()) return;
+        const int a = pending_first, size = static_cast<int>(pending.size());
+        auto job = [&scorer, &feed, off = in.offset, a, size, fs = std::make_shared<std::vector<SourceFrame>>(std::move(pending))] {
+            scorer.score(a, a + size, fs.get());
+            feed.release_below(a + size - off);
+        };
+        pending_first += size;
+        pending = {};
+        if (scoring) scoring->run(std::move(job));
+        else job();
+    };
+    const FrameAt at = [&](int k) {
+        auto im = feed.frame(k - in.offset);
+        feed.prefetch(k + 1 - in.offset);   // decoded while the model runs
+        return im;
+    };
+    const CycleCounts c = run_cycle(at, Geometry{p.width, p.height}, Formats{},
+                                    CycleSpan{in.offset, in.first, in.last, in.frames_total, in.start, in.end_write},
+                                    true, [&](CycleFrame&& fr) {
+                                        SourceFrame sf;
+                                        sf.mask = std::move(fr.mask);
+                                        sf.thr = fr.thr;
+                                        sf.max = fr.max;
+                                        p.publications.push_back(fr.publications);
+                                        sf.cycle = std::move(fr);
+                                        pending.push_back(std::move(sf));
+                                        if (static_cast<int>(pending.size()) == batch) submit();
+                                    });
+    submit();
+    if (scoring) scoring->wait();
+    p.next_publications = c.next_publications;
+    p.next_max = c.next_max;
+    p.mixed_windows = c.mixed_windows;
+    p.max_publications = c.max_publications;
+    p.writes = c.writes;
+    p.reads = c.reads;
+    p.seconds_source = c.seconds;
+    p.start_digest = in.start ? chain_digest(*in.start) : "";
+    p.end_digest = c.end_digest;
+}
+
 }  // namespace
 
 Part evaluate_part(const PartInput& in) {
@@ -406,51 +457,7 @@ Part evaluate_part(const PartInput& in) {
             feed.release_below(a + static_cast<int>(fs.size()));
         });
     } else {
-        const bool overlap = tbb::this_task_arena::max_concurrency() > 1 && in.threads != 1;
-        std::vector<SourceFrame> pending;
-        int pending_first = in.first;
-        std::optional<Background> scoring;   // scores a batch while the model runs on
-        if (overlap) scoring.emplace();
-        const auto submit = [&] {
-            if (pending.empty()) return;
-            const int a = pending_first, size = static_cast<int>(pending.size());
-            auto job = [&scorer, &feed, off = in.offset, a, size, fs = std::make_shared<std::vector<SourceFrame>>(std::move(pending))] {
-                scorer.score(a, a + size, fs.get());
-                feed.release_below(a + size - off);
-            };
-            pending_first += size;
-            pending = {};
-            if (scoring) scoring->run(std::move(job));
-            else job();
-        };
-        const FrameAt at = [&](int k) {
-            auto im = feed.frame(k - in.offset);
-            feed.prefetch(k + 1 - in.offset);   // decoded while the model runs
-            return im;
-        };
-        const CycleCounts c = run_cycle(at, Geometry{p.width, p.height}, Formats{},
-                                        CycleSpan{in.offset, in.first, in.last, in.frames_total, in.start, in.end_write},
-                                        true, [&](CycleFrame&& fr) {
-                                            SourceFrame sf;
-                                            sf.mask = std::move(fr.mask);
-                                            sf.thr = fr.thr;
-                                            sf.max = fr.max;
-                                            p.publications.push_back(fr.publications);
-                                            sf.cycle = std::move(fr);
-                                            pending.push_back(std::move(sf));
-                                            if (static_cast<int>(pending.size()) == batch) submit();
-                                        });
-        submit();
-        if (scoring) scoring->wait();
-        p.next_publications = c.next_publications;
-        p.next_max = c.next_max;
-        p.mixed_windows = c.mixed_windows;
-        p.max_publications = c.max_publications;
-        p.writes = c.writes;
-        p.reads = c.reads;
-        p.seconds_source = c.seconds;
-        p.start_digest = in.start ? chain_digest(*in.start) : "";
-        p.end_digest = c.end_digest;
+        run_cycle_source(in, feed, scorer, batch, p);
     }
     return p;
 }
