@@ -140,6 +140,20 @@ Stream load_kitti_stream(const fs::path& kitti_dir, const std::string& sequence,
     return s;
 }
 
+fs::path kitti_root(const std::string& kitti_flag, const std::string& data_flag) {
+    if (!kitti_flag.empty()) return kitti_flag;
+    if (const auto d = data_dir(data_flag); d && fs::is_directory(*d / "kitti")) return *d / "kitti";
+    return {};
+}
+
+fs::path require_kitti_root(const std::string& kitti_flag, const std::string& data_flag, const std::string& needs) {
+    fs::path root = kitti_root(kitti_flag, data_flag);
+    if (root.empty())
+        throw InputError(needs + ": give --kitti DIR (holding sequences/NN) or --data DIR (holding kitti/), or set "
+                         "HARRIS_COSIM_DATA");
+    return root;
+}
+
 FrameFeed::FrameFeed(std::vector<std::string> names, std::vector<int> pair_index, std::string description,
                      std::function<Image(int)> load)
     : names_(std::move(names)), pair_index_(std::move(pair_index)), description_(std::move(description)),
@@ -271,13 +285,7 @@ LoadedFrames load_frames(const FrameSource& o) {
         }
         out.description = std::to_string(n) + " image(s)";
     } else if (!o.kitti.empty() || !o.pairs.empty()) {
-        fs::path root;
-        if (!o.kitti.empty()) root = o.kitti;
-        else {
-            const auto d = data_dir(o.data);
-            if (!d) throw InputError("no data directory: give --kitti DIR, --data DIR or set HARRIS_COSIM_DATA");
-            root = *d / "kitti";
-        }
+        const fs::path root = require_kitti_root(o.kitti, o.data, "a KITTI stream needs KITTI data");
         const KittiSequence seq = open_kitti(root, o.sequence);
         const util::Range r = o.pairs.empty() ? util::Range{0, seq.pairs()} : util::parse_range(o.pairs, "--pairs");
         const auto paths = stereo_stream(seq, r, "--pairs " + (o.pairs.empty() ? std::string("(all)") : o.pairs));

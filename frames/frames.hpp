@@ -31,6 +31,14 @@ Image crop(const Image& img, int width, int height, const std::string& what);
 /// next to the source tree (HC_DEFAULT_DATA_DIR at build time). Empty if none exists.
 std::optional<std::filesystem::path> data_dir(const std::string& flag_value);
 
+/// The KITTI odometry root (the folder holding sequences/) a command reads: `kitti_flag`
+/// (--kitti) when given, else data_dir(data_flag)/kitti when that is a directory; empty when
+/// neither (the one rule of every command).
+std::filesystem::path kitti_root(const std::string& kitti_flag, const std::string& data_flag);
+/// kitti_root, or InputError "`needs`: give --kitti DIR ... or --data DIR ..." when empty.
+std::filesystem::path require_kitti_root(const std::string& kitti_flag, const std::string& data_flag,
+                                         const std::string& needs);
+
 /// A KITTI odometry sequence: sequences/NN/image_0 (left) and image_1 (right).
 struct KittiSequence {
     std::filesystem::path root;   ///< .../sequences/NN

@@ -91,12 +91,7 @@ void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
 
 void run_eval(const EvalOptions& o) {
     if (!o.sequences.empty() || o.sharded) {
-        fs::path kitti = o.kitti;
-        if (kitti.empty()) {
-            if (auto d = frames::data_dir(o.data); d && fs::is_directory(*d / "kitti")) kitti = *d / "kitti";
-            else throw InputError("--sequences and sharded runs need KITTI data: give --kitti DIR or --data DIR");
-        }
-        run_eval_job(o, kitti);
+        run_eval_job(o, frames::require_kitti_root(o.kitti, o.data, "--sequences and sharded runs need KITTI data"));
         return;
     }
     eval::Request r;
@@ -104,8 +99,7 @@ void run_eval(const EvalOptions& o) {
     if (!o.frames.empty()) r.pairs = util::parse_range(o.frames, "--frames");
     r.pairs_flag = "--frames " + (o.frames.empty() ? std::string("(all)") : o.frames);
     r.overlays = parse_list(o.overlay);
-    if (!o.kitti.empty()) r.kitti = o.kitti;
-    else if (auto d = frames::data_dir(o.data); d && fs::is_directory(*d / "kitti")) r.kitti = *d / "kitti";
+    r.kitti = frames::kitti_root(o.kitti, o.data);   // none: the built-in stream
     r.sequence = o.sequence;
     r.out = o.out;
     r.threads = o.threads;

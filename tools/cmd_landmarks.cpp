@@ -85,11 +85,7 @@ landmarks::Dataset load_dataset(const LandmarksOptions& o, fs::path& root) {
         return landmarks::middlebury_dataset(root, !o.no_truth);
     }
     if (o.dataset == "kitti") {
-        root = o.kitti;
-        if (root.empty()) {
-            if (!data) throw InputError("no --kitti root and no data directory (--data, $HARRIS_COSIM_DATA)");
-            root = *data / "kitti";
-        }
+        root = frames::require_kitti_root(o.kitti, o.data, "--dataset kitti needs KITTI data");
         const auto [a, b] = pair_range(o.frames);
         return landmarks::kitti_dataset(root, o.sequence, a, b);
     }

@@ -210,12 +210,7 @@ slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::
 }
 
 void run_sequences(const SlamOptions& o) {
-    std::filesystem::path kitti = o.kitti;
-    if (kitti.empty()) {
-        const auto d = frames::data_dir(o.data);
-        if (!d) throw InputError("no data directory: give --kitti or --data, or set HARRIS_COSIM_DATA");
-        kitti = *d / "kitti";
-    }
+    const std::filesystem::path kitti = frames::require_kitti_root(o.kitti, o.data, "slam --sequences needs KITTI data");
     if (o.odometry != "visual" && o.odometry != "synthetic")
         throw InputError("--odometry '" + o.odometry + "' is neither visual nor synthetic");
     if (o.association != "jcbb" && o.association != "nearest")

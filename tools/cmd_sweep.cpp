@@ -42,13 +42,7 @@ void run(const SweepCli& c) {
     o.cache = !c.cache.empty() ? fs::path(c.cache)
               : std::getenv("HARRIS_COSIM_SWEEP_CACHE") ? fs::path(std::getenv("HARRIS_COSIM_SWEEP_CACHE"))
                                                         : fs::path(HC_BUILD_DIR) / "sweep-cache";
-    if (!c.kitti.empty()) {
-        o.kitti = c.kitti;
-    } else if (auto d = frames::data_dir(c.data); d && fs::is_directory(*d / "kitti")) {
-        o.kitti = *d / "kitti";
-    } else {
-        throw InputError("no KITTI data: give --kitti DIR (holding sequences/NN) or --data DIR (holding kitti/)");
-    }
+    o.kitti = frames::require_kitti_root(c.kitti, c.data, "the sweep needs KITTI data");
     if (!c.middlebury.empty()) {
         if (!fs::is_directory(c.middlebury)) throw InputError("--middlebury '" + c.middlebury + "' is not a directory");
         o.middlebury = c.middlebury;

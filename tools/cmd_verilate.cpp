@@ -53,9 +53,7 @@ void run_verilate_job(const VerilateArgs& a) {
     if (!a.src.images.empty() || !a.src.pattern.empty())
         throw InputError("--sequences and the sharding flags stream KITTI sequences: leave out images and --pattern");
     jobs::VerilateJob j;
-    if (!a.src.kitti.empty()) j.kitti = a.src.kitti;
-    else if (auto d = frames::data_dir(a.src.data); d && fs::is_directory(*d / "kitti")) j.kitti = *d / "kitti";
-    else throw InputError("--sequences needs KITTI data: give --kitti DIR or --data DIR");
+    j.kitti = frames::require_kitti_root(a.src.kitti, a.src.data, "--sequences needs KITTI data");
     j.sequences = a.sequences.empty() ? std::vector<std::string>{a.src.sequence} : eval::parse_sequences(a.sequences);
     if (!a.src.pairs.empty()) j.pairs = util::parse_range(a.src.pairs, "--pairs");
     if (a.src.frames > 0) j.pairs.last = std::min(j.pairs.last, j.pairs.first + (a.src.frames + 1) / 2);
