@@ -316,11 +316,8 @@ nlohmann::json metrics_json(const TrajectoryMetrics& m) {
             {"nees_mean", m.nees_frames ? nlohmann::json(m.nees_mean) : nlohmann::json(nullptr)},
             {"nees_frames", m.nees_frames}};
 }
-}  // namespace
 
-void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std::string& title, const std::string& command,
-                           const std::string& odometry_label) {
-    make_dir(dir);
+void save_sequence_states(const fs::path& dir, const SequenceRun& r) {
     std::ostringstream st;
     st << "frame,true_x,true_y,true_theta,est_x,est_y,est_theta,sigma_x,sigma_y,sigma_theta,odo_x,odo_y,odo_theta,"
           "nees_slam,nees_odometry,observed,matched,added,rejected_by_descriptor,removed,map_size,matched_agreeing,"
@@ -338,14 +335,20 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
            << f.matched_wrong << '\n';
     }
     save(dir / "states.csv", st.str());
+}
+
+// The trajectories in KITTI's format, and the estimate in TUM's.
+void save_trajectories(const fs::path& dir, const SequenceRun& r) {
     save(dir / "estimate_kitti.txt", kitti_trajectory(r.estimate));
     save(dir / "dead_reckoning_kitti.txt", kitti_trajectory(r.dead_reckoning));
     save(dir / "truth_kitti.txt", kitti_trajectory(r.truth));
     std::vector<double> ts;
     for (size_t k = 0; k < r.estimate.size(); ++k) ts.push_back(0.1 * k);   // KITTI: 10 frames/s
     save(dir / "estimate_tum.txt", tum_trajectory(r.estimate, ts));
+}
 
-    const SequenceTotals t = totals(r);
+void save_sequence_summary(const fs::path& dir, const SequenceRun& r, const SequenceTotals& t,
+                           const std::string& command, const std::string& odometry_label) {
     nlohmann::json j;
     j["command"] = command;
     j["frames"] = r.truth.size();
@@ -361,31 +364,44 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
     j["matches_checked_against_truth"] = {{"total", t.checked}, {"wrong", t.wrong}};
     j["jcbb_frames_cut_at_node_limit"] = t.jcbb_cut;
     save(dir / "summary.json", j.dump(2) + "\n");
+}
 
+bool plot_sequence_trajectory(const fs::path& dir, const SequenceRun& r, const std::string& title,
+                              const std::string& odometry_label) {
     std::string ell;
     for (size_t i = 0; i < r.map.size(); ++i) ell += ellipse(r.map[i], r.map_cov[i], 3);
     const TopView view = top_view(positions({&r.truth, &r.estimate, &r.dead_reckoning}, r.map), title,
                                   "top view, final map with 3-sigma ellipses", "forward x (m)", "left y (m)");
-    const bool traj_png = plot(dir / "trajectory.png",
+    return plot(dir / "trajectory.png",
         block("truth", poses_xy(r.truth)) + block("est", poses_xy(r.estimate)) + block("dr", poses_xy(r.dead_reckoning)) +
         block("ell", ell) + view.script +
         "plot $ell w l lc rgb '#cc8888' t 'landmark 3{/Symbol s}', $truth w l lw 2 lc rgb 'black' t 'ground truth',"
         " $est w l lw 2 lc rgb 'blue' t 'EKF-SLAM', $dr w l lw 2 dt 2 lc rgb 'orange' t '" + odometry_label + "'\n", view.width, view.height);
+}
+
+bool plot_map_size(const fs::path& dir, const SequenceRun& r, const std::string& title) {
     std::string ms;
     for (size_t k = 0; k < r.frames.size(); ++k)
         ms += std::to_string(k) + ' ' + std::to_string(r.frames[k].map_size) + ' ' + std::to_string(r.frames[k].matched) +
               ' ' + std::to_string(r.frames[k].added) + '\n';
-    const bool map_png = plot(dir / "map_size.png", block("ms", ms) +
+    return plot(dir / "map_size.png", block("ms", ms) +
         "set grid\nset xlabel 'frame'\nset ylabel 'landmarks'\nset title '" + title + ": map size and associations'\n"
         "plot $ms u 1:2 w l lw 2 t 'map size', $ms u 1:3 w l t 'matched', $ms u 1:4 w l t 'added'\n");
+}
 
-    const auto row = [](const std::string& name, const TrajectoryMetrics& m) {
-        std::ostringstream o;
-        o << std::setprecision(4) << "| " << name << " | " << m.ape << " | " << m.ape_percent() << " | " << m.ape_se2
-          << " | " << m.rpe << " | " << m.rpe_heading * 180 / std::numbers::pi << " | " << m.final_error << " | "
-          << (m.nees_frames ? num(m.nees_mean) : std::string("-")) << " |\n";
-        return o.str();
-    };
+// One row of the report's metrics table.
+std::string metrics_row(const std::string& name, const TrajectoryMetrics& m) {
+    std::ostringstream o;
+    o << std::setprecision(4) << "| " << name << " | " << m.ape << " | " << m.ape_percent() << " | " << m.ape_se2
+      << " | " << m.rpe << " | " << m.rpe_heading * 180 / std::numbers::pi << " | " << m.final_error << " | "
+      << (m.nees_frames ? num(m.nees_mean) : std::string("-")) << " |\n";
+    return o.str();
+}
+
+/// A sequence's report.md, linking the plots that were drawn.
+std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, const std::string& title,
+                              const std::string& command, const std::string& odometry_label, bool traj_png,
+                              bool map_png) {
     std::ostringstream md;
     md << std::setprecision(4);
     md << "# EKF-SLAM on " << title << "\n\nCommand: `" << command << "`\n\n"
@@ -393,7 +409,7 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
           "with it (evo's APE and RPE on the top view, pose NEES with 3 dof).\n\n"
        << "| trajectory | APE (m) | APE % of path | APE SE(2)-aligned (m) | RPE per frame (m) | RPE heading (°) | "
           "final error (m) | mean pose NEES |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
-       << row("EKF-SLAM", r.slam_metrics) << row(odometry_label, r.odometry_metrics) << "\n"
+       << metrics_row("EKF-SLAM", r.slam_metrics) << metrics_row(odometry_label, r.odometry_metrics) << "\n"
        << r.truth.size() << " frames, path length " << r.slam_metrics.path_length << " m; " << t.observed
        << " observations, " << t.matched << " associated; map size final " << r.frames.back().map_size << ", peak "
        << t.peak << ".\n\n";
@@ -410,7 +426,20 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
     md << "Files: `states.csv` (per frame, with the pose NEES), `summary.json`, `estimate_kitti.txt` and "
           "`estimate_tum.txt` (estimate), `dead_reckoning_kitti.txt` (" << odometry_label << "), `truth_kitti.txt` "
           "(KITTI camera frame, height 0).\n";
-    save(dir / "report.md", md.str());
+    return md.str();
+}
+}  // namespace
+
+void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std::string& title, const std::string& command,
+                           const std::string& odometry_label) {
+    make_dir(dir);
+    save_sequence_states(dir, r);
+    save_trajectories(dir, r);
+    const SequenceTotals t = totals(r);
+    save_sequence_summary(dir, r, t, command, odometry_label);
+    const bool traj_png = plot_sequence_trajectory(dir, r, title, odometry_label);
+    const bool map_png = plot_map_size(dir, r, title);
+    save(dir / "report.md", sequence_markdown(r, t, title, command, odometry_label, traj_png, map_png));
 }
 
 std::string sequences_markdown(const std::vector<std::pair<std::string, SequenceRun>>& runs,
