@@ -35,6 +35,237 @@ Eigen::Matrix<double, 2, C> HP_cols(const Eigen::MatrixXd& P, const Pairing& p, 
     return p.Hr * P.block<3, C>(0, c) + p.Hl * P.block<2, C>(p.sub, c);
 }
 
+/// The sub-state (robot, then each candidate landmark once), its covariance, and every
+/// pairing of observation i with its candidates, sorted by increasing individual distance.
+struct Gated {
+    std::vector<int> idx;   ///< state indices of the sub-state
+    Eigen::MatrixXd P;      ///< covariance of the sub-state
+    std::vector<std::vector<Pairing>> pairings;
+    int count = 0;          ///< pairings over all observations
+};
+
+Gated gate(const Ekf& ekf, const std::vector<RangeBearing>& obs, const std::vector<std::vector<int>>& candidates) {
+    const int N = static_cast<int>(obs.size());
+    Gated gd;
+    gd.idx = {0, 1, 2};
+    std::unordered_map<int, int> sub_of;
+    for (int i = 0; i < N; ++i)
+        for (int id : candidates.at(i))
+            if (!sub_of.count(id)) {
+                sub_of[id] = static_cast<int>(gd.idx.size());
+                const int l = ekf.state_index(id);
+                gd.idx.push_back(l);
+                gd.idx.push_back(l + 1);
+            }
+    gd.P = ekf.covariance_of(gd.idx);
+    const Eigen::MatrixXd& P = gd.P;
+    const Eigen::VectorXd x = ekf.mean();
+    const Pose r = x.head<3>();
+    gd.pairings.resize(N);
+    for (int i = 0; i < N; ++i) {
+        for (int id : candidates[i]) {
+            Pairing p;
+            p.obs = i;
+            p.id = id;
+            p.sub = sub_of[id];
+            const Vec2 yh = observe(r, x.segment<2>(ekf.state_index(id)), &p.Hr, &p.Hl);
+            p.z = obs[i].y - yh;
+            p.z(1) = wrap_angle(p.z(1));
+            p.HPr = HP_cols<3>(P, p, 0);
+            const Mat2 S = p.HPr * p.Hr.transpose() + HP_cols<2>(P, p, p.sub) * p.Hl.transpose() + obs[i].R;
+            p.d2 = p.z.dot(S.ldlt().solve(p.z));
+            gd.pairings[i].push_back(std::move(p));
+        }
+        std::stable_sort(gd.pairings[i].begin(), gd.pairings[i].end(),
+                         [](const Pairing& a, const Pairing& b) { return a.d2 < b.d2; });
+    }
+    for (auto& ps : gd.pairings)
+        for (Pairing& p : ps) p.g = gd.count++;
+    return gd;
+}
+
+/// A candidate pairing's new diagonal block of the joint factor, l = chol(S22), and l⁻¹ r2.
+struct Step {
+    double l00 = 0, l10 = 0, l11 = 0, w0 = 0, w1 = 0, d2 = 0;   ///< d2: the joint distance with it
+};
+
+/// The branch and bound over the gated pairings, the joint innovation's covariance grown by
+/// one pairing at a time through its Cholesky factor L (and w = L⁻¹ z).
+class JointSearch {
+public:
+    JointSearch(const std::vector<RangeBearing>& obs, Gated gated, double joint_probability, long max_nodes)
+        : obs_(obs), N_(static_cast<int>(obs.size())), W_(2 * N_), gd_(std::move(gated)), max_nodes_(max_nodes),
+          rem_(N_ + 1, 0), chi2_(N_ + 1, 0), L_(RowMajor::Zero(W_, W_)), w_(Eigen::VectorXd::Zero(W_)),
+          Xc_(new double[static_cast<size_t>(gd_.count) * 2 * W_]),
+          sums_(new std::array<double, 5>[static_cast<size_t>(gd_.count) * (N_ + 1)]),
+          block_stamp_(static_cast<size_t>(gd_.count) * N_, 0), stamp_(N_, 0), used_sub_(gd_.idx.size(), 0) {
+        for (int i = N_ - 1; i >= 0; --i) rem_[i] = rem_[i + 1] + (gd_.pairings[i].empty() ? 0 : 1);
+        for (int k = 1; k <= N_; ++k) chi2_[k] = chi2_quantile(joint_probability, 2.0 * k);
+        best_.landmark.assign(N_, -1);
+    }
+
+    Association run() {
+        search(0, 0);
+        best_.pairings = std::max(best_k_, 0);
+        best_.joint_mahalanobis2 = best_d2_;
+        best_.nodes = std::min(nodes_, max_nodes_);
+        best_.complete = !stopped_;
+        return best_;
+    }
+
+private:
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+    Mat2 S_between(const Pairing& a, const Pairing& b) const {
+        return a.HPr * b.Hr.transpose() + HP_cols<2>(gd_.P, a, b.sub) * b.Hl.transpose();
+    }
+
+    void search(int i, double d2) {
+        if (stopped_) return;
+        if (++nodes_ > max_nodes_) {
+            stopped_ = true;
+            return;
+        }
+        const int k = static_cast<int>(chosen_.size());
+        if (i == N_) {
+            keep_if_better(d2);
+            return;
+        }
+        if (k + rem_[i] > best_k_) {
+            for (const Pairing& p : gd_.pairings[i]) {
+                if (used_sub_[p.sub]) continue;
+                Step s;
+                if (!joint_step(p, k, d2, s)) continue;
+                push(p, k, s);
+                search(i + 1, s.d2);
+                used_sub_[p.sub] = 0;
+                chosen_.pop_back();
+                if (stopped_) return;
+            }
+        }
+        if (k + rem_[i + 1] > best_k_) search(i + 1, d2);   // observation i left unpaired
+    }
+
+    void keep_if_better(double d2) {
+        const int k = static_cast<int>(chosen_.size());
+        if (k > best_k_ || (k == best_k_ && d2 < best_d2_)) {
+            best_k_ = k;
+            best_d2_ = d2;
+            best_.landmark.assign(N_, -1);
+            for (const Pairing* p : chosen_) best_.landmark[p->obs] = p->id;
+        }
+    }
+
+    /// Pairing p's row X = B L⁻ᵀ of the joint factor against the k chosen pairings (B its
+    /// block row of the joint S), by forward substitution, and the running sums of X Xᵀ and
+    /// X w after each block. Block q depends only on the pairings chosen at depths 0..q, so
+    /// it is kept while they stay: stamp_[q] names the pairing pushed at depth q,
+    /// block_stamp_[g][q] the one block q of g was computed under. Returns the sums after
+    /// block k−1 (x00 x01 x11 xw0 xw1).
+    const std::array<double, 5>& joint_row(const Pairing& p, int k) {
+        long* bs = &block_stamp_[static_cast<size_t>(p.g) * N_];
+        int q0 = k;
+        while (q0 > 0 && bs[q0 - 1] != stamp_[q0 - 1]) --q0;
+        double* X0 = &Xc_[static_cast<size_t>(2 * p.g) * W_];
+        double* X1 = X0 + W_;
+        std::array<double, 5>* sm = &sums_[static_cast<size_t>(p.g) * (N_ + 1)];
+        for (int q = q0; q < k; ++q) {
+            const Mat2 Bq = S_between(p, *chosen_[q]);
+            double x00 = 0, x01 = 0, x11 = 0, xw0 = 0, xw1 = 0;
+            if (q > 0) x00 = sm[q][0], x01 = sm[q][1], x11 = sm[q][2], xw0 = sm[q][3], xw1 = sm[q][4];
+            for (int c = 0; c < 2; ++c) {
+                const int j = 2 * q + c;
+                const double* Lj = &L_(j, 0);
+                double s0 = Bq(0, c), s1 = Bq(1, c);
+                for (int m = 0; m < j; ++m) {
+                    s0 -= Lj[m] * X0[m];
+                    s1 -= Lj[m] * X1[m];
+                }
+                const double a = s0 / Lj[j], b = s1 / Lj[j];
+                X0[j] = a;
+                X1[j] = b;
+                x00 += a * a;
+                x01 += a * b;
+                x11 += b * b;
+                xw0 += a * w_(j);
+                xw1 += b * w_(j);
+            }
+            sm[q + 1] = {x00, x01, x11, xw0, xw1};
+            bs[q] = stamp_[q];
+        }
+        return sm[k];
+    }
+
+    /// Pairing p after the k chosen ones, at joint distance d2: its Schur complement
+    /// S22 = l lᵀ (Cholesky of the 2×2, from its lower triangle) and l⁻¹ r2 into `s`. False
+    /// when S22 is not positive definite or the joint distance fails the joint gate.
+    bool joint_step(const Pairing& p, int k, double d2, Step& s) {
+        const std::array<double, 5>& sm = joint_row(p, k);
+        Mat2 S22 = S_between(p, p) + obs_[p.obs].R;
+        Vec2 r2 = p.z;
+        if (k > 0) {
+            S22(0, 0) -= sm[0];
+            S22(0, 1) -= sm[1];
+            S22(1, 0) -= sm[1];
+            S22(1, 1) -= sm[2];
+            r2(0) -= sm[3];
+            r2(1) -= sm[4];
+        }
+        if (S22(0, 0) <= 0) return false;
+        s.l00 = std::sqrt(S22(0, 0));
+        s.l10 = S22(1, 0) / s.l00;
+        const double e11 = S22(1, 1) - s.l10 * s.l10;
+        if (e11 <= 0) return false;
+        s.l11 = std::sqrt(e11);
+        s.w0 = r2(0) / s.l00;
+        s.w1 = (r2(1) - s.l10 * s.w0) / s.l11;
+        s.d2 = d2 + (s.w0 * s.w0 + s.w1 * s.w1);
+        return s.d2 <= chi2_[k + 1];
+    }
+
+    /// Pairing p chosen at depth k: its rows of L and w.
+    void push(const Pairing& p, int k, const Step& s) {
+        const double* X0 = &Xc_[static_cast<size_t>(2 * p.g) * W_];
+        const double* X1 = X0 + W_;
+        for (int m = 0; m < 2 * k; ++m) {
+            L_(2 * k, m) = X0[m];
+            L_(2 * k + 1, m) = X1[m];
+        }
+        L_(2 * k, 2 * k) = s.l00;
+        L_(2 * k, 2 * k + 1) = 0;
+        L_(2 * k + 1, 2 * k) = s.l10;
+        L_(2 * k + 1, 2 * k + 1) = s.l11;
+        stamp_[k] = ++next_stamp_;
+        w_(2 * k) = s.w0;
+        w_(2 * k + 1) = s.w1;
+        chosen_.push_back(&p);
+        used_sub_[p.sub] = 1;
+    }
+
+    const std::vector<RangeBearing>& obs_;
+    const int N_, W_;
+    const Gated gd_;
+    const long max_nodes_;
+    std::vector<int> rem_;       ///< rem_[i]: observations i.. with at least one candidate
+    std::vector<double> chi2_;   ///< chi2_[k]: the joint gate for k pairings
+    RowMajor L_;                 ///< row-major: the forward substitution reads it by rows
+    Eigen::VectorXd w_;          ///< L⁻¹ z
+    // written before read, so left uninitialised: X of g, row 0 at [2gW], row 1 at [(2g+1)W];
+    // the sums x00 x01 x11 xw0 xw1 of g after blocks 0..q-1 at [g(N+1) + q] (q = 0: zero)
+    const std::unique_ptr<double[]> Xc_;
+    const std::unique_ptr<std::array<double, 5>[]> sums_;
+    std::vector<long> block_stamp_;
+    std::vector<long> stamp_;
+    long next_stamp_ = 0;
+    std::vector<char> used_sub_;   ///< by the landmark's column in the sub-state
+    std::vector<const Pairing*> chosen_;
+    Association best_;
+    int best_k_ = -1;
+    double best_d2_ = 0;
+    long nodes_ = 0;
+    bool stopped_ = false;
+};
+
 }  // namespace
 
 Association associate_nearest(const Ekf& ekf, const std::vector<RangeBearing>& obs,
@@ -62,174 +293,7 @@ Association associate_nearest(const Ekf& ekf, const std::vector<RangeBearing>& o
 Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
                            const std::vector<std::vector<int>>& candidates, double joint_probability,
                            long max_nodes) {
-    const int N = static_cast<int>(obs.size());
-    // the sub-state: robot, then each candidate landmark once
-    std::vector<int> idx{0, 1, 2};
-    std::unordered_map<int, int> sub_of;
-    for (int i = 0; i < N; ++i)
-        for (int id : candidates.at(i))
-            if (!sub_of.count(id)) {
-                sub_of[id] = static_cast<int>(idx.size());
-                const int l = ekf.state_index(id);
-                idx.push_back(l);
-                idx.push_back(l + 1);
-            }
-    const Eigen::MatrixXd P = ekf.covariance_of(idx);
-    const Eigen::VectorXd x = ekf.mean();
-    const Pose r = x.head<3>();
-    std::vector<std::vector<Pairing>> pairings(N);
-    for (int i = 0; i < N; ++i) {
-        for (int id : candidates[i]) {
-            Pairing p;
-            p.obs = i;
-            p.id = id;
-            p.sub = sub_of[id];
-            const Vec2 yh = observe(r, x.segment<2>(ekf.state_index(id)), &p.Hr, &p.Hl);
-            p.z = obs[i].y - yh;
-            p.z(1) = wrap_angle(p.z(1));
-            p.HPr = HP_cols<3>(P, p, 0);
-            const Mat2 S = p.HPr * p.Hr.transpose() + HP_cols<2>(P, p, p.sub) * p.Hl.transpose() + obs[i].R;
-            p.d2 = p.z.dot(S.ldlt().solve(p.z));
-            pairings[i].push_back(std::move(p));
-        }
-        std::stable_sort(pairings[i].begin(), pairings[i].end(),
-                         [](const Pairing& a, const Pairing& b) { return a.d2 < b.d2; });
-    }
-    // rem[i]: observations i.. with at least one candidate
-    std::vector<int> rem(N + 1, 0);
-    for (int i = N - 1; i >= 0; --i) rem[i] = rem[i + 1] + (pairings[i].empty() ? 0 : 1);
-    std::vector<double> chi2(N + 1, 0);
-    for (int k = 1; k <= N; ++k) chi2[k] = chi2_quantile(joint_probability, 2.0 * k);
-
-    // Cholesky factor of the joint S, row-major: the forward substitution reads it by rows
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> L =
-        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Zero(2 * N, 2 * N);
-    Eigen::VectorXd w = Eigen::VectorXd::Zero(2 * N);         // L⁻¹ z
-    // Per pairing g, its row X = B L⁻ᵀ of the joint factor against the chosen pairings (B its
-    // block row of the joint S), solved by forward substitution, and the running sums of
-    // X Xᵀ and X w after each block. Block q depends only on the pairings chosen at depths
-    // 0..q, so it is kept while they stay: stamp[q] names the pairing pushed at depth q,
-    // block_stamp[g][q] the one block q of g was computed under.
-    int G = 0;
-    for (auto& ps : pairings)
-        for (Pairing& p : ps) p.g = G++;
-    const int W = 2 * N;
-    // written before read, so left uninitialised: X of g, row 0 at [2gW], row 1 at [(2g+1)W];
-    // the sums x00 x01 x11 xw0 xw1 of g after blocks 0..q-1 at [g(N+1) + q] (q = 0: zero)
-    const std::unique_ptr<double[]> Xc(new double[static_cast<size_t>(G) * 2 * W]);
-    const std::unique_ptr<std::array<double, 5>[]> sums(new std::array<double, 5>[static_cast<size_t>(G) * (N + 1)]);
-    std::vector<long> block_stamp(static_cast<size_t>(G) * N, 0);
-    std::vector<long> stamp(N, 0);
-    long next_stamp = 0;
-    std::vector<char> used_sub(idx.size(), 0);   // by the landmark's column in the sub-state
-    std::vector<const Pairing*> chosen;
-    Association best;
-    best.landmark.assign(N, -1);
-    int best_k = -1;
-    double best_d2 = 0;
-    long nodes = 0;
-    bool stopped = false;
-
-    const auto S_between = [&](const Pairing& a, const Pairing& b) -> Mat2 {
-        return a.HPr * b.Hr.transpose() + HP_cols<2>(P, a, b.sub) * b.Hl.transpose();
-    };
-    const std::function<void(int, double)> search = [&](int i, double d2) {
-        if (stopped) return;
-        if (++nodes > max_nodes) {
-            stopped = true;
-            return;
-        }
-        const int k = static_cast<int>(chosen.size());
-        if (i == N) {
-            if (k > best_k || (k == best_k && d2 < best_d2)) {
-                best_k = k;
-                best_d2 = d2;
-                best.landmark.assign(N, -1);
-                for (const Pairing* p : chosen) best.landmark[p->obs] = p->id;
-            }
-            return;
-        }
-        if (k + rem[i] > best_k) {
-            for (const Pairing& p : pairings[i]) {
-                if (used_sub[p.sub]) continue;
-                // the new block row of the joint covariance and of its Cholesky factor: the
-                // blocks still valid for the chosen prefix are reused, the others solved
-                long* bs = &block_stamp[static_cast<size_t>(p.g) * N];
-                int q0 = k;
-                while (q0 > 0 && bs[q0 - 1] != stamp[q0 - 1]) --q0;
-                double* X0 = &Xc[static_cast<size_t>(2 * p.g) * W];
-                double* X1 = X0 + W;
-                std::array<double, 5>* sm = &sums[static_cast<size_t>(p.g) * (N + 1)];
-                for (int q = q0; q < k; ++q) {
-                    const Mat2 Bq = S_between(p, *chosen[q]);
-                    double x00 = 0, x01 = 0, x11 = 0, xw0 = 0, xw1 = 0;
-                    if (q > 0) x00 = sm[q][0], x01 = sm[q][1], x11 = sm[q][2], xw0 = sm[q][3], xw1 = sm[q][4];
-                    for (int c = 0; c < 2; ++c) {
-                        const int j = 2 * q + c;
-                        const double* Lj = &L(j, 0);
-                        double s0 = Bq(0, c), s1 = Bq(1, c);
-                        for (int m = 0; m < j; ++m) {
-                            s0 -= Lj[m] * X0[m];
-                            s1 -= Lj[m] * X1[m];
-                        }
-                        const double a = s0 / Lj[j], b = s1 / Lj[j];
-                        X0[j] = a;
-                        X1[j] = b;
-                        x00 += a * a;
-                        x01 += a * b;
-                        x11 += b * b;
-                        xw0 += a * w(j);
-                        xw1 += b * w(j);
-                    }
-                    sm[q + 1] = {x00, x01, x11, xw0, xw1};
-                    bs[q] = stamp[q];
-                }
-                Mat2 S22 = S_between(p, p) + obs[i].R;
-                Vec2 r2 = p.z;
-                if (k > 0) {
-                    S22(0, 0) -= sm[k][0];
-                    S22(0, 1) -= sm[k][1];
-                    S22(1, 0) -= sm[k][1];
-                    S22(1, 1) -= sm[k][2];
-                    r2(0) -= sm[k][3];
-                    r2(1) -= sm[k][4];
-                }
-                // S22 = l lᵀ (Cholesky of the 2×2, from its lower triangle) and l⁻¹ r2
-                if (S22(0, 0) <= 0) continue;
-                const double l00 = std::sqrt(S22(0, 0)), l10 = S22(1, 0) / l00;
-                const double e11 = S22(1, 1) - l10 * l10;
-                if (e11 <= 0) continue;
-                const double l11 = std::sqrt(e11);
-                const double w0 = r2(0) / l00, w1 = (r2(1) - l10 * w0) / l11;
-                const double d2n = d2 + (w0 * w0 + w1 * w1);
-                if (!(d2n <= chi2[k + 1])) continue;
-                for (int m = 0; m < 2 * k; ++m) {
-                    L(2 * k, m) = X0[m];
-                    L(2 * k + 1, m) = X1[m];
-                }
-                L(2 * k, 2 * k) = l00;
-                L(2 * k, 2 * k + 1) = 0;
-                L(2 * k + 1, 2 * k) = l10;
-                L(2 * k + 1, 2 * k + 1) = l11;
-                stamp[k] = ++next_stamp;
-                w(2 * k) = w0;
-                w(2 * k + 1) = w1;
-                chosen.push_back(&p);
-                used_sub[p.sub] = 1;
-                search(i + 1, d2n);
-                used_sub[p.sub] = 0;
-                chosen.pop_back();
-                if (stopped) return;
-            }
-        }
-        if (k + rem[i + 1] > best_k) search(i + 1, d2);   // observation i left unpaired
-    };
-    search(0, 0);
-    best.pairings = std::max(best_k, 0);
-    best.joint_mahalanobis2 = best_d2;
-    best.nodes = std::min(nodes, max_nodes);
-    best.complete = !stopped;
-    return best;
+    return JointSearch(obs, gate(ekf, obs, candidates), joint_probability, max_nodes).run();
 }
 
 }  // namespace hc::slam

@@ -162,24 +162,27 @@ FrameStats LandmarkSlam::next_frame(const Motion& u, const Mat3& Q, const Stereo
     return observe(frame);
 }
 
-FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
-    FrameStats st;
+namespace {
+/// The frame's observations the filter uses: in front of the camera and within the range
+/// limits, then at most `max_observations` of them (the smallest det R, in frame order);
+/// their indices in the frame into `src`.
+std::vector<RangeBearing> select_observations(const StereoFrame& frame, const AssociationConfig& cfg,
+                                              std::vector<int>& src) {
     std::vector<RangeBearing> obs;
-    std::vector<int> src;   // index in the frame
     for (int k = 0; k < static_cast<int>(frame.size()); ++k) {
         const auto& o = frame[k];
         if (!(o.p_cam.z() > 0)) continue;
         const RangeBearing rb = camera_to_range_bearing(o.p_cam, o.cov);
-        if (rb.y(0) < cfg_.min_range || rb.y(0) > cfg_.max_range) continue;
+        if (rb.y(0) < cfg.min_range || rb.y(0) > cfg.max_range) continue;
         obs.push_back(rb);
         src.push_back(k);
     }
-    if (cfg_.max_observations > 0 && static_cast<int>(obs.size()) > cfg_.max_observations) {
+    if (cfg.max_observations > 0 && static_cast<int>(obs.size()) > cfg.max_observations) {
         std::vector<int> order(obs.size());
         for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
         std::stable_sort(order.begin(), order.end(),
                          [&](int a, int b) { return obs[a].R.determinant() < obs[b].R.determinant(); });
-        order.resize(cfg_.max_observations);
+        order.resize(cfg.max_observations);
         std::sort(order.begin(), order.end());
         std::vector<RangeBearing> kept_obs;
         std::vector<int> kept_src;
@@ -190,10 +193,34 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
         obs.swap(kept_obs);
         src.swap(kept_src);
     }
+    return obs;
+}
+}  // namespace
+
+FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
+    FrameStats st;
+    std::vector<int> src;   // index in the frame
+    const std::vector<RangeBearing> obs = select_observations(frame, cfg_, src);
     st.observed = static_cast<int>(obs.size());
-    // candidates: inside the individual gate, and the descriptor check passed
-    std::vector<std::vector<int>> candidates(obs.size());
     std::vector<char> descriptor_failed(obs.size(), 0);
+    const std::vector<std::vector<int>> candidates = gate_candidates(frame, obs, src, descriptor_failed);
+    const Association a = cfg_.method == AssociationMethod::Jcbb
+                              ? associate_jcbb(ekf_, obs, candidates, cfg_.joint_probability, cfg_.max_nodes)
+                              : associate_nearest(ekf_, obs, candidates);
+    st.jcbb_complete = a.complete;
+    correct_matched(frame, obs, src, a.landmark, st);
+    st.matched = a.pairings;
+    add_unmatched(frame, obs, src, a.landmark, descriptor_failed, st);
+    if (cfg_.forget_after > 0) forget_unseen(st);
+    st.map_size = ekf_.landmark_count();
+    return st;
+}
+
+std::vector<std::vector<int>> LandmarkSlam::gate_candidates(const StereoFrame& frame,
+                                                            const std::vector<RangeBearing>& obs,
+                                                            const std::vector<int>& src,
+                                                            std::vector<char>& descriptor_failed) {
+    std::vector<std::vector<int>> candidates(obs.size());
     for (int i = 0; i < static_cast<int>(obs.size()); ++i) {
         const auto& desc = frame[src[i]].descriptor;
         for (int id : ekf_.landmark_ids()) {
@@ -209,13 +236,14 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
             candidates[i].push_back(id);
         }
     }
-    const Association a = cfg_.method == AssociationMethod::Jcbb
-                              ? associate_jcbb(ekf_, obs, candidates, cfg_.joint_probability, cfg_.max_nodes)
-                              : associate_nearest(ekf_, obs, candidates);
-    st.jcbb_complete = a.complete;
+    return candidates;
+}
+
+void LandmarkSlam::correct_matched(const StereoFrame& frame, const std::vector<RangeBearing>& obs,
+                                   const std::vector<int>& src, const std::vector<int>& landmark, FrameStats& st) {
     last_matches_.clear();
     for (int i = 0; i < static_cast<int>(obs.size()); ++i) {
-        const int id = a.landmark[i];
+        const int id = landmark[i];
         if (id < 0) continue;
         ekf_.correct(id, obs[i].y, obs[i].R);
         last_seen_[id] = frame_;
@@ -226,9 +254,13 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
             st.matched_agreeing += hint == hints_[id];
         }
     }
-    st.matched = a.pairings;
+}
+
+void LandmarkSlam::add_unmatched(const StereoFrame& frame, const std::vector<RangeBearing>& obs,
+                                 const std::vector<int>& src, const std::vector<int>& landmark,
+                                 const std::vector<char>& descriptor_failed, FrameStats& st) {
     for (int i = 0; i < static_cast<int>(obs.size()); ++i) {
-        if (a.landmark[i] >= 0) continue;
+        if (landmark[i] >= 0) continue;
         st.rejected_by_descriptor += descriptor_failed[i];
         const int id = next_id_++;
         ekf_.add_landmark(id, obs[i].y, obs[i].R);
@@ -238,21 +270,20 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
         origin_[id] = {frame_, src[i]};
         ++st.added;
     }
-    if (cfg_.forget_after > 0) {
-        const std::vector<int> ids = ekf_.landmark_ids();
-        for (int id : ids) {
-            if (frame_ - last_seen_[id] >= cfg_.forget_after) {
-                ekf_.remove_landmark(id);
-                descriptors_.erase(id);
-                last_seen_.erase(id);
-                hints_.erase(id);
-                origin_.erase(id);
-                ++st.removed;
-            }
+}
+
+void LandmarkSlam::forget_unseen(FrameStats& st) {
+    const std::vector<int> ids = ekf_.landmark_ids();
+    for (int id : ids) {
+        if (frame_ - last_seen_[id] >= cfg_.forget_after) {
+            ekf_.remove_landmark(id);
+            descriptors_.erase(id);
+            last_seen_.erase(id);
+            hints_.erase(id);
+            origin_.erase(id);
+            ++st.removed;
         }
     }
-    st.map_size = ekf_.landmark_count();
-    return st;
 }
 
 namespace {

@@ -147,11 +147,10 @@ const char* layout_name(Layout l) { return l == Layout::Cloister ? "cloister" : 
 
 }  // namespace
 
-void write_simulation_report(const fs::path& dir, const SimConfig& c, const MonteCarlo& mc, const std::string& command) {
-    make_dir(dir);
-    const RunTrace& t = mc.first;
-    const int T = static_cast<int>(mc.pose_nees.size());
+namespace {
 
+void save_nees_csv(const fs::path& dir, const MonteCarlo& mc) {
+    const int T = static_cast<int>(mc.pose_nees.size());
     std::ostringstream csv;
     csv << "step,pose_nees,pose_lo,pose_hi,map_nees_per_dof,map_lo,map_hi,position_rmse_m,heading_rmse_rad,map_rmse_m\n";
     for (int k = 0; k < T; ++k)
@@ -159,7 +158,9 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
             << num(mc.map_nees_per_dof[k]) << ',' << num(mc.map_lo[k]) << ',' << num(mc.map_hi[k]) << ','
             << num(mc.position_rmse[k]) << ',' << num(mc.heading_rmse[k]) << ',' << num(mc.map_rmse[k]) << '\n';
     save(dir / "nees.csv", csv.str());
+}
 
+void save_simulation_states(const fs::path& dir, const RunTrace& t) {
     std::ostringstream st;
     st << "step,true_x,true_y,true_theta,est_x,est_y,est_theta,sigma_x,sigma_y,sigma_theta,pose_nees,landmarks\n";
     for (size_t k = 0; k < t.truth.size(); ++k) {
@@ -170,7 +171,9 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
         st << ',' << num(t.pose_nees[k]) << ',' << t.map_dof[k] / 2 << '\n';
     }
     save(dir / "states.csv", st.str());
+}
 
+void save_simulation_summary(const fs::path& dir, const SimConfig& c, const MonteCarlo& mc, const std::string& command) {
     nlohmann::json j;
     j["command"] = command;
     j["config"] = {{"layout", layout_name(c.layout)}, {"landmarks", c.landmarks}, {"half_size_m", c.half_size},
@@ -187,8 +190,10 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
     j["final_rmse"] = {{"position_m", mc.position_rmse.back()}, {"heading_rad", mc.heading_rmse.back()},
                        {"map_m", mc.map_rmse.back()}};
     save(dir / "summary.json", j.dump(2) + "\n");
+}
 
-    // plots
+// The first run's trajectory and map: true landmarks, the map's and the robot's 3-sigma ellipses.
+bool plot_simulation_trajectory(const fs::path& dir, const RunTrace& t) {
     std::string lm, est_lm;
     for (const auto& p : t.world.landmarks) lm += num(p.x()) + ' ' + num(p.y()) + '\n';
     for (size_t i = 0; i < t.final_map.size(); ++i) est_lm += ellipse(t.final_map[i], t.final_map_cov[i], 3);
@@ -197,19 +202,23 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
         robot_ell += ellipse(t.estimate[k].head<2>(), t.pose_cov[k].topLeftCorner<2, 2>(), 3);
     const TopView sim_view = top_view(positions({&t.truth, &t.estimate}, t.world.landmarks), "Run of seed 1",
                                       "trajectory and map, 3-sigma ellipses", "x (m)", "y (m)");
-    const bool traj_png = plot(dir / "trajectory.png",
+    return plot(dir / "trajectory.png",
         block("lm", lm) + block("truth", poses_xy(t.truth)) + block("est", poses_xy(t.estimate)) +
         block("ell", est_lm) + block("rell", robot_ell) + sim_view.script +
         "plot $lm w p pt 7 ps 0.8 lc rgb 'black' t 'true landmarks', $ell w l lc rgb 'red' t 'landmark 3{/Symbol s}',"
         " $truth w l lw 2 lc rgb 'black' t 'true trajectory', $est w l lw 2 lc rgb 'blue' t 'estimate',"
         " $rell w l lc rgb 'blue' dt 2 t 'robot 3{/Symbol s}'\n", sim_view.width, sim_view.height);
+}
 
+// The pose NEES and the map NEES per dof over steps, each panel framed on its curve and its
+// bounds (and the expected value).
+bool plot_nees(const fs::path& dir, const MonteCarlo& mc) {
+    const int T = static_cast<int>(mc.pose_nees.size());
     std::string pn, mn;
     for (int k = 0; k < T; ++k) {
         pn += std::to_string(k) + ' ' + num(mc.pose_nees[k]) + '\n';
         mn += std::to_string(k) + ' ' + num(mc.map_nees_per_dof[k]) + ' ' + num(mc.map_lo[k]) + ' ' + num(mc.map_hi[k]) + '\n';
     }
-    // each panel framed on its curve and its bounds (and the expected value)
     std::vector<double> pose_y(mc.pose_nees.begin(), mc.pose_nees.end()), map_y(mc.map_nees_per_dof.begin(),
                                                                                   mc.map_nees_per_dof.end());
     pose_y.insert(pose_y.end(), {mc.pose_lo, mc.pose_hi, 3.0});
@@ -225,17 +234,24 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
        << "set title 'Map NEES per degree of freedom (all mapped landmarks jointly)'\nset ylabel 'NEES / dof'\n"
        << "set yrange " << util::axis_range(map_y, 0.08, 0.0).gnuplot() << "\nplot $mn u 1:2 w l lw 2 t 'mean NEES / dof', $mn u 1:3 w l dt 2 lc rgb 'red' t 'bounds',"
        << " $mn u 1:4 w l dt 2 lc rgb 'red' notitle, 1 w l lc rgb 'gray' notitle\nunset multiplot\n";
-    const bool nees_png = plot(dir / "nees.png", ns.str());
+    return plot(dir / "nees.png", ns.str());
+}
 
+bool plot_rmse(const fs::path& dir, const MonteCarlo& mc) {
+    const int T = static_cast<int>(mc.pose_nees.size());
     std::string rm;
     for (int k = 0; k < T; ++k)
         rm += std::to_string(k) + ' ' + num(mc.position_rmse[k]) + ' ' + num(mc.heading_rmse[k] * 180 / std::numbers::pi) +
               ' ' + num(mc.map_rmse[k]) + '\n';
-    const bool rmse_png = plot(dir / "rmse.png", block("rm", rm) +
+    return plot(dir / "rmse.png", block("rm", rm) +
         "set grid\nset xlabel 'step'\nset ylabel 'RMSE (m)'\nset y2label 'heading RMSE (deg)'\nset y2tics\nset ytics nomirror\n"
         "set title 'RMSE over " + std::to_string(mc.runs) + " runs'\n"
         "plot $rm u 1:2 w l lw 2 t 'position', $rm u 1:4 w l lw 2 t 'landmarks', $rm u 1:3 axes x1y2 w l lw 2 t 'heading'\n");
+}
 
+/// The simulation's report.md, linking the plots that were drawn.
+std::string simulation_markdown(const SimConfig& c, const MonteCarlo& mc, const std::string& command, bool traj_png,
+                                bool nees_png, bool rmse_png) {
     std::ostringstream md;
     md << std::setprecision(4);
     md << "# EKF-SLAM simulation: Monte-Carlo consistency\n\nCommand: `" << command << "`\n\n"
@@ -260,7 +276,20 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
     if (rmse_png) md << "![RMSE](rmse.png)\n\n";
     if (!(traj_png && nees_png && rmse_png)) md << "Some plots were not drawn (gnuplot missing or failed).\n\n";
     md << "Files: `nees.csv` (per step over runs), `states.csv` (the run of the first seed), `summary.json`.\n";
-    save(dir / "report.md", md.str());
+    return md.str();
+}
+
+}  // namespace
+
+void write_simulation_report(const fs::path& dir, const SimConfig& c, const MonteCarlo& mc, const std::string& command) {
+    make_dir(dir);
+    save_nees_csv(dir, mc);
+    save_simulation_states(dir, mc.first);
+    save_simulation_summary(dir, c, mc, command);
+    const bool traj_png = plot_simulation_trajectory(dir, mc.first);
+    const bool nees_png = plot_nees(dir, mc);
+    const bool rmse_png = plot_rmse(dir, mc);
+    save(dir / "report.md", simulation_markdown(c, mc, command, traj_png, nees_png, rmse_png));
 }
 
 namespace {
@@ -287,11 +316,8 @@ nlohmann::json metrics_json(const TrajectoryMetrics& m) {
             {"nees_mean", m.nees_frames ? nlohmann::json(m.nees_mean) : nlohmann::json(nullptr)},
             {"nees_frames", m.nees_frames}};
 }
-}  // namespace
 
-void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std::string& title, const std::string& command,
-                           const std::string& odometry_label) {
-    make_dir(dir);
+void save_sequence_states(const fs::path& dir, const SequenceRun& r) {
     std::ostringstream st;
     st << "frame,true_x,true_y,true_theta,est_x,est_y,est_theta,sigma_x,sigma_y,sigma_theta,odo_x,odo_y,odo_theta,"
           "nees_slam,nees_odometry,observed,matched,added,rejected_by_descriptor,removed,map_size,matched_agreeing,"
@@ -309,14 +335,20 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
            << f.matched_wrong << '\n';
     }
     save(dir / "states.csv", st.str());
+}
+
+// The trajectories in KITTI's format, and the estimate in TUM's.
+void save_trajectories(const fs::path& dir, const SequenceRun& r) {
     save(dir / "estimate_kitti.txt", kitti_trajectory(r.estimate));
     save(dir / "dead_reckoning_kitti.txt", kitti_trajectory(r.dead_reckoning));
     save(dir / "truth_kitti.txt", kitti_trajectory(r.truth));
     std::vector<double> ts;
     for (size_t k = 0; k < r.estimate.size(); ++k) ts.push_back(0.1 * k);   // KITTI: 10 frames/s
     save(dir / "estimate_tum.txt", tum_trajectory(r.estimate, ts));
+}
 
-    const SequenceTotals t = totals(r);
+void save_sequence_summary(const fs::path& dir, const SequenceRun& r, const SequenceTotals& t,
+                           const std::string& command, const std::string& odometry_label) {
     nlohmann::json j;
     j["command"] = command;
     j["frames"] = r.truth.size();
@@ -332,31 +364,44 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
     j["matches_checked_against_truth"] = {{"total", t.checked}, {"wrong", t.wrong}};
     j["jcbb_frames_cut_at_node_limit"] = t.jcbb_cut;
     save(dir / "summary.json", j.dump(2) + "\n");
+}
 
+bool plot_sequence_trajectory(const fs::path& dir, const SequenceRun& r, const std::string& title,
+                              const std::string& odometry_label) {
     std::string ell;
     for (size_t i = 0; i < r.map.size(); ++i) ell += ellipse(r.map[i], r.map_cov[i], 3);
     const TopView view = top_view(positions({&r.truth, &r.estimate, &r.dead_reckoning}, r.map), title,
                                   "top view, final map with 3-sigma ellipses", "forward x (m)", "left y (m)");
-    const bool traj_png = plot(dir / "trajectory.png",
+    return plot(dir / "trajectory.png",
         block("truth", poses_xy(r.truth)) + block("est", poses_xy(r.estimate)) + block("dr", poses_xy(r.dead_reckoning)) +
         block("ell", ell) + view.script +
         "plot $ell w l lc rgb '#cc8888' t 'landmark 3{/Symbol s}', $truth w l lw 2 lc rgb 'black' t 'ground truth',"
         " $est w l lw 2 lc rgb 'blue' t 'EKF-SLAM', $dr w l lw 2 dt 2 lc rgb 'orange' t '" + odometry_label + "'\n", view.width, view.height);
+}
+
+bool plot_map_size(const fs::path& dir, const SequenceRun& r, const std::string& title) {
     std::string ms;
     for (size_t k = 0; k < r.frames.size(); ++k)
         ms += std::to_string(k) + ' ' + std::to_string(r.frames[k].map_size) + ' ' + std::to_string(r.frames[k].matched) +
               ' ' + std::to_string(r.frames[k].added) + '\n';
-    const bool map_png = plot(dir / "map_size.png", block("ms", ms) +
+    return plot(dir / "map_size.png", block("ms", ms) +
         "set grid\nset xlabel 'frame'\nset ylabel 'landmarks'\nset title '" + title + ": map size and associations'\n"
         "plot $ms u 1:2 w l lw 2 t 'map size', $ms u 1:3 w l t 'matched', $ms u 1:4 w l t 'added'\n");
+}
 
-    const auto row = [](const std::string& name, const TrajectoryMetrics& m) {
-        std::ostringstream o;
-        o << std::setprecision(4) << "| " << name << " | " << m.ape << " | " << m.ape_percent() << " | " << m.ape_se2
-          << " | " << m.rpe << " | " << m.rpe_heading * 180 / std::numbers::pi << " | " << m.final_error << " | "
-          << (m.nees_frames ? num(m.nees_mean) : std::string("-")) << " |\n";
-        return o.str();
-    };
+// One row of the report's metrics table.
+std::string metrics_row(const std::string& name, const TrajectoryMetrics& m) {
+    std::ostringstream o;
+    o << std::setprecision(4) << "| " << name << " | " << m.ape << " | " << m.ape_percent() << " | " << m.ape_se2
+      << " | " << m.rpe << " | " << m.rpe_heading * 180 / std::numbers::pi << " | " << m.final_error << " | "
+      << (m.nees_frames ? num(m.nees_mean) : std::string("-")) << " |\n";
+    return o.str();
+}
+
+/// A sequence's report.md, linking the plots that were drawn.
+std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, const std::string& title,
+                              const std::string& command, const std::string& odometry_label, bool traj_png,
+                              bool map_png) {
     std::ostringstream md;
     md << std::setprecision(4);
     md << "# EKF-SLAM on " << title << "\n\nCommand: `" << command << "`\n\n"
@@ -364,7 +409,7 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
           "with it (evo's APE and RPE on the top view, pose NEES with 3 dof).\n\n"
        << "| trajectory | APE (m) | APE % of path | APE SE(2)-aligned (m) | RPE per frame (m) | RPE heading (°) | "
           "final error (m) | mean pose NEES |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
-       << row("EKF-SLAM", r.slam_metrics) << row(odometry_label, r.odometry_metrics) << "\n"
+       << metrics_row("EKF-SLAM", r.slam_metrics) << metrics_row(odometry_label, r.odometry_metrics) << "\n"
        << r.truth.size() << " frames, path length " << r.slam_metrics.path_length << " m; " << t.observed
        << " observations, " << t.matched << " associated; map size final " << r.frames.back().map_size << ", peak "
        << t.peak << ".\n\n";
@@ -381,7 +426,20 @@ void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std:
     md << "Files: `states.csv` (per frame, with the pose NEES), `summary.json`, `estimate_kitti.txt` and "
           "`estimate_tum.txt` (estimate), `dead_reckoning_kitti.txt` (" << odometry_label << "), `truth_kitti.txt` "
           "(KITTI camera frame, height 0).\n";
-    save(dir / "report.md", md.str());
+    return md.str();
+}
+}  // namespace
+
+void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std::string& title, const std::string& command,
+                           const std::string& odometry_label) {
+    make_dir(dir);
+    save_sequence_states(dir, r);
+    save_trajectories(dir, r);
+    const SequenceTotals t = totals(r);
+    save_sequence_summary(dir, r, t, command, odometry_label);
+    const bool traj_png = plot_sequence_trajectory(dir, r, title, odometry_label);
+    const bool map_png = plot_map_size(dir, r, title);
+    save(dir / "report.md", sequence_markdown(r, t, title, command, odometry_label, traj_png, map_png));
 }
 
 std::string sequences_markdown(const std::vector<std::pair<std::string, SequenceRun>>& runs,

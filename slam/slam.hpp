@@ -430,6 +430,19 @@ public:
 
 private:
     FrameStats observe(const StereoFrame& frame);
+    /// The landmarks each observation may be paired with: inside the individual gate, and the
+    /// descriptor check passed; descriptor_failed[i] set when a gated landmark failed that check.
+    std::vector<std::vector<int>> gate_candidates(const StereoFrame& frame, const std::vector<RangeBearing>& obs,
+                                                  const std::vector<int>& src, std::vector<char>& descriptor_failed);
+    /// Corrections with the observations paired with landmark[i] >= 0; the frame's matches and
+    /// the id-hint counts of `st`.
+    void correct_matched(const StereoFrame& frame, const std::vector<RangeBearing>& obs, const std::vector<int>& src,
+                         const std::vector<int>& landmark, FrameStats& st);
+    /// A new landmark for each unpaired observation (landmark[i] < 0).
+    void add_unmatched(const StereoFrame& frame, const std::vector<RangeBearing>& obs, const std::vector<int>& src,
+                       const std::vector<int>& landmark, const std::vector<char>& descriptor_failed, FrameStats& st);
+    /// Removal of the landmarks unseen for forget_after frames.
+    void forget_unseen(FrameStats& st);
     Ekf ekf_;
     AssociationConfig cfg_;
     double gate_;
