@@ -184,7 +184,9 @@ TEST_CASE("the sweep report shows each checked point's three-way gate in its Gat
     sweep::PointResult narrow;
     narrow.config.name = "sobel_w=10";
     narrow.config.formats.sobel_w = 10;
-    narrow.ranges = sweep::analyse_ranges(narrow.config.formats);
+    sweep::RangeOptions model_only;
+    model_only.netlist = false;
+    narrow.ranges = sweep::analyse_ranges(narrow.config.formats, model_only);
     narrow.has_ranges = true;
     r.points = {pass, fault, unchecked, narrow};
     const std::string md = sweep::to_markdown(r);
