@@ -144,6 +144,25 @@ std::string RangeReport::summary() const {
     return "open (" + s + ")";
 }
 
+std::string RangeReport::routes() const {
+    std::string s;
+    for (const char* route : {"interval", "search", "model-smt", "netlist"}) {
+        const auto n = std::count_if(regs.begin(), regs.end(), [&](const RegisterRange& x) { return x.decided_by == route; });
+        if (n) s += fmt::format("{}{} {}", s.empty() ? "" : ", ", route, n);
+    }
+    const auto open = std::count_if(regs.begin(), regs.end(), [](const RegisterRange& x) { return x.decided_by.empty(); });
+    if (open) s += fmt::format("{}undecided {}", s.empty() ? "" : ", ", open);
+    int asked = 0, by[3] = {0, 0, 0};
+    for (const auto& x : regs)
+        if (x.netlist_asked) {
+            ++asked;
+            ++by[static_cast<int>(x.netlist_verdict)];
+        }
+    if (!asked) return s + "; netlist not run";
+    return s + fmt::format("; netlist: {} proven, {} wraps, {} open of {}", by[static_cast<int>(Verdict::proven)],
+                           by[static_cast<int>(Verdict::wraps)], by[static_cast<int>(Verdict::open)], asked);
+}
+
 RangeReport interval_ranges(const Formats& f, int pixel_max, const Tightened* tight) {
     f.validate();
     const auto t0 = Clock::now();
@@ -191,6 +210,8 @@ RangeReport interval_ranges(const Formats& f, int pixel_max, const Tightened* ti
     }
     const R mx = R::fresh(rep.regs[idx(Reg::maximum)].bound, f.resp_w, true);
     pass.stage(Reg::threshold, [&] { return threshold_value(mx, f); });
+    for (auto& x : rep.regs)
+        if (x.bound_fits) x.decided_by = "interval";
     rep.seconds_interval = since(t0);
     return rep;
 }
@@ -438,6 +459,8 @@ Z3Answer run_z3(const std::string& smt, std::int64_t rlimit, const std::vector<s
     }
     const std::string ans = fs::exists(out) ? util::read_file(out) : "";
     const std::string first = ans.substr(0, ans.find('\n'));
+    // an error before the answer is a malformed query: z3 goes on without what it could not read
+    if (first.rfind("(error", 0) == 0) throw std::runtime_error("z3 could not read its query: " + first);
     if (const size_t r = ans.find("(:rlimit "); r != std::string::npos) a.rlimit = std::stoll(ans.substr(r + 9));
     if (first == "unsat") {
         a.sat = Sat::unsat;

@@ -120,6 +120,9 @@ struct RangeReport {
     const RegisterRange* first_wrap() const;
     /// "proven safe", "wraps at block_a", "open (response: bound [lo, hi], reached [lo, hi])"
     std::string summary() const;
+    /// Which route decided how many registers, and what the netlist route said:
+    /// "interval 12, search 2; netlist: 11 proven, 2 wraps, 0 open of 13" ("netlist not run" without it).
+    std::string routes() const;
     const RegisterRange& at(Reg r) const { return regs[static_cast<int>(r)]; }
 };
 
@@ -129,11 +132,11 @@ struct RangeOptions {
     int seeds = 64;               ///< random 0/255 windows per register and side
     /// The model route's budget for the configuration, in z3 resource units (0: no solver);
     /// on this project's machine z3 spends about 5 million units per second of CPU.
-    std::int64_t solver_rlimit = 150'000'000;
-    std::int64_t query_rlimit = 60'000'000;            ///< one query of the model route, at most
+    std::int64_t solver_rlimit = 110'000'000;
+    std::int64_t query_rlimit = 40'000'000;            ///< one query of the model route, at most
     bool netlist = true;                               ///< run the netlist route (GHDL, yosys and z3)
-    std::int64_t netlist_budget = 120'000'000;         ///< the netlist route's budget (resource units)
-    std::int64_t netlist_query_rlimit = 50'000'000;    ///< one query of the netlist route, at most
+    std::int64_t netlist_budget = 90'000'000;          ///< the netlist route's budget (resource units)
+    std::int64_t netlist_query_rlimit = 40'000'000;    ///< one query of the netlist route, at most
     std::filesystem::path netlist_dir;                 ///< keep the netlists and queries here (empty: a scratch directory)
 };
 

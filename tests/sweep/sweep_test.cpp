@@ -191,10 +191,10 @@ TEST_CASE("the sweep report shows each checked point's three-way gate in its Gat
     r.points = {pass, fault, unchecked, narrow};
     const std::string md = sweep::to_markdown(r);
     CHECK_THAT(md, Catch::Contains("| ranges | P | GHDL | Gate | Verilator |"));
-    CHECK_THAT(md, Catch::Contains("| proven safe | **P** proven | - | pass (81 s) | - |"));
+    CHECK_THAT(md, Catch::Contains("| proven safe (interval 14; netlist not run) | **P** proven | - | pass (81 s) | - |"));
     CHECK_THAT(md, Catch::Contains("| - | **P** not proven | - | **gate: translation fault** | - |"));
     CHECK_THAT(md, Catch::Contains("| - |  | - | - | - |"));
-    CHECK_THAT(md, Catch::Contains("| **wraps at sobel_x** (witnesses/sobel_w-10_sobel_x.pgm) |  | - | - | - |"));
+    CHECK_THAT(md, Catch::Contains("| **wraps at sobel_x** (witnesses/sobel_w-10_sobel_x.pgm) (interval 12, search 2; netlist not run) |  | - | - | - |"));
     const std::string csv = sweep::to_csv(r);
     CHECK_THAT(csv, Catch::Contains("gate_passed,gate_seconds,ranges,ranges_first_wrap\n"));
     CHECK_THAT(csv, Catch::Contains(",1,81.0,proven,\n"));
