@@ -437,7 +437,7 @@ std::int64_t parse_bv(const std::string& s) {
 
 }  // namespace
 
-Z3Answer run_z3(const std::string& smt, std::int64_t rlimit, const std::vector<std::string>& get) {
+Z3Answer run_z3(const std::string& smt, std::int64_t rlimit, const std::vector<std::string>& get, const fs::path& keep) {
     std::string text = smt + "(check-sat)\n";
     if (!get.empty()) {
         text += "(get-value (";
@@ -448,6 +448,7 @@ Z3Answer run_z3(const std::string& smt, std::int64_t rlimit, const std::vector<s
     const util::ScratchDir dir;
     const fs::path in = dir.path() / "query.smt2", out = dir.path() / "answer.txt";
     util::write_file_atomic(in, text);
+    if (!keep.empty()) util::write_file_atomic(keep, text);
     Z3Answer a;
     const std::int64_t limit = std::max<std::int64_t>(1, rlimit);
     try {

@@ -137,7 +137,9 @@ struct RangeOptions {
     bool netlist = true;                               ///< run the netlist route (GHDL, yosys and z3)
     std::int64_t netlist_budget = 90'000'000;          ///< the netlist route's budget (resource units)
     std::int64_t netlist_query_rlimit = 40'000'000;    ///< one query of the netlist route, at most
-    std::filesystem::path netlist_dir;                 ///< keep the netlists and queries here (empty: a scratch directory)
+    /// keep the netlists, their scripts and every query of the netlist route here (query-<register>-<k>.smt2,
+    /// k counting that register's queries from 1); empty: a scratch directory
+    std::filesystem::path netlist_dir;
 };
 
 /// Proven ranges of registers' exact values that replace their interval bounds as the next
@@ -169,6 +171,7 @@ SolverExtreme solver_extreme(const Formats& f, Reg r, bool maximise, const Range
 
 /// One z3 run on an SMT-LIB text (`z3 -smt2 rlimit=N`): its first answer, the values of the
 /// 0-ary functions `get` as the model gives them (sat only), the resource units it spent.
+/// `keep` (when not empty): the whole query, as z3 reads it, is also written there.
 enum class Sat { sat, unsat, unknown };
 struct Z3Answer {
     Sat sat = Sat::unknown;
@@ -176,7 +179,8 @@ struct Z3Answer {
     std::int64_t rlimit = 0;
     std::string why;   ///< unknown: "rlimit N reached", "no solver: ...", z3's message
 };
-Z3Answer run_z3(const std::string& smt, std::int64_t rlimit, const std::vector<std::string>& get);
+Z3Answer run_z3(const std::string& smt, std::int64_t rlimit, const std::vector<std::string>& get,
+                const std::filesystem::path& keep = {});
 
 /// GHDL's netlists of the stage chain at formats `f`, as SMT-LIB by yosys (write_smt2 of a
 /// combinational module: each register replaced by its input, as in a pipeline whose inputs
@@ -189,7 +193,7 @@ struct StageNetlists {
     std::string chain, block, response;   ///< SMT-LIB texts (modules chain, stage_block, stage_response)
     std::string commands;                 ///< the GHDL and yosys commands that made them
 };
-/// Synthesises in `dir` (kept). SimulatorError when GHDL or yosys is missing or fails.
+/// Synthesises in `dir` (kept; commands.txt: the commands). SimulatorError when GHDL or yosys is missing or fails.
 StageNetlists stage_netlists(const Formats& f, const std::filesystem::path& dir);
 /// The netlist's value (hardware, as RegisterRange's questions read it) of every register it
 /// holds at window `w`: Sobel and M at the window's top-left 3x3 position, the rest at its

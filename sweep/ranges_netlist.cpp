@@ -283,6 +283,8 @@ struct Route {
     const Formats& f;
     const RangeOptions& o;
     std::int64_t left = 0;
+    fs::path keep;                          ///< where the queries are kept (empty: nowhere)
+    std::array<int, kRegCount> asked{};     ///< queries per register so far
     /// the hardware value of each register as proven on the netlist (else what its width holds)
     std::array<Interval, kRegCount> proven{};
 
@@ -313,7 +315,9 @@ struct Route {
         if (module == "chain")
             for (int i = 0; i < 5; ++i)
                 for (int j = 0; j < 5; ++j) get.push_back(fmt::format("p_{}_{}", i, j));
-        const Z3Answer z = run_z3(q, std::min(o.netlist_query_rlimit, left), get);
+        const int k = ++asked[idx(r)];
+        const fs::path file = keep.empty() ? fs::path() : keep / fmt::format("query-{}-{}.smt2", kRegNames[idx(r)], k);
+        const Z3Answer z = run_z3(q, std::min(o.netlist_query_rlimit, left), get, file);
         left -= z.rlimit;
         a.sat = z.sat;
         a.rlimit = z.rlimit;
@@ -454,6 +458,7 @@ StageNetlists stage_netlists(const Formats& f, const fs::path& dir) {
             throw SimulatorError("yosys could not write " + top + " as SMT-LIB: " + util::log_tail(log, 1500));
         n.commands += fmt::format("yosys -q -s {}.ys    # writes {}.smt2\n", top, top);
     }
+    util::write_file_atomic(dir / "commands.txt", n.commands);
     n.chain = util::read_file(dir / "chain.smt2");
     n.block = util::read_file(dir / "stage_block.smt2");
     n.response = util::read_file(dir / "stage_response.smt2");
@@ -495,7 +500,7 @@ void netlist_route(RangeReport& rep, const RangeOptions& o) {
     }
     rep.netlist_note = "GHDL's synthesis of sobel_x, sobel_y, m_products, block_filter and harris_response at the "
                        "configuration's generics, through yosys write_smt2; z3 with rlimit";
-    Route route{n, rep.formats, o, o.netlist_budget, {}};
+    Route route{n, rep.formats, o, o.netlist_budget, o.netlist_dir, {}, {}};
     for (const auto& rr : rep.regs) route.proven[idx(rr.reg)] = rr.held;
     for (Reg r : {Reg::sobel_x, Reg::sobel_y, Reg::m_a, Reg::m_b, Reg::m_c, Reg::block_a, Reg::block_b, Reg::block_c, Reg::trace,
                   Reg::response, Reg::det, Reg::k_term})
