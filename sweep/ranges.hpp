@@ -16,7 +16,7 @@
 //      the 25 pixels of a window are variables, the stage functions run on a number type
 //      that writes their numeric_std arithmetic as bit-vector terms, and the query asks for
 //      a window where the register's exact value differs from its hardware value: unsat is
-//      proven (cannot wrap), sat is a witness (checked in the model), a timeout leaves it
+//      proven (cannot wrap), sat is a witness (checked in the model), z3 giving up at its resource limit leaves it
 //      open. Then a binary search of "exists window: exact > T" queries brackets the exact
 //      extreme on the side that leaves the register, within the configuration's budget.
 //   4. the netlist route (ranges_netlist.cpp): GHDL synthesises the stage entities at the
@@ -82,7 +82,7 @@ struct RegisterRange {
     Window5 witness{};         ///< verdict wraps: a window that wraps the register
     // the solver (only where the search found no witness)
     bool solver_asked = false;
-    std::string solver;        ///< its answer: "unsat: cannot wrap", "sat: a window wraps it", "timeout after N s", ...
+    std::string solver;        ///< its answer: "unsat: cannot wrap", "sat: a window wraps it", "unknown: rlimit N reached", ...
     double solver_seconds = 0;
     std::optional<std::int64_t> solver_reached;   ///< sat: the exact value at the solver's window
     int extreme_side = 0;      ///< +1: the maximum of the exact value was bracketed, -1: the minimum, 0: neither
@@ -154,7 +154,7 @@ RangeReport analyse_ranges(const Formats& f, const RangeOptions& o = {});
 /// The solver's answer to "is there a window of pixels in [0, pixel_max] where register r's
 /// exact value differs from its hardware value?" (z3 on PATH, one query of at most
 /// o.query_rlimit resource units): proven (unsat), wraps (sat; the window wraps r in the model, else
-/// std::logic_error), open (why: "timeout after N s", "no solver: ...").
+/// std::logic_error), open (why: "unknown: rlimit N reached", "no solver: ...").
 struct SolverVerdict {
     Verdict verdict = Verdict::open;
     Window5 window{};
