@@ -29,7 +29,7 @@ namespace hc::sweep {
 namespace {
 
 // Bump when the analysis (bounds, search, verdicts) changes: cached reports then miss.
-constexpr const char* kRangesVersion = "hc-ranges-2 interval + witness search + z3";
+constexpr const char* kRangesVersion = "hc-ranges-3 interval + witness search + z3 (rlimit) on the model and on GHDL's netlist";
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -88,6 +88,12 @@ Pixels3 pixels_at(const Window5& w, int i, int j) {
 }
 
 json interval_json(const Interval& v) { return json::array({v.lo, v.hi}); }
+Verdict verdict_from(const json& j) {
+    const std::string v = j.get<std::string>();
+    const Verdict x = v == "proven" ? Verdict::proven : v == "wraps" ? Verdict::wraps : Verdict::open;
+    if (v != verdict_name(x)) throw std::invalid_argument("range report: verdict '" + v + "'");
+    return x;
+}
 Interval interval_from(const json& j) { return {j.at(0).get<std::int64_t>(), j.at(1).get<std::int64_t>()}; }
 
 }  // namespace
@@ -138,6 +144,25 @@ std::string RangeReport::summary() const {
     return "open (" + s + ")";
 }
 
+std::string RangeReport::routes() const {
+    std::string s;
+    for (const char* route : {"interval", "search", "model-smt", "netlist"}) {
+        const auto n = std::count_if(regs.begin(), regs.end(), [&](const RegisterRange& x) { return x.decided_by == route; });
+        if (n) s += fmt::format("{}{} {}", s.empty() ? "" : ", ", route, n);
+    }
+    const auto open = std::count_if(regs.begin(), regs.end(), [](const RegisterRange& x) { return x.decided_by.empty(); });
+    if (open) s += fmt::format("{}undecided {}", s.empty() ? "" : ", ", open);
+    int asked = 0, by[3] = {0, 0, 0};
+    for (const auto& x : regs)
+        if (x.netlist_asked) {
+            ++asked;
+            ++by[static_cast<int>(x.netlist_verdict)];
+        }
+    if (!asked) return s + "; netlist not run";
+    return s + fmt::format("; netlist: {} proven, {} wraps, {} open of {}", by[static_cast<int>(Verdict::proven)],
+                           by[static_cast<int>(Verdict::wraps)], by[static_cast<int>(Verdict::open)], asked);
+}
+
 RangeReport interval_ranges(const Formats& f, int pixel_max, const Tightened* tight) {
     f.validate();
     const auto t0 = Clock::now();
@@ -185,6 +210,8 @@ RangeReport interval_ranges(const Formats& f, int pixel_max, const Tightened* ti
     }
     const R mx = R::fresh(rep.regs[idx(Reg::maximum)].bound, f.resp_w, true);
     pass.stage(Reg::threshold, [&] { return threshold_value(mx, f); });
+    for (auto& x : rep.regs)
+        if (x.bound_fits) x.decided_by = "interval";
     rep.seconds_interval = since(t0);
     return rep;
 }
@@ -248,19 +275,26 @@ Image witness_image(const Window5& w, int width, int height) {
     return im;
 }
 
-std::string witness_stem(const std::string& config, Reg r) {
-    std::string s = config + "_" + kRegNames[idx(r)];
+std::string file_stem(const std::string& name) {
+    std::string s = name;
     for (char& ch : s)
         if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '-';
     return s;
 }
 
+std::string witness_stem(const std::string& config, Reg r) { return file_stem(config + "_" + kRegNames[idx(r)]); }
+
 std::string ranges_markdown(const std::string& config, const RangeReport& r) {
-    std::string s = fmt::format("### {}: {}\n\nInterval bound {:.3f} ms, witness search {:.3f} s, solver {:.3f} s{}; pixels in [0, {}].\n\n",
-                                config, r.summary(), 1e3 * r.seconds_interval, r.seconds_search, r.seconds_solver,
+    std::string s = fmt::format("### {}: {}\n\nInterval bound {:.3f} ms, witness search {:.3f} s, solver on the model {:.3f} s "
+                                "({} z3 resource units{}), on the netlist {:.3f} s ({} units{}){}; pixels in [0, {}].\n\n",
+                                config, r.summary(), 1e3 * r.seconds_interval, r.seconds_search, r.seconds_solver, r.solver_rlimit,
+                                r.query_rlimit ? fmt::format(", at most {} per query", r.query_rlimit) : "", r.seconds_netlist,
+                                r.netlist_rlimit,
+                                r.netlist_query_rlimit ? fmt::format(", at most {} per query", r.netlist_query_rlimit) : "",
                                 r.cached ? " (cached)" : "", r.pixel_max);
-    s += "| register | width | holds | bound (any input) | verdict | search reached | solver | exact extreme | witness |\n"
-         "|---|---:|---|---|---|---|---|---|---|\n";
+    if (!r.netlist_note.empty()) s += "Netlist: " + r.netlist_note + "\n\n";
+    s += "| register | width | holds | bound (any input) | verdict | decided by | search reached | solver (model) | exact extreme | netlist | witness |\n"
+         "|---|---:|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& x : r.regs) {
         std::string wit;
         if (x.verdict == Verdict::wraps) {
@@ -275,10 +309,15 @@ std::string ranges_markdown(const std::string& config, const RangeReport& r) {
             extreme = x.extreme.lo == x.extreme.hi ? fmt::format("{} = {}", what, x.extreme.lo)
                                                    : fmt::format("{} in [{}, {}]", what, x.extreme.lo, x.extreme.hi);
         }
-        s += fmt::format("| {} | {} | [{}, {}] | [{}, {}] | {} | {} | {} | {} | {} |\n", kRegNames[idx(x.reg)], x.width, x.held.lo,
-                         x.held.hi, x.bound.lo, x.bound.hi, x.verdict == Verdict::wraps ? "**wraps**" : verdict_name(x.verdict),
+        s += fmt::format("| {} | {} | [{}, {}] | [{}, {}] | {} | {} | {} | {} | {} | {} | {} |\n", kRegNames[idx(x.reg)], x.width,
+                         x.held.lo, x.held.hi, x.bound.lo, x.bound.hi,
+                         x.verdict == Verdict::wraps ? "**wraps**" : verdict_name(x.verdict), x.decided_by.empty() ? "-" : x.decided_by,
                          x.searched ? fmt::format("[{}, {}]", x.reached.lo, x.reached.hi) : "-",
-                         x.solver_asked ? fmt::format("{} ({:.1f} s)", x.solver, x.solver_seconds) : "-", extreme, wit);
+                         x.solver_asked ? fmt::format("{} ({:.1f} s, {} units)", x.solver, x.solver_seconds, x.solver_rlimit) : "-",
+                         extreme,
+                         x.netlist_asked ? fmt::format("{}: {} ({} units)", verdict_name(x.netlist_verdict), x.netlist, x.netlist_rlimit)
+                                         : "-",
+                         wit);
     }
     return s;
 }
@@ -290,9 +329,7 @@ std::string WitnessFile::regression_line(const fs::path& set_dir) const {
 
 std::vector<WitnessFile> write_witnesses(const std::string& config, const RangeReport& r, const fs::path& dir) {
     std::vector<WitnessFile> out;
-    std::string slug = config;
-    for (char& ch : slug)
-        if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '-';
+    const std::string slug = file_stem(config);
     for (const auto& x : r.regs) {
         if (x.verdict != Verdict::wraps || x.reg == Reg::maximum) continue;   // the maximum's window is the response's
         WitnessFile w;
@@ -387,6 +424,69 @@ void search_witness(RegisterRange& rr, const Formats& f, const RangeOptions& o, 
         if (since(t0) > o.search_seconds) return;
     }
 }
+
+// ---- z3 ------------------------------------------------------------------------------
+
+std::int64_t parse_bv(const std::string& s) {
+    std::uint64_t v = 0;
+    if (s.rfind("#x", 0) == 0) v = std::stoull(s.substr(2), nullptr, 16);
+    else if (s.rfind("#b", 0) == 0) v = std::stoull(s.substr(2), nullptr, 2);
+    else throw std::runtime_error("solver: unexpected value '" + s + "'");
+    return static_cast<std::int64_t>(v);
+}
+
+}  // namespace
+
+Z3Answer run_z3(const std::string& smt, std::int64_t rlimit, const std::vector<std::string>& get, const fs::path& keep) {
+    std::string text = smt + "(check-sat)\n";
+    if (!get.empty()) {
+        text += "(get-value (";
+        for (size_t k = 0; k < get.size(); ++k) text += (k ? " " : "") + get[k];
+        text += "))\n";
+    }
+    text += "(get-info :rlimit)\n";
+    const util::ScratchDir dir;
+    const fs::path in = dir.path() / "query.smt2", out = dir.path() / "answer.txt";
+    util::write_file_atomic(in, text);
+    if (!keep.empty()) util::write_file_atomic(keep, text);
+    Z3Answer a;
+    const std::int64_t limit = std::max<std::int64_t>(1, rlimit);
+    try {
+        // z3 exits 1 after a get-value it cannot answer (unsat, unknown): the answer is read from its output
+        util::run_process({"z3", "-smt2", fmt::format("rlimit={}", limit), in.string()}, {.log = dir.path() / "log", .stdout_file = out});
+    } catch (const SimulatorError& e) {
+        a.why = std::string("no solver: ") + e.what();
+        return a;
+    }
+    const std::string ans = fs::exists(out) ? util::read_file(out) : "";
+    const std::string first = ans.substr(0, ans.find('\n'));
+    // an error before the answer is a malformed query: z3 goes on without what it could not read
+    if (first.rfind("(error", 0) == 0) throw std::runtime_error("z3 could not read its query: " + first);
+    if (const size_t r = ans.find("(:rlimit "); r != std::string::npos) a.rlimit = std::stoll(ans.substr(r + 9));
+    if (first == "unsat") {
+        a.sat = Sat::unsat;
+        return a;
+    }
+    if (first != "sat") {
+        a.why = first == "unknown" ? fmt::format("unknown: rlimit {} reached", limit)
+                : first.empty()    ? "z3 gave no answer: " + util::log_tail(dir.path() / "log", 300)
+                                   : "z3: " + first;
+        return a;
+    }
+    // ((name #x...) (name #b...) ...)
+    for (size_t k = ans.find('(', first.size()); k != std::string::npos; k = ans.find('(', k + 1)) {
+        const size_t sp = ans.find(' ', k), close = ans.find(')', k);
+        if (sp == std::string::npos || close == std::string::npos || sp > close) continue;
+        const std::string name = ans.substr(k + 1, sp - k - 1), val = ans.substr(sp + 1, close - sp - 1);
+        if (val.rfind("#", 0) == 0) a.values[name] = parse_bv(val);
+    }
+    for (const auto& g : get)
+        if (!a.values.count(g)) throw std::runtime_error("z3 said sat without a value of " + g + ": " + ans.substr(0, 200));
+    a.sat = Sat::sat;
+    return a;
+}
+
+namespace {
 
 // ---- the solver: the exact question as an SMT-LIB bit-vector query ----------------------
 
@@ -511,25 +611,38 @@ std::array<SmtRegister, kRegCount> smt_registers(const Formats& f) {
 
 std::string bv64(std::int64_t v) { return fmt::format("(_ bv{} 64)", static_cast<std::uint64_t>(v)); }
 
-enum class Sat { sat, unsat, unknown };
 struct SolverAnswer {
     Sat sat = Sat::unknown;
     Window5 window{};
     std::int64_t exact = 0;   ///< sat: the register's exact value at the window
-    std::string why;          ///< unknown: "timeout", "no solver", the solver's message
+    std::int64_t rlimit = 0;  ///< resource units spent
+    std::string why;          ///< unknown: "rlimit N reached", "no solver", the solver's message
 };
 
-std::int64_t parse_bv(const std::string& s) {
-    std::uint64_t v = 0;
-    if (s.rfind("#x", 0) == 0) v = std::stoull(s.substr(2), nullptr, 16);
-    else if (s.rfind("#b", 0) == 0) v = std::stoull(s.substr(2), nullptr, 2);
-    else throw std::runtime_error("solver: unexpected value '" + s + "'");
-    return static_cast<std::int64_t>(v);
+/// The names of a window's pixel functions p_<row>_<col>, row by row.
+std::vector<std::string> pixel_names() {
+    std::vector<std::string> v;
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j) v.push_back(fmt::format("p_{}_{}", i, j));
+    return v;
+}
+
+/// The window and the exact value of a sat answer whose values hold `exact` and the pixels.
+SolverAnswer window_answer(const Z3Answer& z) {
+    SolverAnswer a;
+    a.sat = z.sat;
+    a.rlimit = z.rlimit;
+    a.why = z.why;
+    if (z.sat != Sat::sat) return a;
+    a.exact = z.values.at("exact");
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j) a.window[i][j] = static_cast<int>(z.values.at(fmt::format("p_{}_{}", i, j)));
+    return a;
 }
 
 /// Asks z3 whether a window of pixels in [0, pixel_max] satisfies `goal` (an SMT-LIB
-/// condition on the terms `exact` and `hw` of register `reg`), within `seconds`.
-SolverAnswer ask_solver(const Formats& f, Reg reg, int pixel_max, const std::string& goal, double seconds) {
+/// condition on the terms `exact` and `hw` of register `reg`), within `rlimit` resource units.
+SolverAnswer ask_solver(const Formats& f, Reg reg, int pixel_max, const std::string& goal, std::int64_t rlimit) {
     SmtQuery q;
     smt_query = &q;
     const std::array<SmtRegister, kRegCount> regs = smt_registers(f);
@@ -540,48 +653,11 @@ SolverAnswer ask_solver(const Formats& f, Reg reg, int pixel_max, const std::str
             text += fmt::format("(declare-const p_{0}_{1} (_ BitVec 8))\n(assert (bvule p_{0}_{1} (_ bv{2} 8)))\n", i, j, pixel_max);
     text += q.text;
     const SmtRegister& x = regs[idx(reg)];
-    text += fmt::format("(define-fun exact () (_ BitVec 64) {})\n(define-fun hw () (_ BitVec 64) {})\n(assert {})\n(check-sat)\n",
+    text += fmt::format("(define-fun exact () (_ BitVec 64) {})\n(define-fun hw () (_ BitVec 64) {})\n(assert {})\n",
                         x.exact.e, x.hw.e, goal);
-    text += "(get-value (exact";
-    for (int i = 0; i < 5; ++i)
-        for (int j = 0; j < 5; ++j) text += fmt::format(" p_{}_{}", i, j);
-    text += "))\n";
-    const util::ScratchDir dir;
-    const fs::path in = dir.path() / "query.smt2", out = dir.path() / "answer.txt";
-    util::write_file_atomic(in, text);
-    SolverAnswer a;
-    const int secs = std::max(1, static_cast<int>(std::floor(seconds)));   // never past the budget (but one second at least)
-    try {
-        util::run_process({"z3", "-smt2", fmt::format("-T:{}", secs), in.string()}, {.log = dir.path() / "log", .stdout_file = out});
-    } catch (const SimulatorError& e) {
-        a.why = std::string("no solver: ") + e.what();
-        return a;
-    }
-    const std::string ans = fs::exists(out) ? util::read_file(out) : "";
-    const std::string first = ans.substr(0, ans.find('\n'));
-    if (first == "unsat") {
-        a.sat = Sat::unsat;
-        return a;
-    }
-    if (first != "sat") {
-        a.why = first == "timeout"   ? fmt::format("timeout after {} s", secs)
-                : first == "unknown" ? fmt::format("unknown (z3 gave up within {} s)", secs)
-                                     : "z3: " + first;
-        return a;
-    }
-    // ((exact #x...) (p_0_0 #x..) ...)
-    std::map<std::string, std::string> val;
-    for (size_t k = ans.find('(', first.size()); k != std::string::npos; k = ans.find('(', k + 1)) {
-        const size_t sp = ans.find(' ', k), close = ans.find(')', k);
-        if (sp == std::string::npos || close == std::string::npos || sp > close) continue;
-        val[ans.substr(k + 1, sp - k - 1)] = ans.substr(sp + 1, close - sp - 1);
-    }
-    if (!val.count("exact")) throw std::runtime_error("z3 said sat without a model: " + ans.substr(0, 200));
-    a.sat = Sat::sat;
-    a.exact = parse_bv(val.at("exact"));
-    for (int i = 0; i < 5; ++i)
-        for (int j = 0; j < 5; ++j) a.window[i][j] = static_cast<int>(parse_bv(val.at(fmt::format("p_{}_{}", i, j))));
-    return a;
+    std::vector<std::string> get = pixel_names();
+    get.push_back("exact");
+    return window_answer(run_z3(text, rlimit, get));
 }
 
 /// The register's hardware value differs from its exact value at the window, in the model.
@@ -596,8 +672,9 @@ bool wraps_in_model(const Window5& w, const Formats& f, Reg r) {
 /// The solver on one open register: can the exact value differ from the hardware value?
 /// (solve_wrap), then (solve_extreme) the exact extreme on the side of the bound that leaves the register, by a binary
 /// search of `exists window: exact > T` (or < T), all within `budget` seconds.
-SolverVerdict wrap_question(const Formats& f, Reg r, const RangeOptions& o, double seconds) {
-    const SolverAnswer w = ask_solver(f, r, o.pixel_max, "(distinct exact hw)", seconds);
+SolverVerdict wrap_question(const Formats& f, Reg r, const RangeOptions& o, std::int64_t rlimit, std::int64_t* spent = nullptr) {
+    const SolverAnswer w = ask_solver(f, r, o.pixel_max, "(distinct exact hw)", rlimit);
+    if (spent) *spent += w.rlimit;
     SolverVerdict v;
     v.why = w.why;
     if (w.sat == Sat::unsat) v.verdict = Verdict::proven;
@@ -611,10 +688,20 @@ SolverVerdict wrap_question(const Formats& f, Reg r, const RangeOptions& o, doub
     return v;
 }
 
-void solve_wrap(RegisterRange& rr, const Formats& f, const RangeOptions& o, double budget) {
+/// A budget of z3 resource units, spent query by query.
+struct Budget {
+    std::int64_t left = 0;
+    bool enough() const { return left > 1'000'000; }   // below that no query of these sizes ends
+    std::int64_t query(std::int64_t limit) const { return std::min(limit, left); }
+};
+
+void solve_wrap(RegisterRange& rr, const Formats& f, const RangeOptions& o, Budget& budget) {
     const auto t0 = Clock::now();
     rr.solver_asked = true;
-    const SolverVerdict w = wrap_question(f, rr.reg, o, std::min(o.query_seconds, budget));
+    std::int64_t spent = 0;
+    const SolverVerdict w = wrap_question(f, rr.reg, o, budget.query(o.query_rlimit), &spent);
+    budget.left -= spent;
+    rr.solver_rlimit += spent;
     rr.verdict = w.verdict;
     if (w.verdict == Verdict::proven) rr.solver = "unsat: cannot wrap";
     if (w.verdict == Verdict::wraps) {
@@ -630,13 +717,13 @@ void solve_wrap(RegisterRange& rr, const Formats& f, const RangeOptions& o, doub
 /// between `known` (a value some window reaches) and `limit` (a value proven not exceeded):
 /// returns them as far as the solver got within `budget` (equal: the extreme is exact).
 std::pair<std::int64_t, std::int64_t> bracket_extreme(const Formats& f, Reg r, const RangeOptions& o, bool hi, std::int64_t known,
-                                                      std::int64_t limit, double budget) {
-    const auto t0 = Clock::now();
-    const auto left = [&] { return budget - since(t0); };
-    while (known != limit && left() > 1) {
+                                                      std::int64_t limit, Budget& budget, std::int64_t* spent = nullptr) {
+    while (known != limit && budget.enough()) {
         const std::int64_t mid = known + (limit - known) / 2;   // hi: known <= mid < limit; lo: limit < mid <= known
         const std::string goal = hi ? fmt::format("(bvsgt exact {})", bv64(mid)) : fmt::format("(bvslt exact {})", bv64(mid));
-        const SolverAnswer a = ask_solver(f, r, o.pixel_max, goal, std::min(o.query_seconds, left()));
+        const SolverAnswer a = ask_solver(f, r, o.pixel_max, goal, budget.query(o.query_rlimit));
+        budget.left -= a.rlimit;
+        if (spent) *spent += a.rlimit;
         if (a.sat == Sat::sat) known = a.exact;
         else if (a.sat == Sat::unsat) limit = mid;
         else break;
@@ -646,14 +733,14 @@ std::pair<std::int64_t, std::int64_t> bracket_extreme(const Formats& f, Reg r, c
 }
 
 /// The exact extreme of an open register on the side of its bound that leaves it.
-void solve_extreme(RegisterRange& rr, const Formats& f, const RangeOptions& o, double budget) {
+void solve_extreme(RegisterRange& rr, const Formats& f, const RangeOptions& o, Budget& budget) {
     const auto t0 = Clock::now();
     const bool hi = rr.bound.hi > rr.held.hi || rr.bound.lo >= rr.held.lo;
     std::int64_t known = hi ? rr.bound.lo : rr.bound.hi;
     if (rr.searched) known = hi ? std::max(known, rr.reached.hi) : std::min(known, rr.reached.lo);
     if (rr.solver_reached) known = hi ? std::max(known, *rr.solver_reached) : std::min(known, *rr.solver_reached);
     if (!rr.searched && !rr.solver_reached) return;   // no value known to be reached
-    const auto [k, l] = bracket_extreme(f, rr.reg, o, hi, known, hi ? rr.bound.hi : rr.bound.lo, budget);
+    const auto [k, l] = bracket_extreme(f, rr.reg, o, hi, known, hi ? rr.bound.hi : rr.bound.lo, budget, &rr.solver_rlimit);
     rr.extreme_side = hi ? 1 : -1;
     rr.extreme = hi ? Interval{k, l} : Interval{l, k};
     rr.solver_seconds += since(t0);
@@ -661,7 +748,7 @@ void solve_extreme(RegisterRange& rr, const Formats& f, const RangeOptions& o, d
 
 /// The exact range of a proven register whose interval bound may be loose (both extremes by
 /// the solver, from the values the witness search reaches): solver_range holds what is proven.
-void solve_range(RegisterRange& rr, const Formats& f, const RangeOptions& o, double budget) {
+void solve_range(RegisterRange& rr, const Formats& f, const RangeOptions& o, std::int64_t limit) {
     const auto t0 = Clock::now();
     // start from what the witness search reaches on each side (at most a second each)
     RangeOptions quick = o;
@@ -669,8 +756,10 @@ void solve_range(RegisterRange& rr, const Formats& f, const RangeOptions& o, dou
     RegisterRange up = rr, down = rr;
     search_witness(up, f, quick, true);
     search_witness(down, f, quick, false);
-    const auto [khi, lhi] = bracket_extreme(f, rr.reg, o, true, up.reached.hi, rr.bound.hi, (budget - since(t0)) / 2);
-    const auto [klo, llo] = bracket_extreme(f, rr.reg, o, false, down.reached.lo, rr.bound.lo, budget - since(t0));
+    Budget half{limit / 2};
+    const auto [khi, lhi] = bracket_extreme(f, rr.reg, o, true, up.reached.hi, rr.bound.hi, half, &rr.solver_rlimit);
+    Budget rest{limit - rr.solver_rlimit};
+    const auto [klo, llo] = bracket_extreme(f, rr.reg, o, false, down.reached.lo, rr.bound.lo, rest, &rr.solver_rlimit);
     rr.solver_asked = true;
     rr.solver_seconds = since(t0);
     if (Interval{llo, lhi} == rr.bound) {
@@ -684,11 +773,12 @@ void solve_range(RegisterRange& rr, const Formats& f, const RangeOptions& o, dou
 
 }  // namespace
 
-SolverVerdict solver_wrap(const Formats& f, Reg r, const RangeOptions& o) { return wrap_question(f, r, o, o.query_seconds); }
+SolverVerdict solver_wrap(const Formats& f, Reg r, const RangeOptions& o) { return wrap_question(f, r, o, o.query_rlimit); }
 
-SolverExtreme solver_extreme(const Formats& f, Reg r, bool maximise, const RangeOptions& o, double seconds) {
+SolverExtreme solver_extreme(const Formats& f, Reg r, bool maximise, const RangeOptions& o, std::int64_t rlimit) {
     const Interval b = interval_ranges(f, o.pixel_max).at(r).bound;
-    const auto [k, l] = bracket_extreme(f, r, o, maximise, 0, maximise ? b.hi : b.lo, seconds);   // the flat window: 0
+    Budget budget{rlimit};
+    const auto [k, l] = bracket_extreme(f, r, o, maximise, 0, maximise ? b.hi : b.lo, budget);   // the flat window: 0
     return {k, l};
 }
 
@@ -706,16 +796,18 @@ RangeReport analyse_ranges(const Formats& f, const RangeOptions& o) {
     // the solver where the search found no witness (the maximum is the response's: below),
     // first whether each open register can wrap, then its exact extreme, within the budget
     const auto t1 = Clock::now();
-    const auto left = [&] { return o.solver_seconds - since(t1); };
+    Budget budget{o.solver_rlimit};
     const bool open = std::any_of(rep.regs.begin(), rep.regs.end(), [](const RegisterRange& x) { return x.verdict == Verdict::open; });
-    if (o.solver_seconds > 0 && open) {
+    if (o.solver_rlimit > 0 && open) {
+        rep.query_rlimit = o.query_rlimit;
         // the products' intervals are loose (b = ix*iy: x and y share pixels): their exact
         // ranges (3x3 queries, fast) as the block sums' inputs, proven, tighten what follows
         Tightened tight{};
         for (Reg mr : {Reg::m_a, Reg::m_b, Reg::m_c}) {
             RegisterRange& x = rep.regs[idx(mr)];
-            if (x.verdict != Verdict::proven || left() <= 1) continue;
-            solve_range(x, f, o, std::min(left(), o.solver_seconds / 6));
+            if (x.verdict != Verdict::proven || !budget.enough()) continue;
+            solve_range(x, f, o, std::min(budget.left, o.solver_rlimit / 6));
+            budget.left -= x.solver_rlimit;
             if (x.solver_range) tight[idx(mr)] = x.solver_range;
         }
         const RangeReport under = interval_ranges(f, o.pixel_max, &tight);
@@ -727,17 +819,24 @@ RangeReport analyse_ranges(const Formats& f, const RangeOptions& o) {
             rr.solver = fmt::format("proven: interval bound [{}, {}] under the M registers' exact ranges", u.bound.lo, u.bound.hi);
         }
         for (auto& rr : rep.regs)
-            if (rr.verdict == Verdict::open && rr.reg != Reg::maximum && left() > 1) solve_wrap(rr, f, o, left());
+            if (rr.verdict == Verdict::open && rr.reg != Reg::maximum && budget.enough()) solve_wrap(rr, f, o, budget);
         for (auto& rr : rep.regs)
-            if (rr.solver_asked && !rr.solver_range && rr.verdict != Verdict::proven && left() > 1) solve_extreme(rr, f, o, left());
+            if (rr.solver_asked && !rr.solver_range && rr.verdict != Verdict::proven && budget.enough()) solve_extreme(rr, f, o, budget);
     }
     rep.seconds_solver = since(t1);
+    rep.solver_rlimit = o.solver_rlimit - budget.left;
+    for (auto& rr : rep.regs)
+        rr.decided_by = rr.bound_fits                     ? "interval"
+                        : rr.verdict == Verdict::open     ? ""
+                        : rr.solver_asked                 ? "model-smt"
+                                                          : "search";
     // the maximum holds a response: it wraps with the response's witness, is proven with it
     RegisterRange& m = rep.regs[idx(Reg::maximum)];
     const RegisterRange& r = rep.regs[idx(Reg::response)];
     if (!m.bound_fits && r.verdict != Verdict::open) {
         m.verdict = r.verdict;
         m.witness = r.witness;
+        m.decided_by = r.decided_by;
     }
     if (!m.bound_fits && r.solver_asked) {
         m.solver_asked = true;
@@ -745,6 +844,7 @@ RangeReport analyse_ranges(const Formats& f, const RangeOptions& o) {
         m.extreme_side = r.extreme_side;
         m.extreme = r.extreme;
     }
+    if (o.netlist) netlist_route(rep, o);
     return rep;
 }
 
@@ -765,12 +865,23 @@ json range_report_to_json(const RangeReport& r) {
             if (x.extreme_side) e["extreme"] = interval_json(x.extreme);
             if (x.solver_range) e["solver_range"] = interval_json(*x.solver_range);
             e["solver_range_reached"] = x.solver_range_reached;
+            e["solver_rlimit"] = x.solver_rlimit;
         }
+        e["netlist_asked"] = x.netlist_asked;
+        if (x.netlist_asked) {
+            e["netlist_verdict"] = verdict_name(x.netlist_verdict);
+            e["netlist"] = x.netlist;
+            e["netlist_rlimit"] = x.netlist_rlimit;
+            if (x.netlist_range) e["netlist_range"] = interval_json(*x.netlist_range);
+        }
+        e["decided_by"] = x.decided_by;
         regs.push_back(e);
     }
     return {{"flow", kRangesVersion}, {"formats", fields_text(r.formats, format_fields())}, {"pixel_max", r.pixel_max},
             {"key", r.key}, {"verdict", verdict_name(r.overall())}, {"summary", r.summary()},
             {"seconds_interval", r.seconds_interval}, {"seconds_search", r.seconds_search}, {"seconds_solver", r.seconds_solver},
+            {"seconds_netlist", r.seconds_netlist}, {"query_rlimit", r.query_rlimit}, {"netlist_query_rlimit", r.netlist_query_rlimit},
+            {"solver_rlimit", r.solver_rlimit}, {"netlist_rlimit", r.netlist_rlimit}, {"netlist_note", r.netlist_note},
             {"registers", regs}};
 }
 
@@ -782,6 +893,12 @@ RangeReport range_report_from_json(const json& j) {
     r.seconds_interval = j.at("seconds_interval");
     r.seconds_search = j.at("seconds_search");
     r.seconds_solver = j.at("seconds_solver");
+    r.seconds_netlist = j.at("seconds_netlist");
+    r.query_rlimit = j.at("query_rlimit");
+    r.netlist_query_rlimit = j.at("netlist_query_rlimit");
+    r.solver_rlimit = j.at("solver_rlimit");
+    r.netlist_rlimit = j.at("netlist_rlimit");
+    r.netlist_note = j.at("netlist_note");
     const json& regs = j.at("registers");
     if (regs.size() != static_cast<size_t>(kRegCount)) throw std::invalid_argument("range report: wrong register count");
     for (int i = 0; i < kRegCount; ++i) {
@@ -793,9 +910,7 @@ RangeReport range_report_from_json(const json& j) {
         x.held = interval_from(e.at("held"));
         x.width = e.at("width");
         x.bound_fits = e.at("bound_fits");
-        const std::string v = e.at("verdict");
-        x.verdict = v == "proven" ? Verdict::proven : v == "wraps" ? Verdict::wraps : Verdict::open;
-        if (v != verdict_name(x.verdict)) throw std::invalid_argument("range report: verdict '" + v + "'");
+        x.verdict = verdict_from(e.at("verdict"));
         x.searched = e.at("searched");
         if (x.searched) x.reached = interval_from(e.at("reached"));
         if (x.verdict == Verdict::wraps) x.witness = e.at("witness").get<Window5>();
@@ -808,7 +923,16 @@ RangeReport range_report_from_json(const json& j) {
             if (x.extreme_side) x.extreme = interval_from(e.at("extreme"));
             if (e.contains("solver_range")) x.solver_range = interval_from(e.at("solver_range"));
             x.solver_range_reached = e.at("solver_range_reached");
+            x.solver_rlimit = e.at("solver_rlimit");
         }
+        x.netlist_asked = e.at("netlist_asked");
+        if (x.netlist_asked) {
+            x.netlist_verdict = verdict_from(e.at("netlist_verdict"));
+            x.netlist = e.at("netlist");
+            x.netlist_rlimit = e.at("netlist_rlimit");
+            if (e.contains("netlist_range")) x.netlist_range = interval_from(e.at("netlist_range"));
+        }
+        x.decided_by = e.at("decided_by");
         r.regs.push_back(x);
     }
     return r;

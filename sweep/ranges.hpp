@@ -16,11 +16,21 @@
 //      the 25 pixels of a window are variables, the stage functions run on a number type
 //      that writes their numeric_std arithmetic as bit-vector terms, and the query asks for
 //      a window where the register's exact value differs from its hardware value: unsat is
-//      proven (cannot wrap), sat is a witness (checked in the model), a timeout leaves it
+//      proven (cannot wrap), sat is a witness (checked in the model), z3 giving up at its resource limit leaves it
 //      open. Then a binary search of "exists window: exact > T" queries brackets the exact
 //      extreme on the side that leaves the register, within the configuration's budget.
-//   4. otherwise the register is open: the bound, the best value the search reached and
-//      where the solver stopped.
+//   4. the netlist route (ranges_netlist.cpp): GHDL synthesises the stage entities at the
+//      configuration's generics, yosys turns the stage chain (a 5x5 window through Sobel,
+//      M, the block sums and the response) into SMT-LIB, and z3 asks each register's
+//      question on that netlist: stage by stage, the stage's inputs assumed in the ranges
+//      proven on the netlist for the stage before (assume-guarantee), and from the 25
+//      pixels through the whole chain where the stage's question is satisfiable. unsat is
+//      proven on the netlist, sat a window (checked in the model), unknown open. A register
+//      on which the two routes disagree (one proves it, the other has a window) is an error.
+//   5. otherwise the register is open: the bound, the best value the search reached and
+//      where the solvers stopped.
+// Every z3 query is limited by z3's resource limit (rlimit), not by time, so verdicts and
+// brackets do not depend on the machine's speed.
 // The exact value of a register at the window (the audit's "exact"): Sobel and the
 // products are exact integers; block sum floor(sum of the nine M / 2^bf_drop); trace a+c;
 // det a*c and b*b (each resized to resp_w in the response); k-term floor(tr^2/2^k_shift1)
@@ -29,6 +39,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <map>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -70,7 +82,7 @@ struct RegisterRange {
     Window5 witness{};         ///< verdict wraps: a window that wraps the register
     // the solver (only where the search found no witness)
     bool solver_asked = false;
-    std::string solver;        ///< its answer: "unsat: cannot wrap", "sat: a window wraps it", "timeout after N s", ...
+    std::string solver;        ///< its answer: "unsat: cannot wrap", "sat: a window wraps it", "unknown: rlimit N reached", ...
     double solver_seconds = 0;
     std::optional<std::int64_t> solver_reached;   ///< sat: the exact value at the solver's window
     int extreme_side = 0;      ///< +1: the maximum of the exact value was bracketed, -1: the minimum, 0: neither
@@ -80,13 +92,26 @@ struct RegisterRange {
     /// used as the next stage's input range; reached: a window attains both ends.
     std::optional<Interval> solver_range;
     bool solver_range_reached = false;
+    std::int64_t solver_rlimit = 0;   ///< z3's resource units the model route spent on the register
+    // the netlist route
+    bool netlist_asked = false;
+    Verdict netlist_verdict = Verdict::open;
+    std::string netlist;              ///< its answer: "unsat on the stage netlist (assuming ...)", "sat from pixels: ...", ...
+    std::int64_t netlist_rlimit = 0;  ///< z3's resource units it spent on the register
+    std::optional<Interval> netlist_range;   ///< proven on the netlist: the register's hardware value lies in here
+    /// which route decided the verdict: "interval", "search", "model-smt" (z3 on the model's
+    /// arithmetic), "netlist" (z3 on GHDL's netlist), "" (open)
+    std::string decided_by;
 };
 
 struct RangeReport {
     Formats formats;
     int pixel_max = 255;
     std::vector<RegisterRange> regs;   ///< one per Reg, in Reg order
-    double seconds_interval = 0, seconds_search = 0, seconds_solver = 0;
+    double seconds_interval = 0, seconds_search = 0, seconds_solver = 0, seconds_netlist = 0;
+    std::int64_t query_rlimit = 0, netlist_query_rlimit = 0;   ///< the per-query resource limits used (0: route not run)
+    std::int64_t solver_rlimit = 0, netlist_rlimit = 0;        ///< resource units each route spent in all
+    std::string netlist_note;          ///< why the netlist route did not run, or how its netlists were made
     bool cached = false;
     std::string key;                   ///< cache key (the sweep's synthesis key), or ""
     /// proven when every register is; wraps when one wraps; else open
@@ -95,6 +120,9 @@ struct RangeReport {
     const RegisterRange* first_wrap() const;
     /// "proven safe", "wraps at block_a", "open (response: bound [lo, hi], reached [lo, hi])"
     std::string summary() const;
+    /// Which route decided how many registers, and what the netlist route said:
+    /// "interval 12, search 2; netlist: 11 proven, 2 wraps, 0 open of 13" ("netlist not run" without it).
+    std::string routes() const;
     const RegisterRange& at(Reg r) const { return regs[static_cast<int>(r)]; }
 };
 
@@ -102,8 +130,16 @@ struct RangeOptions {
     int pixel_max = 255;          ///< pixels anywhere in [0, pixel_max] (8-bit: 255)
     double search_seconds = 5;    ///< per register and side, at most
     int seeds = 64;               ///< random 0/255 windows per register and side
-    double solver_seconds = 60;   ///< the solver's whole budget for the configuration (0: no solver)
-    double query_seconds = 20;    ///< one solver query, at most
+    /// The model route's budget for the configuration, in z3 resource units (0: no solver);
+    /// on this project's machine z3 spends about 5 million units per second of CPU.
+    std::int64_t solver_rlimit = 110'000'000;
+    std::int64_t query_rlimit = 40'000'000;            ///< one query of the model route, at most
+    bool netlist = true;                               ///< run the netlist route (GHDL, yosys and z3)
+    std::int64_t netlist_budget = 90'000'000;          ///< the netlist route's budget (resource units)
+    std::int64_t netlist_query_rlimit = 40'000'000;    ///< one query of the netlist route, at most
+    /// keep the netlists, their scripts and every query of the netlist route here (query-<register>-<k>.smt2,
+    /// k counting that register's queries from 1); empty: a scratch directory
+    std::filesystem::path netlist_dir;
 };
 
 /// Proven ranges of registers' exact values that replace their interval bounds as the next
@@ -117,8 +153,8 @@ RangeReport analyse_ranges(const Formats& f, const RangeOptions& o = {});
 
 /// The solver's answer to "is there a window of pixels in [0, pixel_max] where register r's
 /// exact value differs from its hardware value?" (z3 on PATH, one query of at most
-/// o.query_seconds): proven (unsat), wraps (sat; the window wraps r in the model, else
-/// std::logic_error), open (why: "timeout after N s", "no solver: ...").
+/// o.query_rlimit resource units): proven (unsat), wraps (sat; the window wraps r in the model, else
+/// std::logic_error), open (why: "unknown: rlimit N reached", "no solver: ...").
 struct SolverVerdict {
     Verdict verdict = Verdict::open;
     Window5 window{};
@@ -126,12 +162,48 @@ struct SolverVerdict {
     std::string why;
 };
 SolverVerdict solver_wrap(const Formats& f, Reg r, const RangeOptions& o = {});
-/// The solver's bracket of r's exact maximum (maximise) or minimum within `seconds`:
+/// The solver's bracket of r's exact maximum (maximise) or minimum within `rlimit` resource units:
 /// `reached` is attained by a window, no window goes beyond `proven` (equal: exact).
 struct SolverExtreme {
     std::int64_t reached = 0, proven = 0;
 };
-SolverExtreme solver_extreme(const Formats& f, Reg r, bool maximise, const RangeOptions& o, double seconds);
+SolverExtreme solver_extreme(const Formats& f, Reg r, bool maximise, const RangeOptions& o, std::int64_t rlimit);
+
+/// One z3 run on an SMT-LIB text (`z3 -smt2 rlimit=N`): its first answer, the values of the
+/// 0-ary functions `get` as the model gives them (sat only), the resource units it spent.
+/// `keep` (when not empty): the whole query, as z3 reads it, is also written there.
+enum class Sat { sat, unsat, unknown };
+struct Z3Answer {
+    Sat sat = Sat::unknown;
+    std::map<std::string, std::int64_t> values;
+    std::int64_t rlimit = 0;
+    std::string why;   ///< unknown: "rlimit N reached", "no solver: ...", z3's message
+};
+Z3Answer run_z3(const std::string& smt, std::int64_t rlimit, const std::vector<std::string>& get,
+                const std::filesystem::path& keep = {});
+
+/// GHDL's netlists of the stage chain at formats `f`, as SMT-LIB by yosys (write_smt2 of a
+/// combinational module: each register replaced by its input, as in a pipeline whose inputs
+/// hold still; refused when a register has an enable or reset that does not fold away).
+/// chain: 25 pixel inputs p_<row>_<col> through nine sobel_x, sobel_y and m_products, three
+/// block_filter and one harris_response; block: the three block_filter with the 27 M values
+/// as inputs; response: harris_response with a, b, c as inputs. Wires keep the chain's names
+/// (ix_<i>_<j>, ma_<i>_<j>, a, b, c, hr.ac, hr.bb, hr.trace, hr.ktr2, r) in all three.
+struct StageNetlists {
+    std::string chain, block, response;   ///< SMT-LIB texts (modules chain, stage_block, stage_response)
+    std::string commands;                 ///< the GHDL and yosys commands that made them
+};
+/// Synthesises in `dir` (kept; commands.txt: the commands). SimulatorError when GHDL or yosys is missing or fails.
+StageNetlists stage_netlists(const Formats& f, const std::filesystem::path& dir);
+/// The netlist's value (hardware, as RegisterRange's questions read it) of every register it
+/// holds at window `w`: Sobel and M at the window's top-left 3x3 position, the rest at its
+/// centre; the threshold (computed in harris_top, outside the chain) is absent.
+std::array<std::optional<std::int64_t>, kRegCount> netlist_values(const StageNetlists& n, const Formats& f, const Window5& w);
+/// The netlist route on a report the model route made (analyse_ranges runs it when o.netlist):
+/// every register of the chain is asked on the netlist; a register the model route left open
+/// takes the netlist's verdict. std::logic_error when the routes disagree (one proves, the
+/// other has a window) or a netlist window does not wrap in the model.
+void netlist_route(RangeReport& rep, const RangeOptions& o);
 
 /// The exact value and the hardware value of every register at the window's centre
 /// (Sobel and M: the extreme over the 3x3 positions), by the stage functions on Word.
@@ -146,6 +218,8 @@ Image witness_image(const Window5& w, int width = 16, int height = 12);
 /// "sobel_w-10_sobel_x": a file stem for the witness of register `r` of configuration `config`
 /// (characters other than letters, digits, '-' and '_' become '-').
 std::string witness_stem(const std::string& config, Reg r);
+/// `name` with characters other than letters, digits, '-' and '_' replaced by '-'.
+std::string file_stem(const std::string& name);
 
 /// The report as Markdown: one row per register (bound, what it holds, verdict, search, witness).
 std::string ranges_markdown(const std::string& config, const RangeReport& r);

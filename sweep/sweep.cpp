@@ -213,8 +213,9 @@ void ranges_phase(PointsRun& res, const SweepOptions& o) {
         p.ranges = cached_ranges(p.config.formats, p.cost.key, o.cache / "ranges");
         p.has_ranges = true;
         progress(o.progress, fmt::format("[ranges {}/{}] {}: {} ({})", i + 1, n, p.config.name, p.ranges.summary(),
-                                         p.ranges.cached ? "cached" : fmt::format("{:.2f} s", p.ranges.seconds_interval +
-                                                                                                  p.ranges.seconds_search)));
+                                         p.ranges.cached ? "cached"
+                                                         : fmt::format("{:.2f} s", p.ranges.seconds_interval + p.ranges.seconds_search +
+                                                                                       p.ranges.seconds_solver + p.ranges.seconds_netlist)));
     }
 }
 

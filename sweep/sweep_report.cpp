@@ -33,14 +33,15 @@ double pct(double a, double b) { return b ? 100.0 * (a - b) / b : 0.0; }
 
 std::string ranges_cell(const PointResult& p) {
     if (!p.has_ranges) return "-";
+    const std::string routes = " (" + p.ranges.routes() + ")";
     switch (p.ranges.overall()) {
-        case Verdict::proven: return "proven safe";
+        case Verdict::proven: return "proven safe" + routes;
         case Verdict::wraps: {
             const RegisterRange& w = *p.ranges.first_wrap();
-            return fmt::format("**wraps at {}** (witnesses/{}.pgm)", kRegNames[static_cast<int>(w.reg)],
-                               witness_stem(p.config.name, w.reg));
+            return fmt::format("**wraps at {}** (witnesses/{}.pgm){}", kRegNames[static_cast<int>(w.reg)],
+                               witness_stem(p.config.name, w.reg), routes);
         }
-        default: return p.ranges.summary();
+        default: return p.ranges.summary() + routes;
     }
 }
 
@@ -125,9 +126,11 @@ std::string to_markdown(const SweepResult& r) {
                "against GHDL.\n\n";
     s += fmt::format("Stereo matches downstream (columns *stereo correct*: pass the cross-check, ratio and epipolar tests; "
                      "*GT-correct*: of those, within 1 px of the ground-truth disparity): {}.\n\n", r.landmark_pairs);
-    s += "Ranges (every input, docs/derived-ranges.md): *proven safe* when the interval bound of every register fits "
-         "it; *wraps at R* with the pixel window (witnesses/) that wraps register R; *open* with the bound and the "
-         "values the witness search reached. The P column says whether a Pareto point is proven.\n\n";
+    s += "Ranges (every input, docs/derived-ranges.md): *proven safe* when no register can wrap; *wraps at R* with "
+         "the pixel window (witnesses/) that wraps register R; *open* with the bound and the values the witness search "
+         "reached. In brackets, how many registers each route decided (interval bound, witness search, z3 on the "
+         "model's arithmetic, z3 on GHDL's netlist) and the netlist route's verdicts. The P column says whether a "
+         "Pareto point is proven.\n\n";
     s += "| configuration | recall | precision | F1 | stereo correct | GT-correct | LUT | FF | DSP | CARRY4 | reg. bits | wraps | ranges | P | GHDL | Gate | Verilator |\n";
     s += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|:-:|---|---|---|\n";
     for (const auto& p : r.points) {

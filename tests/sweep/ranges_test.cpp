@@ -49,10 +49,11 @@ void every_window(int pmax, const std::array<bool, 9>& use, F&& fn) {
     }
 }
 
-/// The interval bound and the witness search alone (the solver's tests are [solver]).
+/// The interval bound and the witness search alone (the solvers' tests are [solver] and [netlist]).
 RangeOptions no_solver() {
     RangeOptions o;
-    o.solver_seconds = 0;
+    o.solver_rlimit = 0;
+    o.netlist = false;
     return o;
 }
 
@@ -103,7 +104,7 @@ TEST_CASE("interval bounds of M contain the exact extremes over every 3x3 window
 }
 
 TEST_CASE("the thesis configuration: every register proven by the interval bound alone", "[model][sweep][ranges]") {
-    const RangeReport r = analyse_ranges(Formats{});
+    const RangeReport r = analyse_ranges(Formats{}, no_solver());
     INFO(r.summary());
     CHECK(r.overall() == Verdict::proven);
     for (const auto& x : r.regs) {
@@ -181,7 +182,7 @@ TEST_CASE("a response one bit too narrow for the interval bound: the search says
 TEST_CASE("a range report survives its JSON", "[model][sweep][ranges]") {
     Formats f;
     f.sobel_w = 10;
-    const RangeReport r = analyse_ranges(f);
+    const RangeReport r = analyse_ranges(f, no_solver());
     const RangeReport back = range_report_from_json(range_report_to_json(r));
     REQUIRE(back.regs.size() == r.regs.size());
     for (size_t i = 0; i < r.regs.size(); ++i) {
@@ -253,8 +254,8 @@ TEST_CASE("the solver's exact extremes of b = ix*iy equal the extremes over ever
     });
     const Interval bound = interval_ranges(f, 3).at(Reg::m_b).bound;
     REQUIRE(eb.hi < bound.hi);   // the interval is loose here: the solver has something to prove
-    const SolverExtreme hi = solver_extreme(f, Reg::m_b, true, o, 30);
-    const SolverExtreme lo = solver_extreme(f, Reg::m_b, false, o, 30);
+    const SolverExtreme hi = solver_extreme(f, Reg::m_b, true, o, 150'000'000);
+    const SolverExtreme lo = solver_extreme(f, Reg::m_b, false, o, 150'000'000);
     CHECK(hi.proven == eb.hi);   // proven not exceeded, and reached: exact
     CHECK(hi.reached == eb.hi);
     CHECK(lo.proven == eb.lo);
