@@ -556,11 +556,8 @@ std::string stimulus_text(const Stimulus& s) {
     return f;
 }
 
-}  // namespace
-
-std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
-    std::ostringstream md;
-    const Tally all = tally(rs);
+/// The report's head: the run that made it, the method and the score with its times.
+void markdown_head(std::ostringstream& md, const std::vector<Result>& rs, const ReportInfo& info, const Tally& all) {
     md << "# Mutation campaign: generated mutants\n\n"
        << "Made by `" << info.command << "`" << (info.runner.empty() ? "" : " (" + info.runner + ")")
        << "; every figure below comes from that run" << (info.reused.empty() ? "" : ", with the reused verdicts it names")
@@ -624,6 +621,10 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
     }
     md << ".\n\n";
 
+}
+
+/// The tallies per class and per entity, and which stimulus killed how many.
+void markdown_tallies(std::ostringstream& md, const std::vector<Result>& rs, const ReportInfo& info, const Tally& all) {
     const std::string head =
         "| mutants | stillborn | killed | proven equivalent | proven under assumptions | surviving | score | s per mutant |\n";
     md << "## Per class\n\n| class " << head << "|---|---|---|---|---|---|---|---|---|\n";
@@ -654,6 +655,10 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
         md << "| " << n << " | " << k << " |\n";
     }
 
+}
+
+/// The surviving, proven equivalent (with and without assumptions) and stillborn mutants.
+void markdown_verdict_lists(std::ostringstream& md, const std::vector<Result>& rs, const ReportInfo& info) {
     md << "\n## Surviving mutants\n\n";
     bool any = false;
     for (const auto& r : rs) {
@@ -702,6 +707,16 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
         md << "| " << name_cell(r.name) << " | " << md_cell(r.detail) << " |\n";
     }
     if (!any) md << "None.\n";
+}
+
+}  // namespace
+
+std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
+    std::ostringstream md;
+    const Tally all = tally(rs);
+    markdown_head(md, rs, info, all);
+    markdown_tallies(md, rs, info, all);
+    markdown_verdict_lists(md, rs, info);
     md << "\nEvery mutant's verdict is in `docs/mutation-campaign.csv`. The hand-written mutants, the fast smoke\n"
           "set CI runs, are in `docs/mutation-smoke.md`.\n";
     return md.str();

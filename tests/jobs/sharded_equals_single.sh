@@ -28,7 +28,7 @@ both() {   # both ARGS...: the single-process run into single/, the sharded one 
   grep -q "^\[shards\] $shards/$shards done" sharded.log || fail "the sharded run did not report $shards/$shards shards done"
 }
 shards_done() {   # shards_done RUN_DIR: every shard of the run has a result and the merge job wrote merged.json
-  "$bin" shard status "$1" 2>/dev/null | grep -Eq '^([0-9]+) of \1 shards done' && [ -e "$1/merged.json" ]
+  "$bin" shard status "$1" 2>/dev/null | grep -Eq '(^|[ ,])([0-9]+) of \2 shards done' && [ -e "$1/merged.json" ]
 }
 wait_done() {   # wait_done RUN_DIR: until shards_done (at most 10 minutes)
   for _ in $(seq 1 600); do shards_done "$1" && return 0; sleep 1; done
