@@ -106,16 +106,28 @@ TEST_CASE("the spec source stays under 512 MB over 2,000 full-size frames", "[me
     CHECK(abl < kBoundMb);
 }
 
-TEST_CASE("the cycle source's peak memory does not grow with the stream", "[memory]") {
-    const double short_run = peak_mb("cycle", kW, kH, 8, true);
-    const double long_run = peak_mb("cycle", kW, kH, 24, true);
+namespace {
+
+/// A source's peak over a short and a long full-size stream (both under the bound, the long
+/// one within 16 MB of the short: retaining each frame's writes and thresholds once cost the
+/// cycle source about 21 MB a frame), then over a short and a long stream of small frames
+/// (within 8 MB).
+void check_no_growth(const std::string& source, bool ablation, int full_short, int full_long, int small_w, int small_h,
+                     int small_short, int small_long) {
+    const double short_run = peak_mb(source, kW, kH, full_short, ablation);
+    const double long_run = peak_mb(source, kW, kH, full_long, ablation);
     CHECK(short_run < kBoundMb);
     CHECK(long_run < kBoundMb);
-    // retaining each frame's writes and thresholds cost about 21 MB a frame
     CHECK(long_run < short_run + 16);
-    const double small_short = peak_mb("cycle", 96, 40, 100, true);
-    const double small_long = peak_mb("cycle", 96, 40, 2000, true);
-    CHECK(small_long < small_short + 8);
+    const double small_short_run = peak_mb(source, small_w, small_h, small_short, ablation);
+    const double small_long_run = peak_mb(source, small_w, small_h, small_long, ablation);
+    CHECK(small_long_run < small_short_run + 8);
+}
+
+}  // namespace
+
+TEST_CASE("the cycle source's peak memory does not grow with the stream", "[memory]") {
+    check_no_growth("cycle", true, 8, 24, 96, 40, 100, 2000);
 }
 
 TEST_CASE("the rtl source's peak memory does not grow with the stream", "[memory][rtl]") {
@@ -124,16 +136,9 @@ TEST_CASE("the rtl source's peak memory does not grow with the stream", "[memory
         WARN("skipped: " << why);
         return;
     }
-    // the KITTI-size netlist (the one `eval --source rtl` on KITTI builds and caches)
-    const double short_run = peak_mb("rtl", kW, kH, 4, false);
-    const double long_run = peak_mb("rtl", kW, kH, 12, false);
-    CHECK(short_run < kBoundMb);
-    CHECK(long_run < kBoundMb);
-    CHECK(long_run < short_run + 16);
-    // a long stream of small frames (its own, small netlist)
-    const double small_short = peak_mb("rtl", 64, 36, 100, false);
-    const double small_long = peak_mb("rtl", 64, 36, 2000, false);
-    CHECK(small_long < small_short + 8);
+    // the KITTI-size netlist (the one `eval --source rtl` on KITTI builds and caches), then
+    // a small netlist of its own for the long stream
+    check_no_growth("rtl", false, 4, 12, 64, 36, 100, 2000);
 }
 
 int main(int argc, char** argv) {

@@ -58,15 +58,21 @@ sweep_rtl_inputs() {   # spec.json, streams.txt and the cache of the sweep_rtl k
  "trust": {"rtl": true, "verilator_pairs": "", "verilator_gate": false}}
 SPEC
   printf 'flat 33x21 3 0\nrandom 40x30 3 13\n' > streams.txt
-  cache=$work/../sweep-rtl-shard-cache
+  fresh_trust_cache sweep-rtl-shard-cache
+}
+fresh_trust_cache() {   # fresh_trust_cache NAME: $cache = ../NAME, its trust cache emptied now and between the runs
+  cache=$work/../$1
   between="rm -rf $cache/trust"
   $between
 }
-check_shards() {   # check_shards RUN_DIR N KIND: N check shards, each a passing, simulated KIND check
-  [ "$(ls "$1"/shards/*.json | wc -l)" -eq "$2" ] || fail "expected the $2 RTL checks as $2 shards in $1"
-  jq -e -s --argjson n "$2" --arg k "$3" \
+checks_equal() {   # checks_equal N KIND: N check shards in sharded/run/checks, each a passing,
+                  # simulated KIND check, and the sweep reports of both runs the same
+  local run=sharded/run/checks
+  [ "$(ls "$run"/shards/*.json | wc -l)" -eq "$1" ] || fail "expected the $1 RTL checks as $1 shards in $run"
+  jq -e -s --argjson n "$1" --arg k "$2" \
     'map(.data.outcomes[0]) | length == $n and all(.kind == $k and .status == "pass" and (.result.cached | not))' \
-    "$1"/shards/*.json > /dev/null || fail "the check shards did not each run a passing $3 check"
+    "$run"/shards/*.json > /dev/null || fail "the check shards did not each run a passing $2 check"
+  same_sweep_reports
 }
 same_sweep_reports() {   # sweep.csv, sweep.json without times and cache flags, sweep.md without its timing line
   same single/sweep.csv sharded/sweep.csv
@@ -123,11 +129,10 @@ sweep_rtl)
   both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1 --backend mcode \
     --regression-set streams.txt
   grep -q '^\[shards\] 4/4 done' sharded.log || fail "the sharded run did not report the 4 check shards done"
-  check_shards sharded/run/checks 4 ghdl
   for p in m6 thesis; do
     grep -q "^$p,.*,1,2,0,0,,,," single/sweep.csv || fail "$p is not a Pareto point with 2 GHDL runs, 0 failed, 0 mismatches"
   done
-  same_sweep_reports
+  checks_equal 4 ghdl
   echo "sweep_rtl: 2 configurations in 1 shard, then 4 GHDL checks of the 2 Pareto points in 4 shards: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
   ;;
 sweep_rtl_no_wait)
@@ -139,8 +144,7 @@ sweep_rtl_no_wait)
   both_no_wait sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1 \
     --backend mcode --regression-set streams.txt
   grep -q 'submitted' submit.log || fail "the first command did not say it submitted: $(head -3 submit.log)"
-  check_shards sharded/run/checks 4 ghdl
-  same_sweep_reports
+  checks_equal 4 ghdl
   echo "sweep_rtl_no_wait: submitted, then --resume twice: 4 GHDL checks in 4 shards: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
   ;;
 sweep_verilator)
@@ -152,14 +156,11 @@ sweep_verilator)
 {"name": "shard-verilator-test", "configs": [{"name": "m6", "m_drop": 6}], "data": {"sequence": "01", "pairs": "0:3"},
  "trust": {"rtl": false, "verilator_pairs": "0:1", "verilator_gate": false}}
 SPEC
-  cache=$work/../sweep-verilator-shard-cache
-  between="rm -rf $cache/trust"
-  $between
+  fresh_trust_cache sweep-verilator-shard-cache
   shards=1
   both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1
   grep -q '^\[shards\] 2/2 done' sharded.log || fail "the sharded run did not report the 2 check shards done"
-  check_shards sharded/run/checks 2 verilator
-  same_sweep_reports
+  checks_equal 2 verilator
   echo "sweep_verilator: 2 Pareto points, each netlist run on KITTI 01 pair 0 in a shard of its own: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
   ;;
 landmarks)
