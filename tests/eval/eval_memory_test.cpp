@@ -111,7 +111,7 @@ namespace {
 /// A source's peak over a short and a long full-size stream (both under the bound, the long
 /// one within 16 MB of the short: retaining each frame's writes and thresholds once cost the
 /// cycle source about 21 MB a frame), then over a short and a long stream of small frames
-/// (within 8 MB).
+/// (the long one under the bound and within 8 MB of the short).
 void check_no_growth(const std::string& source, bool ablation, int full_short, int full_long, int small_w, int small_h,
                      int small_short, int small_long) {
     const double short_run = peak_mb(source, kW, kH, full_short, ablation);
@@ -121,6 +121,7 @@ void check_no_growth(const std::string& source, bool ablation, int full_short, i
     CHECK(long_run < short_run + 16);
     const double small_short_run = peak_mb(source, small_w, small_h, small_short, ablation);
     const double small_long_run = peak_mb(source, small_w, small_h, small_long, ablation);
+    CHECK(small_long_run < kBoundMb);
     CHECK(small_long_run < small_short_run + 8);
 }
 
