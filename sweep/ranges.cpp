@@ -938,12 +938,27 @@ RangeReport range_report_from_json(const json& j) {
     return r;
 }
 
+namespace {
+
+/// The options a cached report must have been made with to be read back: every one that can
+/// change a verdict or a bracket (the pixel range, the search, the budgets, the netlist route).
+std::string cache_options(const RangeOptions& o) {
+    return fmt::format("pixel_max={} search_seconds={} seeds={} solver_rlimit={} query_rlimit={} netlist={} "
+                       "netlist_budget={} netlist_query_rlimit={}",
+                       o.pixel_max, o.search_seconds, o.seeds, o.solver_rlimit, o.query_rlimit, o.netlist,
+                       o.netlist_budget, o.netlist_query_rlimit);
+}
+
+}  // namespace
+
 RangeReport cached_ranges(const Formats& f, const std::string& key, const fs::path& cache_dir, const RangeOptions& o) {
     const fs::path p = cache_dir / (key + ".json");
+    const std::string options = cache_options(o);
     if (fs::exists(p)) {
         try {
-            RangeReport r = range_report_from_json(json::parse(util::read_file(p)));
-            if (r.pixel_max == o.pixel_max) {
+            const json j = json::parse(util::read_file(p));
+            if (j.value("options", std::string()) == options) {
+                RangeReport r = range_report_from_json(j);
                 r.formats = f;
                 r.cached = true;
                 return r;
@@ -955,7 +970,9 @@ RangeReport cached_ranges(const Formats& f, const std::string& key, const fs::pa
     RangeReport r = analyse_ranges(f, o);
     r.key = key;
     fs::create_directories(cache_dir);
-    util::write_file_atomic(p, range_report_to_json(r).dump(1) + "\n");
+    json j = range_report_to_json(r);
+    j["options"] = options;
+    util::write_file_atomic(p, j.dump(1) + "\n");
     return r;
 }
 

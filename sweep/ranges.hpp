@@ -240,7 +240,8 @@ nlohmann::json range_report_to_json(const RangeReport& r);
 RangeReport range_report_from_json(const nlohmann::json& j);   ///< throws on a malformed document
 
 /// analyse_ranges cached as <cache_dir>/<key>.json (key: the configuration's synthesis
-/// key, sweep/cost.hpp); an entry of another analysis version is recomputed.
+/// key, sweep/cost.hpp); an entry of another analysis version, or made with other options
+/// (pixel range, search, budgets, netlist route), is recomputed and replaced.
 RangeReport cached_ranges(const Formats& f, const std::string& key, const std::filesystem::path& cache_dir,
                           const RangeOptions& o = {});
 

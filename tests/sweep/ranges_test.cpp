@@ -222,7 +222,7 @@ TEST_CASE("each witness stream of the regression set wraps its configuration in 
     CHECK(witnesses >= 4);
 }
 
-TEST_CASE("the range analysis is cached under the key it is given; an unreadable entry is analysed again",
+TEST_CASE("the range analysis is cached under the key it is given; an unreadable entry or one of other options is analysed again",
           "[model][sweep][ranges]") {
     const util::ScratchDir d;
     Formats f;
@@ -240,6 +240,12 @@ TEST_CASE("the range analysis is cached under the key it is given; an unreadable
     const RangeReport redone = cached_ranges(f, "0123456789abcdef", d.path());
     CHECK_FALSE(redone.cached);
     CHECK(redone.summary() == first.summary());
+    // an entry made with other options (here a smaller solver budget) is not read back
+    RangeOptions smaller;
+    smaller.solver_rlimit = 1'000'000;
+    CHECK_FALSE(cached_ranges(f, "0123456789abcdef", d.path(), smaller).cached);
+    CHECK(cached_ranges(f, "0123456789abcdef", d.path(), smaller).cached);
+    CHECK_FALSE(cached_ranges(f, "0123456789abcdef", d.path()).cached);
 }
 
 TEST_CASE("the solver's exact extremes of b = ix*iy equal the extremes over every 3x3 window of 2-bit pixels",
