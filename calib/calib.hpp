@@ -16,7 +16,7 @@
 // baseline is -P2(0,3) / P2(0,0); Q maps (x, y, x_l - x_r, 1) to homogeneous 3D.
 #pragma once
 
-#include "util/errors.hpp"
+#include "io/util/errors.hpp"
 #include <opencv2/core.hpp>
 
 #include <filesystem>

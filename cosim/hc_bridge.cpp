@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cosim/session.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace {
 std::unique_ptr<hc::cosim::Session> g_session;

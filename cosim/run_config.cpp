@@ -1,7 +1,7 @@
 #include "cosim/run_config.hpp"
 
 #include "model/harris/formats_json.hpp"
-#include "util/errors.hpp"
+#include "io/util/errors.hpp"
 
 #include <cstring>
 #include <fstream>

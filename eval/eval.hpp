@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/image/image.hpp"
 #include "model/spec/opencv_reference.hpp"

@@ -34,7 +34,7 @@ Stream default_stream(int first, int last) {
     Stream s;
     const std::string video = HC_OPENCV_SAMPLE_VIDEO;
     const int pairs = std::min(last, 12) - first;
-    if (pairs <= 0) throw InputError("--frames selects no pair of the default 12-pair stream");
+    if (pairs <= 0) throw InputError("--pairs selects no pair of the default 12-pair stream");
     cv::VideoCapture cap;
     if (!video.empty() && fs::exists(video) && cap.open(video)) {
         cv::Mat f, g;

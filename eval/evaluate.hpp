@@ -10,7 +10,7 @@
 
 #include "eval/eval.hpp"
 #include "eval/report.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace hc::eval {
 
@@ -19,7 +19,7 @@ struct Request {
     std::filesystem::path kitti;        ///< KITTI root (holds sequences/NN); empty: the default stream
     std::string sequence = "01";
     util::Range pairs{0, 1 << 30};      ///< stereo pairs [first, last); an open end takes them all
-    std::string pairs_flag = "--frames";   ///< how the range is named in errors
+    std::string pairs_flag = "--pairs";    ///< how the range is named in errors
     std::vector<int> overlays;          ///< stream frames to draw as overlay_NNN.png
     std::filesystem::path out;          ///< output directory
     int threads = 0;                    ///< 0: all cores

@@ -1,6 +1,6 @@
 // report.cpp: see report.hpp.
 #include "eval/report.hpp"
-#include "util/errors.hpp"
+#include "io/util/errors.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -13,7 +13,7 @@
 #include <opencv2/imgproc.hpp>
 #include <unistd.h>
 
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 
 namespace fs = std::filesystem;
 

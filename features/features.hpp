@@ -15,7 +15,7 @@
 // and descriptor counts that disagree) throws hc::features::InputError.
 #pragma once
 
-#include "util/errors.hpp"
+#include "io/util/errors.hpp"
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 

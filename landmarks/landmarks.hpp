@@ -25,7 +25,7 @@
 // throws landmarks::InputError naming the input; the CLI maps it to exit status 2.
 #pragma once
 
-#include "util/errors.hpp"
+#include "io/util/errors.hpp"
 #include <cstdint>
 #include <filesystem>
 #include <functional>

@@ -10,7 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "landmarks/landmarks.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace fs = std::filesystem;
 

@@ -7,7 +7,7 @@
 #include "mutants/mutants.hpp"
 #include "cosim/cosim.hpp"
 #include "mutants/proof_steps.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace hc::mutants {
 

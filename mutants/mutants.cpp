@@ -15,7 +15,7 @@
 #include "cosim/cosim.hpp"
 #include "model/harris/harris_pkg.hpp"
 #include "mutants/proof_steps.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace hc::mutants {
 

@@ -29,7 +29,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 #include "model/harris/harris_pkg.hpp"
 #include "mutation/vhdl_mutants.hpp"
 

@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 
 namespace hc::mutate {
 

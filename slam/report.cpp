@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slam/slam.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace fs = std::filesystem;
 

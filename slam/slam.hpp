@@ -17,7 +17,7 @@
 #pragma once
 
 #include "stereo/stereo.hpp"
-#include "util/errors.hpp"
+#include "io/util/errors.hpp"
 #include <Eigen/Core>
 #include <Eigen/Dense>
 

@@ -14,7 +14,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 #include "sweep/sweep_config.hpp"
 
 namespace fs = std::filesystem;

@@ -19,7 +19,7 @@
 #include "model/harris/sobel_x.hpp"
 #include "model/harris/sobel_y.hpp"
 #include "model/harris/threshold.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;

@@ -7,7 +7,7 @@
 
 #include "cosim/cosim.hpp"
 #include "sweep/ranges.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace fs = std::filesystem;
 

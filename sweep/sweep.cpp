@@ -25,10 +25,10 @@
 
 #include "cosim/cosim.hpp"
 #include "cosim/verilator/verilate.hpp"
-#include "frames/frames.hpp"
-#include "regress/golden.hpp"
+#include "io/frames/frames.hpp"
+#include "golden/golden.hpp"
 #include "model/harris/formats_json.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 #include "sweep/pareto.hpp"
 #include "sweep/sweep_report.hpp"
 

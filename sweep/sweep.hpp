@@ -20,7 +20,7 @@
 #include "sweep/overflow.hpp"
 #include "sweep/ranges.hpp"
 #include "sweep/sweep_config.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace hc::sweep {
 

@@ -11,7 +11,7 @@
 
 #include "landmarks/landmarks.hpp"
 #include "model/harris/formats_json.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace hc::sweep {
 

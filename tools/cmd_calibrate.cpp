@@ -12,9 +12,9 @@
 
 #include "calib/calib.hpp"
 #include "tools/commands.hpp"
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace fs = std::filesystem;
 

@@ -6,12 +6,13 @@
 
 #include <fmt/format.h>
 
-#include "cluster/cluster.hpp"
+#include "io/cluster/cluster.hpp"
 #include "eval/evaluate.hpp"
 #include "eval/sequences.hpp"
-#include "frames/frames.hpp"
-#include "jobs/jobs.hpp"
+#include "io/frames/frames.hpp"
+#include "tools/jobs/jobs.hpp"
 #include "tools/commands.hpp"
+#include "tools/frame_source.hpp"
 #include "tools/runner_flags.hpp"
 
 namespace fs = std::filesystem;
@@ -54,8 +55,8 @@ void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
     j.source = eval::source_name(eval::parse_source(o.source));
     j.kitti = kitti;
     j.sequences = o.sequences.empty() ? std::vector<std::string>{o.sequence} : eval::parse_sequences(o.sequences);
-    if (!o.frames.empty()) j.pairs = util::parse_range(o.frames, "--frames");
-    j.pairs_flag = "--frames " + (o.frames.empty() ? std::string("(all)") : o.frames);
+    if (!o.frames.empty()) j.pairs = util::parse_range(o.frames, "--pairs");
+    j.pairs_flag = "--pairs " + (o.frames.empty() ? std::string("(all)") : o.frames);
     j.ablation = o.ablation;
     j.shards = o.sharded ? o.runner.shards : 0;
     // a shard is one process on one core unless --threads says otherwise
@@ -75,7 +76,7 @@ void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
     eval::Report rep = jobs::eval_report(merged);
     rep.command = fmt::format("harris-cosim eval --source {} --kitti {} --sequences {}{}{} --out {}", j.source,
                               kitti.string(), o.sequences.empty() ? o.sequence : o.sequences,
-                              o.frames.empty() ? "" : " --frames " + o.frames, o.ablation ? "" : " --no-ablation", o.out);
+                              o.frames.empty() ? "" : " --pairs " + o.frames, o.ablation ? "" : " --no-ablation", o.out);
     fs::create_directories(o.out);
     eval::write_plot(o.out, rep);
     eval::write_reports(o.out, rep);
@@ -96,8 +97,8 @@ void run_eval(const EvalOptions& o) {
     }
     eval::Request r;
     r.source = eval::parse_source(o.source);
-    if (!o.frames.empty()) r.pairs = util::parse_range(o.frames, "--frames");
-    r.pairs_flag = "--frames " + (o.frames.empty() ? std::string("(all)") : o.frames);
+    if (!o.frames.empty()) r.pairs = util::parse_range(o.frames, "--pairs");
+    r.pairs_flag = "--pairs " + (o.frames.empty() ? std::string("(all)") : o.frames);
     r.overlays = parse_list(o.overlay);
     r.kitti = frames::kitti_root(o.kitti, o.data);   // none: the built-in stream
     r.sequence = o.sequence;
@@ -106,7 +107,7 @@ void run_eval(const EvalOptions& o) {
     r.ablation = o.ablation;
     r.command = fmt::format("harris-cosim eval --source {}{}{} --out {}", o.source,
                             r.kitti.empty() ? "" : " --kitti " + r.kitti.string() + " --sequence " + o.sequence,
-                            o.frames.empty() ? "" : " --frames " + o.frames, o.out);
+                            o.frames.empty() ? "" : " --pairs " + o.frames, o.out);
     const eval::Report rep = eval::evaluate(r);
     std::fprintf(stderr, "eval: %s: recall %.6f precision %.6f (TP %llu FP %llu FN %llu) in %.2f s; report in %s\n",
                  rep.source.c_str(), rep.total.recall(), rep.total.precision(), (unsigned long long)rep.total.tp,
@@ -124,10 +125,10 @@ void add_eval_command(CLI::App& app) {
     cmd->add_option("--sequence", o->sequence, "KITTI sequence")->capture_default_str();
     cmd->add_option("--sequences", o->sequences,
                     "KITTI sequences, each from its own reset: a range 00-21 or a list 00,01,05 (per-sequence rows "
-                    "and the total; --frames applies to each)");
+                    "and the total; --pairs applies to each)");
     cmd->add_option("--source", o->source, "corner source: spec, cycle or rtl")->capture_default_str();
     cmd->add_option("--out", o->out, "output directory")->capture_default_str();
-    cmd->add_option("--frames", o->frames, "stereo pair range a:b (b excluded)");
+    add_pair_range_option(cmd, o->frames, "stereo pair range a:b of each sequence (b excluded)");
     cmd->add_option("--overlay", o->overlay, "stream frames to draw, e.g. 2,3");
     cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")->check(whole_number(0));
     cmd->add_option("--data", o->data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");

@@ -1,10 +1,10 @@
 // cmd_golden.cpp: `harris-cosim golden`: regenerates the committed reference results in
 // golden/ from the cycle model, or checks the model against them (--check). The files are
-// described in regress/golden.hpp.
+// described in golden/golden.hpp.
 #include <cstdio>
 #include <filesystem>
 
-#include "regress/golden.hpp"
+#include "golden/golden.hpp"
 #include "tools/commands.hpp"
 
 namespace hc::tools {

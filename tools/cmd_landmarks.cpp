@@ -13,12 +13,13 @@
 
 #include <fmt/format.h>
 
-#include "jobs/jobs.hpp"
+#include "tools/jobs/jobs.hpp"
 #include "tools/commands.hpp"
+#include "tools/frame_source.hpp"
 #include "tools/runner_flags.hpp"
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 #include "landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
@@ -56,7 +57,7 @@ std::pair<int, int> pair_range(const std::string& s) {
         if (a < 0 || b <= a) throw std::invalid_argument(s);
         return {a, b};
     } catch (const std::exception&) {
-        throw InputError("--frames '" + s + "' is not a stereo pair range a:b with 0 <= a < b");
+        throw InputError("--pairs '" + s + "' is not a stereo pair range a:b with 0 <= a < b");
     }
 }
 
@@ -398,7 +399,7 @@ void add_landmarks_command(CLI::App& app) {
     cmd->add_flag("--no-truth", o->no_truth, "accept Middlebury scenes without disp1.png (e.g. third/): no ground-truth scoring");
     cmd->add_option("--kitti", o->kitti, "KITTI odometry root holding sequences/ (default: <data>/kitti)");
     cmd->add_option("--sequence", o->sequence, "KITTI sequence")->capture_default_str();
-    cmd->add_option("--frames", o->frames, "KITTI stereo pair range a:b (b excluded)")->capture_default_str();
+    add_pair_range_option(cmd, o->frames, "KITTI stereo pair range a:b (b excluded; default " + o->frames + ")");
     cmd->add_option("--calib", o->calib,
                     "a rig's calibration (harris-cosim calibrate's calib.yml/.json, or a calib.txt of rectified images): "
                     "run on its unrectified pairs --left/--right, keypoints undistorted and rectified (cv::undistortPoints)");

@@ -7,10 +7,10 @@
 
 #include <fmt/format.h>
 
-#include "frames/frames.hpp"
-#include "jobs/jobs.hpp"
+#include "io/frames/frames.hpp"
+#include "tools/jobs/jobs.hpp"
 #include "mutants/mutants.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace hc::tools {
 

@@ -2,7 +2,7 @@
 // or writes its Markdown table (docs/mutation-smoke.md).
 #include <cstdio>
 
-#include "jobs/jobs.hpp"
+#include "tools/jobs/jobs.hpp"
 #include "mutate/mutate.hpp"
 #include "tools/cmd_mutants.hpp"
 #include "tools/commands.hpp"

@@ -10,7 +10,7 @@
 #include "sweep/ranges.hpp"
 #include "sweep/sweep_config.hpp"
 #include "tools/commands.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace hc::tools {
 
@@ -32,7 +32,7 @@ void add_ranges_command(CLI::App& app) {
         "Each register is proven (cannot wrap), wraps (witness window) or open (bound, best value reached).\n"
         "z3 is limited by its resource limit (rlimit), so verdicts do not depend on the machine's speed.");
     cmd->add_option("--config", o->config, "JSON file of bit widths and shifts (default: the thesis's)");
-    cmd->add_option("--spec", o->spec, "sweep spec (configs/bit-widths.json): every configuration in it");
+    cmd->add_option("--spec", o->spec, "sweep spec (sweep/configs/bit-widths.json): every configuration in it");
     cmd->add_option("--witnesses", o->witnesses, "write each witness window as a PGM stimulus and its --config file here");
     cmd->add_option("--set-dir", o->set_dir, "print the witnesses' regression-set lines relative to this directory (default: golden)")
         ->capture_default_str();

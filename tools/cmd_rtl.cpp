@@ -12,7 +12,7 @@
 #include "model/harris/harris_top.hpp"
 #include "tools/commands.hpp"
 #include "tools/frame_source.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace hc::tools {
 

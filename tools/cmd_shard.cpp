@@ -2,8 +2,8 @@
 // local runner's processes and the Slurm array tasks execute), and a status view.
 #include <cstdio>
 
-#include "cluster/cluster.hpp"
-#include "jobs/jobs.hpp"
+#include "io/cluster/cluster.hpp"
+#include "tools/jobs/jobs.hpp"
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
 

@@ -12,10 +12,10 @@
 
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
-#include "jobs/jobs.hpp"
-#include "frames/frames.hpp"
+#include "tools/jobs/jobs.hpp"
+#include "io/frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 #include "landmarks/landmarks.hpp"
 #include "slam/landmark_frames.hpp"
 #include "slam/slam.hpp"

@@ -11,13 +11,13 @@
 #include <fmt/format.h>
 
 #include "cosim/cosim.hpp"
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 #include "sweep/sweep.hpp"
-#include "jobs/jobs.hpp"
+#include "tools/jobs/jobs.hpp"
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
 #include "sweep/sweep_report.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace fs = std::filesystem;
 
@@ -118,7 +118,7 @@ void add_sweep_command(CLI::App& app) {
         "With --runner or --shards the configurations run in shards (run directory --run-dir, default <out>/run), then the RTL\n"
         "checks of the merged Pareto front, one shard per check (run directory <run-dir>/checks); --shards counts the\n"
         "configurations' shards only.");
-    s->add_option("--config", c->config, "JSON sweep spec (configs/*.json; see sweep/sweep_config.hpp)")->required();
+    s->add_option("--config", c->config, "JSON sweep spec (sweep/configs/*.json; see sweep/sweep_config.hpp)")->required();
     s->add_option("--out", c->out, "output directory (sweep.md, sweep.csv, sweep.json, pareto.png)")->capture_default_str();
     s->add_option("--cache", c->cache, "synthesis/RTL-check cache (else $HARRIS_COSIM_SWEEP_CACHE or <build>/sweep-cache)");
     s->add_option("--kitti", c->kitti, "KITTI odometry root (holds sequences/NN); default <data>/kitti");

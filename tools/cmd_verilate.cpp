@@ -11,10 +11,10 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "cluster/cluster.hpp"
+#include "io/cluster/cluster.hpp"
 #include "cosim/verilator/verilate.hpp"
 #include "eval/sequences.hpp"
-#include "jobs/jobs.hpp"
+#include "tools/jobs/jobs.hpp"
 #include "model/harris/formats_json.hpp"
 #include "tools/commands.hpp"
 #include "tools/frame_source.hpp"

@@ -1,7 +1,7 @@
 // commands.hpp: the subcommands of harris-cosim. Each lives in its own cmd_*.cpp and adds
 // itself to the app with add_X_command; its callback parses nothing itself beyond its flags,
 // calls a library through its typed API and prints. A failure is an exception of the kind
-// util/errors.hpp lists (MismatchError, InputError, SimulatorError, TranslationFault,
+// io/util/errors.hpp lists (MismatchError, InputError, SimulatorError, TranslationFault,
 // InternalError); main (harris_cosim.cpp) maps each kind to its exit status.
 #pragma once
 

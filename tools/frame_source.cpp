@@ -18,4 +18,9 @@ void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o) {
     cmd->add_option("--seed", o.seed, "seed of random patterns")->capture_default_str();
 }
 
+void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string& help) {
+    CLI::Option* pairs = cmd->add_option("--pairs", range, help);
+    cmd->add_option("--frames", range, "the older name of --pairs (the same range a:b)")->excludes(pairs);
+}
+
 }  // namespace hc::tools

@@ -1,6 +1,6 @@
 // harris-cosim: co-simulation, evaluation and exploration of the Harris co-processor.
 //
-// The one place where failures become exit statuses (util/errors.hpp):
+// The one place where failures become exit statuses (io/util/errors.hpp):
 //   0 pass, 1 mismatch, 2 bad input (including every flag error CLI11 reports),
 //   3 simulator failure, 4 translation fault, 5 internal fault.
 #include <cstdio>
@@ -8,7 +8,7 @@
 
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
-#include "util/errors.hpp"
+#include "io/util/errors.hpp"
 
 namespace {
 int report(const char* kind, const std::exception& e, int status) {

@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "jobs/jobs.hpp"
-#include "util/errors.hpp"
+#include "tools/jobs/jobs.hpp"
+#include "io/util/errors.hpp"
 
 namespace hc::tools {
 

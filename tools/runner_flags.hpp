@@ -10,7 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cluster/cluster.hpp"
+#include "io/cluster/cluster.hpp"
 
 namespace hc::tools {
 

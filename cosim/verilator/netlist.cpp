@@ -15,7 +15,7 @@
 
 #include "cosim/cosim.hpp"
 #include "cosim/verilator/hcvl_abi.h"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 // Tool paths and directories come from cosim/verilator/CMakeLists.txt (find_program).
 #ifndef HCVL_GHDL

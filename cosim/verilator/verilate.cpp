@@ -4,7 +4,7 @@
 #include <ostream>
 
 #include "model/driver/host_driver.hpp"
-#include "util/errors.hpp"
+#include "io/util/errors.hpp"
 
 namespace fs = std::filesystem;
 

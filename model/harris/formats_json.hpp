@@ -11,7 +11,7 @@
 #include <string>
 
 #include "model/harris/harris_pkg.hpp"
-#include "util/errors.hpp"
+#include "io/util/errors.hpp"
 
 namespace hc {
 

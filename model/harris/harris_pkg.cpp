@@ -4,7 +4,7 @@
 #include <string>
 
 #include "model/fixed/word.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace hc {
 

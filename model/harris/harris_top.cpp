@@ -1,5 +1,5 @@
 // harris_top.cpp: HarrisTop chooses its instance of the cycle model (harris/harris_top_t.hpp):
-// the one compiled for its Formats when kCompiledFormats (generated from configs/*.json)
+// the one compiled for its Formats when kCompiledFormats (generated from sweep/configs/*.json)
 // lists them, else the one that reads the widths at run time.
 #include "model/harris/harris_top.hpp"
 

@@ -7,7 +7,7 @@
 // HarrisTop is the model's one public type. The model itself is HarrisTopT
 // (harris/harris_top_t.hpp), written process by process after harris_top.vhd and templated
 // on where its formats come from: HarrisTop picks, at construction, an instance compiled
-// for its Formats (the thesis formats and every configuration in configs/, where each width
+// for its Formats (the thesis formats and every configuration in sweep/configs/, where each width
 // is a constant) or else the instance that reads the widths at run time. Both compute the
 // same registers (tests/model/harris_top_specialisation_test.cpp).
 #pragma once
@@ -119,7 +119,7 @@ private:
 
 /// True when an instance of the cycle model is compiled for these formats.
 bool has_compiled_instance(const Formats& f);
-/// The formats with a compiled instance: the thesis formats, then configs/*.json in order.
+/// The formats with a compiled instance: the thesis formats, then sweep/configs/*.json in order.
 std::vector<Formats> compiled_formats();
 
 }  // namespace hc

@@ -4,7 +4,7 @@
 #include <random>
 #include <sstream>
 
-#include "util/errors.hpp"
+#include "io/util/errors.hpp"
 
 namespace hc {
 

@@ -1,5 +1,5 @@
 // calib_kitti_test.cpp: the KITTI reader on the sequence 01 calib.txt of the data directory
-// (frames/frames.hpp data_dir). Exits 77 (CTest: skipped) with a message when it is absent.
+// (io/frames/frames.hpp data_dir). Exits 77 (CTest: skipped) with a message when it is absent.
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "calib/calib.hpp"
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 
 using namespace hc::calib;
 

@@ -17,7 +17,7 @@
 #include <iterator>
 #include <thread>
 
-#include "cluster/cluster.hpp"
+#include "io/cluster/cluster.hpp"
 #include "tests/cluster/squares_job.hpp"
 
 extern char** environ;

@@ -9,7 +9,7 @@
 #include <string>
 #include <thread>
 
-#include "cluster/cluster.hpp"
+#include "io/cluster/cluster.hpp"
 #include "tests/cluster/squares_job.hpp"
 
 int main(int argc, char** argv) {

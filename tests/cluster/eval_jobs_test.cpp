@@ -17,10 +17,10 @@
 
 #include <fmt/format.h>
 
-#include "cluster/cluster.hpp"
+#include "io/cluster/cluster.hpp"
 #include "eval/sequences.hpp"
-#include "frames/frames.hpp"
-#include "jobs/jobs.hpp"
+#include "io/frames/frames.hpp"
+#include "tools/jobs/jobs.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/harris/harris_top.hpp"
 #include "tests/cluster/standin_kitti.hpp"

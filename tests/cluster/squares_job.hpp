@@ -1,7 +1,7 @@
 // squares_job.hpp: the "squares" job kind of the runner tests (see cluster_test_worker.cpp).
 #pragma once
 
-#include "cluster/cluster.hpp"
+#include "io/cluster/cluster.hpp"
 
 namespace hc::cluster::test {
 

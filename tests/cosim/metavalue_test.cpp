@@ -9,7 +9,7 @@
 
 #include "cosim/cosim.hpp"
 #include "model/image/image.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace fs = std::filesystem;
 using namespace hc;

@@ -14,7 +14,7 @@
 
 #include "eval/eval.hpp"
 #include "eval/evaluate.hpp"
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 
 using namespace hc;
 

@@ -26,7 +26,7 @@
 
 #include "cosim/verilator/netlist.hpp"
 #include "eval/sequences.hpp"
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 
 using namespace hc;
 

@@ -11,8 +11,8 @@
 
 #include "eval/eval.hpp"
 #include "eval/report.hpp"
-#include "frames/frames.hpp"
-#include "util/errors.hpp"
+#include "io/frames/frames.hpp"
+#include "io/util/errors.hpp"
 #include "model/spec/opencv_reference.hpp"
 #include "model/spec/spec_model.hpp"
 

@@ -7,7 +7,7 @@ foreach(run none two)
   if(run STREQUAL "two")
     set(extra --overlay 2)
   endif()
-  execute_process(COMMAND ${CLI} eval --source spec --frames 0:2 --no-ablation --threads 2 --out ${out} ${extra}
+  execute_process(COMMAND ${CLI} eval --source spec --pairs 0:2 --no-ablation --threads 2 --out ${out} ${extra}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "eval (${run}) failed with status ${rc}: ${e}")

@@ -10,7 +10,7 @@ fi
 out=$(mktemp -d); trap 'rm -rf "$out"' EXIT
 counts() { sed -n 's/.*(TP \([0-9]*\) FP \([0-9]*\) FN \([0-9]*\)).*/TP \1 FP \2 FN \3/p' "$1" | tail -1; }
 for src in cycle rtl; do
-  "$cli" eval --data "$data" --source $src --frames 0:3 --no-ablation --out "$out/$src" > "$out/$src.log" 2>&1 || {
+  "$cli" eval --data "$data" --source $src --pairs 0:3 --no-ablation --out "$out/$src" > "$out/$src.log" 2>&1 || {
     cat "$out/$src.log"; echo "FAIL: eval --source $src exited non-zero"; exit 1; }
 done
 c=$(counts "$out/cycle.log"); r=$(counts "$out/rtl.log")

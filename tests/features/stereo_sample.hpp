@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 
 namespace hc::features_test {
 

@@ -6,14 +6,14 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "cluster/cluster.hpp"
-#include "frames/frames.hpp"
+#include "io/cluster/cluster.hpp"
+#include "io/frames/frames.hpp"
 #include "landmarks/landmarks.hpp"
 #include "model/harris/formats_json.hpp"
 #include "mutate/mutate.hpp"
 #include "slam/slam.hpp"
 #include "sweep/sweep_config.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace fs = std::filesystem;
 
@@ -100,7 +100,7 @@ std::vector<Target> targets(const fs::path& src) {
 
     // --- sweep specs (sweep --config) ------------------------------------------------------
     t.push_back({"sweep-spec", "sweep --config spec", "spec.json",
-                 {file_or_empty(src / "configs/bit-widths.json"),
+                 {file_or_empty(src / "sweep/configs/bit-widths.json"),
                   R"({"name":"s","base":{"m_drop":4},"grid":{"m_drop":[3,4],"bf_drop":[2]},"configs":[{"name":"a"}],)"
                   R"("cost":{"img_width":64,"img_height":36},"trust":{"rtl":false,"verilator_pairs":"0:2",)"
                   R"("verilator_gate":true},"data":{"sequence":"01","pairs":"0:3"}})"},

@@ -7,7 +7,7 @@
 
 #include <cstring>
 
-#include "jobs/jobs.hpp"
+#include "tools/jobs/jobs.hpp"
 
 using namespace hc;
 

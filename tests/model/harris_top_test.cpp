@@ -7,7 +7,7 @@
 
 #include "model/driver/host_driver.hpp"
 #include "model/harris/harris_top.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 using namespace hc;
 

@@ -16,7 +16,7 @@
 
 #include "model/harris/harris_pkg.hpp"
 #include "model/harris/observation.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 using namespace hc;
 
@@ -44,7 +44,7 @@ std::string defaults_drift(const std::string& pkg) {
             out += std::string("DEF_") + f.generic + " is " + it->second.first + ", the table says " + f.vhdl_type + "; ";
     }
     // the testbenches take their generic lists from the DEF_* constants in file order
-    // (cmake/vhdl_generics.cmake): that order must be generics()'s
+    // (tools/cmake/vhdl_generics.cmake): that order must be generics()'s
     std::vector<std::string> order, want;
     for (auto it = std::sregex_iterator(pkg.begin(), pkg.end(), def); it != std::sregex_iterator(); ++it)
         order.push_back((*it)[1]);

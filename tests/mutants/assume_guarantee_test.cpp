@@ -7,7 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "mutants/mutants.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 using namespace hc;
 

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 
-#include "frames/frames.hpp"
-#include "jobs/jobs.hpp"
+#include "io/frames/frames.hpp"
+#include "tools/jobs/jobs.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/harris/find_max.hpp"
 #include "model/harris/harris_top.hpp"

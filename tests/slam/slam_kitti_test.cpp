@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "frames/frames.hpp"
+#include "io/frames/frames.hpp"
 #include "slam/landmark_frames.hpp"
 #include "slam/slam.hpp"
 

@@ -12,7 +12,7 @@
 #include "model/harris/m_products.hpp"
 #include "model/harris/sobel_x.hpp"
 #include "model/harris/sobel_y.hpp"
-#include "regress/golden.hpp"
+#include "golden/golden.hpp"
 #include "sweep/overflow.hpp"
 #include "sweep/ranges.hpp"
 #include "sweep/sweep_config.hpp"
@@ -120,9 +120,9 @@ TEST_CASE("the thesis configuration: every register proven by the interval bound
     CHECK(r.at(Reg::response).held == Interval{-(std::int64_t{1} << 31), (std::int64_t{1} << 31) - 1});
 }
 
-TEST_CASE("configs/bit-widths.json: the tight points are proven, each too-narrow point wraps with a witness the audit sees",
+TEST_CASE("sweep/configs/bit-widths.json: the tight points are proven, each too-narrow point wraps with a witness the audit sees",
           "[model][sweep][ranges]") {
-    const SweepSpec spec = load_sweep_spec(std::filesystem::path(HC_SOURCE_DIR) / "configs" / "bit-widths.json");
+    const SweepSpec spec = load_sweep_spec(std::filesystem::path(HC_SOURCE_DIR) / "sweep" / "configs" / "bit-widths.json");
     int tight = 0;
     for (const auto& c : spec.configs) {
         if (c.name.rfind("tight-", 0) != 0) continue;

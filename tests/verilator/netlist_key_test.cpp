@@ -7,7 +7,7 @@
 #include "cosim/cosim.hpp"
 #include "cosim/verilator/gate.hpp"
 #include "cosim/verilator/netlist.hpp"
-#include "util/util.hpp"
+#include "io/util/util.hpp"
 
 namespace fs = std::filesystem;
 using namespace hc;

@@ -1,0 +1,153 @@
+// frames.hpp: the frames a run streams through the design: image files, a KITTI-layout
+// sequence or a synthetic pattern, loaded with errors that name the input.
+//
+// Errors: hc::InputError (io/util/errors.hpp) naming the file, directory or value.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <future>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/image/image.hpp"
+#include "io/util/util.hpp"
+
+namespace hc::frames {
+
+/// Reads an 8-bit image (grey, or colour converted to grey). Throws InputError naming the
+/// file when it is missing, unreadable or not 8-bit.
+Image load_image(const std::filesystem::path& p);
+
+/// A centred crop of `width` x `height` (0 = keep). Throws InputError if larger than img.
+Image crop(const Image& img, int width, int height, const std::string& what);
+
+/// The data directory: `flag_value` (--data), else $HARRIS_COSIM_DATA, else ../shared/data
+/// next to the source tree (HC_DEFAULT_DATA_DIR at build time). Empty if none exists.
+std::optional<std::filesystem::path> data_dir(const std::string& flag_value);
+
+/// The KITTI odometry root (the folder holding sequences/) a command reads: `kitti_flag`
+/// (--kitti) when given, else data_dir(data_flag)/kitti when that is a directory; empty when
+/// neither (the one rule of every command).
+std::filesystem::path kitti_root(const std::string& kitti_flag, const std::string& data_flag);
+/// kitti_root, or InputError "`needs`: give --kitti DIR ... or --data DIR ..." when empty.
+std::filesystem::path require_kitti_root(const std::string& kitti_flag, const std::string& data_flag,
+                                         const std::string& needs);
+
+/// A KITTI odometry sequence: sequences/NN/image_0 (left) and image_1 (right).
+struct KittiSequence {
+    std::filesystem::path root;   ///< .../sequences/NN
+    std::vector<std::filesystem::path> left, right;   ///< sorted; right may be shorter
+    int pairs() const { return static_cast<int>(std::min(left.size(), right.size())); }
+};
+/// Throws InputError when the directory is not a KITTI sequence.
+KittiSequence open_kitti(const std::filesystem::path& kitti_dir, const std::string& sequence);
+
+/// The thesis's evaluation stream L0 R0 L1 R1 ... for stereo pairs [r.first, r.last).
+/// Throws InputError naming `what` (e.g. "--pairs 50:60") and the last pair when the range
+/// reaches past the sequence's stereo pairs; an open end (util::parse_range's) is clipped.
+std::vector<std::filesystem::path> stereo_stream(const KittiSequence& s, util::Range r, const std::string& what,
+                                                 int open_end = 1 << 30);
+
+/// The frames of one evaluation: a stream of stereo pairs (2 frames each).
+struct Stream {
+    std::vector<Image> frames;         ///< L R L R ...
+    std::vector<std::string> names;    ///< e.g. "01/L000003"
+    std::vector<int> pair_index;       ///< stereo pair number of each frame
+    std::string description;
+};
+/// Loads the stereo pairs `r` of a KITTI sequence (images in parallel on `threads`, 0: all
+/// cores). Throws InputError when fewer than `min_pairs` pairs result or frames differ in size.
+Stream load_kitti_stream(const std::filesystem::path& kitti_dir, const std::string& sequence, util::Range r,
+                         const std::string& what, int threads, int min_pairs = 1);
+
+/// The frames of a stream loaded as a run reaches them: names, pair numbers and the size
+/// (from frame 0) up front, each frame's pixels when first asked for, kept until released,
+/// so a run over a long stream holds only the frames it is working on.
+class FrameFeed {
+public:
+    /// `load(k)` gives frame k (0 <= k < names.size()); it may throw InputError naming the file.
+    FrameFeed(std::vector<std::string> names, std::vector<int> pair_index, std::string description,
+              std::function<Image(int)> load);
+    /// The frames of an in-memory stream (referenced, not copied: `s` must outlive the feed).
+    static FrameFeed of(const Stream& s);
+
+    int size() const { return static_cast<int>(names_.size()); }
+    int width() const { return width_; }
+    int height() const { return height_; }
+    const std::vector<std::string>& names() const { return names_; }
+    const std::vector<int>& pair_index() const { return pair_index_; }
+    const std::string& description() const { return description_; }
+    void describe(std::string d) { description_ = std::move(d); }
+
+    /// Frame k, loaded now unless held or being loaded (then waited for; thread-safe; each
+    /// frame is loaded once however many threads ask). InputError when it differs in size
+    /// from frame 0 (or the load's own, naming the file); std::out_of_range outside the stream.
+    std::shared_ptr<const Image> frame(int k);
+    /// Starts loading frame k on a thread of its own, unless it is held, being loaded or
+    /// outside the stream, so that a later frame(k) finds it ready; a failed load is
+    /// reported by that frame(k). Loads started and not finished are waited for when the
+    /// feed is destroyed.
+    void prefetch(int k);
+    /// Drops the frames below k from the feed (those still in use stay alive with their users).
+    void release_below(int k);
+    /// Frames loaded so far (a frame dropped and asked for again counts twice).
+    long loads() const;
+
+private:
+    using Loaded = std::shared_future<std::shared_ptr<const Image>>;
+    /// What the feed and its loading threads share (so the feed may be moved while one runs).
+    struct State {
+        std::function<Image(int)> load;
+        std::vector<std::string> names;
+        int width = 0, height = 0;
+        std::mutex mu;
+        std::map<int, Loaded> held;
+        long loads = 0;
+    };
+    /// Frame k's pixels checked against frame 0's size.
+    static std::shared_ptr<const Image> load_checked(State& st, int k);
+    std::vector<std::string> names_;
+    std::vector<int> pair_index_;
+    std::string description_;
+    int width_ = 0, height_ = 0;
+    std::shared_ptr<State> state_;
+    std::vector<std::future<void>> loading_;   ///< prefetches started (finished ones pruned)
+};
+/// Stereo pairs `r` of a KITTI sequence as a feed (the same checks, names and description as
+/// load_kitti_stream, each image read when reached).
+FrameFeed open_kitti_feed(const std::filesystem::path& kitti_dir, const std::string& sequence, util::Range r,
+                          const std::string& what, int min_pairs = 1);
+
+/// Which frames a command streams (the command line's frame-source flags).
+struct FrameSource {
+    std::vector<std::string> images;   ///< image files, streamed in order
+    std::string pattern;               ///< synthetic pattern name
+    std::string size;                  ///< WxH: pattern size, or centred crop of images
+    int frames = 0;                    ///< number of frames (patterns; first N images or pairs)
+    std::string kitti;                 ///< KITTI odometry root (holding sequences/)
+    std::string sequence = "01";
+    std::string pairs;                 ///< a:b stereo pairs of the KITTI sequence
+    std::string data;                  ///< data directory (else $HARRIS_COSIM_DATA, ../shared/data)
+    std::uint32_t seed = 1;
+};
+
+struct LoadedFrames {
+    std::vector<Image> frames;
+    std::vector<std::string> names;
+    std::string description;
+};
+
+/// Loads the frames; throws InputError naming the bad input (including a stream the design
+/// cannot be built for). With nothing chosen, three 64x36 frames of the `blocks` pattern.
+LoadedFrames load_frames(const FrameSource& o);
+
+/// Pointers to the frames, in order (what HostDriver takes).
+std::vector<const Image*> pointers(const std::vector<Image>& frames);
+
+}  // namespace hc::frames

@@ -1,0 +1,88 @@
+// mutants_job.cpp: the job kind "mutants": shards of generated mutants, each judged by
+// mutants::run_mutant (co-simulation, then a proof of the survivors).
+#include <cstdio>
+
+#include "cosim/cosim.hpp"
+#include "tools/jobs/jobs.hpp"
+#include "io/util/util.hpp"
+
+namespace hc::jobs {
+
+namespace {
+
+using mutants::rtl_hash;
+
+json stimuli_json(const std::vector<mutants::Stimulus>& v) {
+    json a = json::array();
+    for (const auto& s : v) a.push_back(mutants::to_json(s));
+    return a;
+}
+
+json run_shard_mutants(const json& common, const json& shard, std::size_t index) {
+    if (common.at("rtl_hash").get<std::string>() != rtl_hash())
+        throw cluster::ClusterInputError("shard " + std::to_string(index) +
+                                         ": rtl/ changed since this run's manifest was written; start a new run");
+    mutants::Options o;
+    o.quick = mutants::stimulus_from_json(common.at("quick"));
+    for (const auto& s : common.at("longer")) o.longer.push_back(mutants::stimulus_from_json(s));
+    o.prove = common.at("prove").get<bool>();
+    o.proof_timeout_s = common.at("proof_timeout_s").get<int>();
+    o.progress = [](const std::string& s) { std::fprintf(stderr, "[mutants] %s\n", s.c_str()); };
+    const auto all = mutants::generate_all();
+    json out = json::array();
+    for (const auto& n : shard.at("names")) {
+        const std::string name = n.get<std::string>();
+        const mutation::Mutant* m = nullptr;
+        for (const auto& c : all)
+            if (c.name() == name) m = &c;
+        if (!m) throw cluster::ClusterInputError("shard " + std::to_string(index) + ": no generated mutant '" + name + "'");
+        std::fprintf(stderr, "[mutants] %s ...\n", name.c_str());
+        const mutants::Result r = mutants::run_mutant(*m, o);
+        std::fprintf(stderr, "[mutants] %s: %s%s%s (%.1f s)\n", name.c_str(), r.fate.c_str(),
+                     r.killed_by.empty() ? "" : (" by " + r.killed_by).c_str(),
+                     r.detail.empty() ? "" : (", " + r.detail).c_str(), r.seconds);
+        out.push_back(mutants::to_json(r));
+    }
+    return out;
+}
+
+json merge_mutants(const json&, const std::vector<json>& data) {
+    json results = json::array();
+    for (const auto& d : data)
+        for (const auto& r : d) results.push_back(r);
+    return {{"results", results}};
+}
+
+}  // namespace
+
+cluster::Manifest mutants_manifest(const MutantsJob& p) {
+    cluster::Manifest m;
+    m.job = "mutants";
+    m.common = {{"rtl_hash", rtl_hash()},
+                {"quick", mutants::to_json(p.quick)},
+                {"longer", stimuli_json(p.longer)},
+                {"prove", p.prove},
+                {"proof_timeout_s", p.proof_timeout_s}};
+    const long n = static_cast<long>(p.names.size());
+    if (n == 0) return m;
+    const int k = p.shards > 0 ? p.shards : static_cast<int>((n + std::max(1, p.per_shard) - 1) / std::max(1, p.per_shard));
+    for (const auto& [first, last] : cluster::split_range(0, n, k)) {
+        if (first >= last) continue;
+        json names = json::array();
+        for (long i = first; i < last; ++i) names.push_back(p.names[static_cast<std::size_t>(i)]);
+        m.shards.push_back({{"names", names}});
+    }
+    return m;
+}
+
+std::vector<mutants::Result> mutants_results(const json& merged) {
+    std::vector<mutants::Result> v;
+    if (!merged.contains("results") || !merged["results"].is_array())
+        throw cluster::ClusterInputError("merged data of a mutants run has no 'results' list");
+    for (const auto& r : merged["results"]) v.push_back(mutants::result_from_json(r));
+    return v;
+}
+
+void add_mutants_job(cluster::JobRegistry& r) { r.add({"mutants", run_shard_mutants, merge_mutants}); }
+
+}  // namespace hc::jobs
