@@ -237,15 +237,7 @@ json to_json(const Result& r) {
             {"analyse_seconds", r.analyse_seconds},
             {"sim_seconds", r.sim_seconds},
             {"seconds", r.seconds},
-            {"proof",
-             {{"equivalent", r.proof.equivalent},
-              {"method", r.proof.method},
-              {"entity", r.proof.entity},
-              {"script", r.proof.script},
-              {"synth", r.proof.synth},
-              {"output", r.proof.output},
-              {"assumptions", r.proof.assumptions},
-              {"seconds", r.proof.seconds}}}};
+            {"proof", r.proof}};
 }
 
 Result result_from_json(const json& j) {
@@ -270,15 +262,9 @@ Result result_from_json(const json& j) {
         r.analyse_seconds = j.at("analyse_seconds").get<double>();
         r.sim_seconds = j.at("sim_seconds").get<double>();
         r.seconds = j.at("seconds").get<double>();
-        const json& p = j.at("proof");
-        r.proof.equivalent = p.at("equivalent").get<bool>();
-        r.proof.method = p.at("method").get<std::string>();
-        r.proof.entity = p.at("entity").get<std::string>();
-        r.proof.script = p.at("script").get<std::string>();
-        r.proof.synth = p.at("synth").get<std::string>();
-        r.proof.output = p.at("output").get<std::string>();
-        r.proof.assumptions = p.value("assumptions", std::vector<std::string>{});
-        r.proof.seconds = p.at("seconds").get<double>();
+        json p = j.at("proof");
+        if (!p.contains("assumptions")) p["assumptions"] = json::array();   // absent: no assumptions
+        r.proof = p.get<Proof>();
         return r;
     } catch (const json::exception& e) {
         throw InputError(std::string("bad mutant result: ") + e.what());

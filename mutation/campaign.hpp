@@ -89,6 +89,8 @@ struct Proof {
     std::vector<std::string> assumptions;   ///< method "assume-guarantee": the proven guarantees it assumes
     double seconds = 0;
 };
+/// Its JSON (inside a Result's): one key a field, by the field's name.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Proof, equivalent, method, entity, script, synth, output, assumptions, seconds)
 
 /// A mutant's verdict (the header comment says what each means).
 enum class Fate { stillborn, killed, equivalent, equivalent_assuming, surviving };

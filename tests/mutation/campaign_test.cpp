@@ -118,6 +118,23 @@ TEST_CASE("each verdict has one name, in the JSON and the CSV, read back as the 
     CHECK_THROWS_AS(mutation::result_from_json(bad), InputError);
 }
 
+TEST_CASE("a verdict's proof has one key a field; only its assumptions may be absent", "[mutants]") {
+    mutation::Result r;
+    r.proof.assumptions = {"one: [0, 1]"};
+    r.proof.method = "assume-guarantee";
+    nlohmann::json j = mutation::to_json(r);
+    std::vector<std::string> keys;
+    for (auto it = j.at("proof").begin(); it != j.at("proof").end(); ++it) keys.push_back(it.key());
+    CHECK(keys == std::vector<std::string>{"assumptions", "entity", "equivalent", "method", "output", "script", "seconds",
+                                           "synth"});
+    CHECK(mutation::result_from_json(j).proof.assumptions == r.proof.assumptions);
+    j["proof"].erase("assumptions");
+    CHECK(mutation::result_from_json(j).proof.assumptions.empty());
+    CHECK(mutation::result_from_json(j).proof.method == "assume-guarantee");
+    j["proof"].erase("method");
+    CHECK_THROWS_AS(mutation::result_from_json(j), InputError);
+}
+
 TEST_CASE("the mutants job splits the named mutants into shards in order", "[mutants]") {
     jobs::MutantsJob j;
     for (int i = 0; i < 10; ++i) j.names.push_back("m" + std::to_string(i));
