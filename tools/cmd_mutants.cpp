@@ -9,7 +9,7 @@
 
 #include "io/frames/frames.hpp"
 #include "tools/jobs/jobs.hpp"
-#include "mutants/mutants.hpp"
+#include "mutation/mutation.hpp"
 #include "io/util/util.hpp"
 
 namespace hc::tools {
@@ -69,10 +69,10 @@ std::string command_line(const GeneratedFlags& f) {
 
 /// The proven mutants' scripts, runnable from a folder holding the gold.v and gate.v the
 /// commands in their first lines write.
-void write_proofs(const std::vector<mutants::Result>& rs, const fs::path& dir) {
+void write_proofs(const std::vector<mutation::Result>& rs, const fs::path& dir) {
     for (const auto& r : rs) {
         // a reused verdict has no script here: its file from the run that proved it stays
-        if ((r.fate != "equivalent" && r.fate != "equivalent-assuming") || r.proof.script.empty()) continue;
+        if ((r.fate != mutation::Fate::equivalent && r.fate != mutation::Fate::equivalent_assuming) || r.proof.script.empty()) continue;
         std::string s = "# " + r.name + ": proven equivalent by yosys (" + r.proof.method + ")\n";
         for (const auto& a : r.proof.assumptions) s += "# assuming (proven first): " + a + "\n";
         s += "# gold.v and gate.v (mutant-rtl/: rtl/ with the mutant applied):\n";
@@ -85,18 +85,18 @@ void write_proofs(const std::vector<mutants::Result>& rs, const fs::path& dir) {
                 line += c;
             }
         }
-        util::write_file_atomic(dir / mutants::proof_file_name(r), s + r.proof.script);
+        util::write_file_atomic(dir / mutation::proof_file_name(r), s + r.proof.script);
     }
     // the guarantees the proofs under assumptions assume, each a script of its own
-    if (std::any_of(rs.begin(), rs.end(), [](const mutants::Result& r) { return r.fate == "equivalent-assuming"; }))
-        for (const auto& [name, text] : mutants::guarantee_files()) util::write_file_atomic(dir / name, text);
+    if (std::any_of(rs.begin(), rs.end(), [](const mutation::Result& r) { return r.fate == mutation::Fate::equivalent_assuming; }))
+        for (const auto& [name, text] : mutation::guarantee_files()) util::write_file_atomic(dir / name, text);
 }
 
 /// Writes (or prints) the report, its CSV and the proven mutants' scripts.
-void write_report(const GeneratedFlags& f, const std::vector<mutants::Result>& rs, const mutants::Stimulus& quick,
-                  const std::vector<mutants::Stimulus>& longer, int generated, std::size_t shards, double wall,
+void write_report(const GeneratedFlags& f, const std::vector<mutation::Result>& rs, const mutation::Stimulus& quick,
+                  const std::vector<mutation::Stimulus>& longer, int generated, std::size_t shards, double wall,
                   const std::string& reused = {}) {
-    mutants::ReportInfo info;
+    mutation::ReportInfo info;
     info.command = command_line(f);
     info.quick = quick;
     info.longer = longer;
@@ -112,23 +112,23 @@ void write_report(const GeneratedFlags& f, const std::vector<mutants::Result>& r
         const fs::path md = f.report;
         info.proofs_dir = (md.parent_path().filename() / "mutation-proofs").string();
         write_proofs(rs, md.parent_path() / "mutation-proofs");
-        util::write_file_atomic(fs::path(md).replace_extension(".csv"), mutants::csv(rs, mutants::rtl_hash()));
-        util::write_file_atomic(md, mutants::markdown(rs, info));
+        util::write_file_atomic(fs::path(md).replace_extension(".csv"), mutation::csv(rs, mutation::rtl_hash()));
+        util::write_file_atomic(md, mutation::markdown(rs, info));
     } else {
-        std::printf("%s", mutants::markdown(rs, info).c_str());
+        std::printf("%s", mutation::markdown(rs, info).c_str());
     }
 }
 
 /// The results of the finished shards of the run in `dir`, in order, and the stimuli of its manifest.
 /// `wall`: seconds from the manifest's writing to the last finished shard's result.
-std::vector<mutants::Result> finished_results(const fs::path& dir, mutants::Stimulus& quick,
-                                             std::vector<mutants::Stimulus>& longer, std::size_t& shards,
+std::vector<mutation::Result> finished_results(const fs::path& dir, mutation::Stimulus& quick,
+                                             std::vector<mutation::Stimulus>& longer, std::size_t& shards,
                                              double& wall) {
     const cluster::Manifest m = cluster::read_manifest(dir);
     if (m.job != "mutants") throw InputError("run directory " + dir.string() + " holds a '" + m.job + "' run, not 'mutants'");
-    quick = mutants::stimulus_from_json(m.common.at("quick"));
+    quick = mutation::stimulus_from_json(m.common.at("quick"));
     longer.clear();
-    for (const auto& s : m.common.at("longer")) longer.push_back(mutants::stimulus_from_json(s));
+    for (const auto& s : m.common.at("longer")) longer.push_back(mutation::stimulus_from_json(s));
     shards = m.shards.size();
     std::vector<nlohmann::json> data;
     const auto start = fs::last_write_time(cluster::manifest_path(dir));
@@ -145,8 +145,8 @@ std::vector<mutants::Result> finished_results(const fs::path& dir, mutants::Stim
 /// --reuse-verdicts: the verdicts of `f.reuse` for the selection, the surviving ones and those
 /// proven under assumptions proven again under proven assumptions, `jobs` at a time.
 void run_reusing(const GeneratedFlags& f, const std::vector<mutation::Mutant>& sel, int generated) {
-    const auto old = mutants::results_from_csv(util::read_file(f.reuse, "--reuse-verdicts"), f.reuse, mutants::rtl_hash());
-    const mutants::Reuse u = mutants::reuse_verdicts(old, sel, std::max(1, f.runner.jobs), f.proof_timeout,
+    const auto old = mutation::results_from_csv(util::read_file(f.reuse, "--reuse-verdicts"), f.reuse, mutation::rtl_hash());
+    const mutation::Reuse u = mutation::reuse_verdicts(old, sel, std::max(1, f.runner.jobs), f.proof_timeout,
                                                      [](const std::string& l) { std::fprintf(stderr, "[mutate] %s\n", l.c_str()); });
     const auto& rs = u.results;
     const std::string how = fmt::format(
@@ -157,9 +157,9 @@ void run_reusing(const GeneratedFlags& f, const std::vector<mutation::Mutant>& s
         "passed every stimulus and their unconditional proofs failed on this RTL) were proven again under proven "
         "assumptions by this command, {} at a time, in {:.0f} s of wall time.",
         u.reused, rs.size(), f.reuse, rs.size() - u.reused, std::max(1, f.runner.jobs), u.wall_seconds);
-    write_report(f, rs, mutants::quick_stimulus(), mutants::long_stimuli(frames::data_dir(f.data).value_or(fs::path{})),
+    write_report(f, rs, mutation::quick_stimulus(), mutation::long_stimuli(frames::data_dir(f.data).value_or(fs::path{})),
                  generated, 0, 0, how);
-    const mutants::Tally t = mutants::tally(rs);
+    const mutation::Tally t = mutation::tally(rs);
     std::printf("harris-cosim mutate --generate --reuse-verdicts: %d mutants: %d stillborn, %d killed, %d proven "
                 "equivalent, %d proven equivalent under assumptions, %d surviving; score %.1f %%\n",
                 t.mutants, t.stillborn, t.killed, t.equivalent, t.assuming, t.surviving, 100.0 * t.score());
@@ -169,8 +169,8 @@ void run_reusing(const GeneratedFlags& f, const std::vector<mutation::Mutant>& s
 }  // namespace
 
 void run_generated(const GeneratedFlags& f) {
-    const auto all = mutants::generate_all();
-    const auto sel = mutants::select(all, {f.only, f.classes, f.files});
+    const auto all = mutation::generate_all();
+    const auto sel = mutation::select(all, {f.only, f.classes, f.files});
     if (!f.reuse.empty() && !f.list) {
         if (f.render) throw InputError("--reuse-verdicts and --render do not go together (--render reads a run directory)");
         run_reusing(f, sel, static_cast<int>(all.size()));
@@ -183,13 +183,13 @@ void run_generated(const GeneratedFlags& f) {
     }
     if (f.render) {
         if (f.runner.run_dir.empty()) throw InputError("--render needs --run-dir (the run to render)");
-        mutants::Stimulus quick;
-        std::vector<mutants::Stimulus> longer;
+        mutation::Stimulus quick;
+        std::vector<mutation::Stimulus> longer;
         std::size_t shards = 0;
         double wall = 0;
         const auto rs = finished_results(f.runner.run_dir, quick, longer, shards, wall);
         write_report(f, rs, quick, longer, static_cast<int>(all.size()), shards, wall);
-        const mutants::Tally t = mutants::tally(rs);
+        const mutation::Tally t = mutation::tally(rs);
         std::printf("harris-cosim mutate --generate --render: %d of %zu mutants have a verdict: %d stillborn, %d killed, "
                     "%d proven equivalent, %d proven equivalent under assumptions, %d surviving; score %.1f %%\n",
                     t.mutants, all.size(), t.stillborn, t.killed, t.equivalent, t.assuming, t.surviving,
@@ -201,7 +201,7 @@ void run_generated(const GeneratedFlags& f) {
     if (!f.quick_only) {
         const auto data = frames::data_dir(f.data);
         if (!data) std::fprintf(stderr, "[mutate] no data directory: the KITTI crop stimulus is left out\n");
-        job.longer = mutants::long_stimuli(data ? *data : fs::path{});
+        job.longer = mutation::long_stimuli(data ? *data : fs::path{});
     }
     job.prove = !f.quick_only && !f.no_prove;
     job.proof_timeout_s = f.proof_timeout;
@@ -226,7 +226,7 @@ void run_generated(const GeneratedFlags& f) {
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     write_report(f, rs, job.quick, job.longer, static_cast<int>(all.size()), m.shards.size(), wall);
-    const mutants::Tally t = mutants::tally(rs);
+    const mutation::Tally t = mutation::tally(rs);
     std::printf("harris-cosim mutate --generate: %d mutants: %d stillborn, %d killed, %d proven equivalent, "
                 "%d proven equivalent under assumptions, %d surviving; score %.1f %%\n", t.mutants, t.stillborn, t.killed,
                 t.equivalent, t.assuming, t.surviving, 100.0 * t.score());

@@ -1,9 +1,9 @@
-// cmd_mutate.cpp: `harris-cosim mutate`: the mutation campaign (mutate/mutate.hpp); prints
+// cmd_mutate.cpp: `harris-cosim mutate`: the mutation campaign (mutation/smoke.hpp); prints
 // or writes its Markdown table (docs/mutation-smoke.md).
 #include <cstdio>
 
 #include "tools/jobs/jobs.hpp"
-#include "mutate/mutate.hpp"
+#include "mutation/mutation.hpp"
 #include "tools/cmd_mutants.hpp"
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
@@ -12,7 +12,7 @@ namespace hc::tools {
 
 void add_mutate_command(CLI::App& app) {
     struct Opts {
-        std::string list = std::string(HC_SOURCE_DIR) + "/mutate/mutations.json";
+        std::string list = std::string(HC_SOURCE_DIR) + "/mutation/mutations.json";
         std::string report;
         std::vector<std::string> only;
         GeneratedFlags gen;   ///< gen.runner: the sharding flags of both campaigns
@@ -39,8 +39,8 @@ void add_mutate_command(CLI::App& app) {
         }
         if (o->only.size() > 1) throw InputError("--only takes one mutant id of the hand-written list");
         const std::string only = o->only.empty() ? "" : o->only.front();
-        const mutate::Campaign c = mutate::load_campaign(o->list);
-        mutate::CampaignResult r;
+        const mutation::SmokeList c = mutation::load_smoke_list(o->list);
+        mutation::SmokeResult r;
         const RunnerFlags& rf = o->gen.runner;
         if (cmd->count("--runner") + cmd->count("--shards") > 0) {
             const cluster::Manifest m = jobs::mutate_manifest({o->list, only, rf.shards});
@@ -49,9 +49,9 @@ void add_mutate_command(CLI::App& app) {
             if (!merged) return;
             r = jobs::mutate_result(m, *merged);
         } else {
-            r = mutate::run_campaign(c, only, [](const std::string& s) { std::fprintf(stderr, "[mutate] %s\n", s.c_str()); });
+            r = mutation::run_smoke_list(c, only, [](const std::string& s) { std::fprintf(stderr, "[mutate] %s\n", s.c_str()); });
         }
-        const std::string md = mutate::markdown(c, r, "mutate/mutations.json");
+        const std::string md = mutation::smoke_markdown(c, r, "mutation/mutations.json");
         if (!o->report.empty()) util::write_file_atomic(o->report, md);
         else std::printf("%s", md.c_str());
         std::printf("harris-cosim mutate: %d of %d mutants caught, %d problem(s)\n", r.caught, r.total, r.problems);

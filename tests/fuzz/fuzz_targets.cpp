@@ -10,7 +10,7 @@
 #include "io/frames/frames.hpp"
 #include "landmarks/landmarks.hpp"
 #include "model/harris/formats_json.hpp"
-#include "mutate/mutate.hpp"
+#include "mutation/mutation.hpp"
 #include "slam/slam.hpp"
 #include "sweep/sweep_config.hpp"
 #include "io/util/util.hpp"
@@ -117,10 +117,10 @@ std::vector<Target> targets(const fs::path& src) {
 
     // --- mutation lists (mutate --mutations) -----------------------------------------------
     t.push_back({"mutation-list", "mutate --mutations list", "mutations.json",
-                 {file_or_empty(src / "mutate/mutations.json")},
+                 {file_or_empty(src / "mutation/mutations.json")},
                  with(kJsonTokens, {"\"stream\"", "\"mutants\"", "\"pattern\"", "\"size\"", "\"frames\"", "\"seed\"",
                                     "\"id\"", "\"file\"", "\"find\"", "\"replace\"", "\"stage\"", "\"equivalent\""}),
-                 [](const fs::path& p) { (void)mutate::load_campaign(p); }});
+                 [](const fs::path& p) { (void)mutation::load_smoke_list(p); }});
 
     // --- shard manifests (shard run|merge|status DIR) --------------------------------------
     cluster::Manifest m;

@@ -94,7 +94,7 @@ slam)
   ;;
 mutate)
   # HC_MUTATE_SUBSET=N: the first N mutants of the list; else all
-  list=$(cd "$(dirname "$0")/../.." && pwd)/mutate/mutations.json
+  list=$(cd "$(dirname "$0")/../.." && pwd)/mutation/mutations.json
   if [ -n "${HC_MUTATE_SUBSET:-}" ]; then
     jq --argjson n "$HC_MUTATE_SUBSET" '.mutants |= .[0:$n]' "$list" > subset.json
     list=$PWD/subset.json

@@ -8,7 +8,7 @@
 #include <set>
 #include <sstream>
 
-#include "mutation/vhdl_mutants.hpp"
+#include "mutation/mutation.hpp"
 
 using namespace hc::mutation;
 

@@ -13,8 +13,7 @@
 #include "eval/report.hpp"
 #include "landmarks/landmarks.hpp"
 #include "model/harris/harris_pkg.hpp"
-#include "mutants/mutants.hpp"
-#include "mutate/mutate.hpp"
+#include "mutation/mutation.hpp"
 #include "slam/slam.hpp"
 #include "sweep/sweep.hpp"
 #include "io/util/util.hpp"
@@ -31,13 +30,13 @@ void add_eval_job(cluster::JobRegistry& r);
 void add_verilate_job(cluster::JobRegistry& r);
 
 /// The generated-mutants campaign (kind "mutants", tools/jobs/mutants_job.cpp): the named mutants of
-/// mutants::generate_all(), `per_shard` to a shard, each judged by mutants::run_mutant; the
+/// mutation::generate_all(), `per_shard` to a shard, each judged by mutation::run_mutant; the
 /// merge lists every result in the mutants' order ({"results": [...]}). The manifest carries
 /// a hash of rtl/, so a run is never resumed or merged against other RTL.
 struct MutantsJob {
     std::vector<std::string> names;      ///< mutant names, in generate_all() order
-    mutants::Stimulus quick = mutants::quick_stimulus();
-    std::vector<mutants::Stimulus> longer;
+    mutation::Stimulus quick = mutation::quick_stimulus();
+    std::vector<mutation::Stimulus> longer;
     bool prove = true;
     int proof_timeout_s = 120;
     int per_shard = 8;                   ///< mutants per shard (ignored when shards > 0)
@@ -45,7 +44,7 @@ struct MutantsJob {
 };
 cluster::Manifest mutants_manifest(const MutantsJob& p);
 /// The merged data's results, in order.
-std::vector<mutants::Result> mutants_results(const json& merged);
+std::vector<mutation::Result> mutants_results(const json& merged);
 void add_mutants_job(cluster::JobRegistry& r);
 
 /// The file a merge writes its folded data to: DIR/merged.json.
@@ -140,20 +139,20 @@ void apply_sweep_checks(sweep::SweepResult& r, const sweep::CheckPlan& plan, con
                         const sweep::SweepOptions& o);
 
 // ---- mutate (tools/jobs/mutate_job.cpp) ------------------------------------------------------
-// A shard co-simulates a group of the list's mutants (mutate::run_mutant); the first shard
+// A shard co-simulates a group of the list's mutants (mutation::run_smoke_mutant); the first shard
 // also the unmutated baseline. The manifest carries the list file's path and hash and the
 // hash of rtl/: a shard refuses a list or RTL that changed since.
 
 struct MutateShards {
-    fs::path list;                ///< the mutation list (mutate/mutations.json)
+    fs::path list;                ///< the mutation list (mutation/mutations.json)
     std::string only;             ///< only this mutant id ("" all)
     int shards = 0;               ///< 0: one per mutant (the baseline with the first)
 };
 cluster::Manifest mutate_manifest(const MutateShards& p);
 /// The campaign the manifest ran (the list file read again and checked against its hash).
-mutate::Campaign mutate_campaign(const cluster::Manifest& m);
-/// The verdicts in list order and the counts (mutate::tally).
-mutate::CampaignResult mutate_result(const cluster::Manifest& m, const json& merged);
+mutation::SmokeList mutate_campaign(const cluster::Manifest& m);
+/// The verdicts in list order and the counts (mutation::tally_smoke).
+mutation::SmokeResult mutate_result(const cluster::Manifest& m, const json& merged);
 
 // ---- landmarks (tools/jobs/landmarks_job.cpp) ------------------------------------------------
 // The descriptor comparison: a shard computes, for one detector and a range of the

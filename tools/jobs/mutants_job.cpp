@@ -1,5 +1,5 @@
 // mutants_job.cpp: the job kind "mutants": shards of generated mutants, each judged by
-// mutants::run_mutant (co-simulation, then a proof of the survivors).
+// mutation::run_mutant (co-simulation, then a proof of the survivors).
 #include <cstdio>
 
 #include "cosim/cosim.hpp"
@@ -10,11 +10,11 @@ namespace hc::jobs {
 
 namespace {
 
-using mutants::rtl_hash;
+using mutation::rtl_hash;
 
-json stimuli_json(const std::vector<mutants::Stimulus>& v) {
+json stimuli_json(const std::vector<mutation::Stimulus>& v) {
     json a = json::array();
-    for (const auto& s : v) a.push_back(mutants::to_json(s));
+    for (const auto& s : v) a.push_back(mutation::to_json(s));
     return a;
 }
 
@@ -22,13 +22,13 @@ json run_shard_mutants(const json& common, const json& shard, std::size_t index)
     if (common.at("rtl_hash").get<std::string>() != rtl_hash())
         throw cluster::ClusterInputError("shard " + std::to_string(index) +
                                          ": rtl/ changed since this run's manifest was written; start a new run");
-    mutants::Options o;
-    o.quick = mutants::stimulus_from_json(common.at("quick"));
-    for (const auto& s : common.at("longer")) o.longer.push_back(mutants::stimulus_from_json(s));
+    mutation::Options o;
+    o.quick = mutation::stimulus_from_json(common.at("quick"));
+    for (const auto& s : common.at("longer")) o.longer.push_back(mutation::stimulus_from_json(s));
     o.prove = common.at("prove").get<bool>();
     o.proof_timeout_s = common.at("proof_timeout_s").get<int>();
     o.progress = [](const std::string& s) { std::fprintf(stderr, "[mutants] %s\n", s.c_str()); };
-    const auto all = mutants::generate_all();
+    const auto all = mutation::generate_all();
     json out = json::array();
     for (const auto& n : shard.at("names")) {
         const std::string name = n.get<std::string>();
@@ -37,11 +37,11 @@ json run_shard_mutants(const json& common, const json& shard, std::size_t index)
             if (c.name() == name) m = &c;
         if (!m) throw cluster::ClusterInputError("shard " + std::to_string(index) + ": no generated mutant '" + name + "'");
         std::fprintf(stderr, "[mutants] %s ...\n", name.c_str());
-        const mutants::Result r = mutants::run_mutant(*m, o);
-        std::fprintf(stderr, "[mutants] %s: %s%s%s (%.1f s)\n", name.c_str(), r.fate.c_str(),
+        const mutation::Result r = mutation::run_mutant(*m, o);
+        std::fprintf(stderr, "[mutants] %s: %s%s%s (%.1f s)\n", name.c_str(), mutation::fate_name(r.fate).c_str(),
                      r.killed_by.empty() ? "" : (" by " + r.killed_by).c_str(),
                      r.detail.empty() ? "" : (", " + r.detail).c_str(), r.seconds);
-        out.push_back(mutants::to_json(r));
+        out.push_back(mutation::to_json(r));
     }
     return out;
 }
@@ -59,7 +59,7 @@ cluster::Manifest mutants_manifest(const MutantsJob& p) {
     cluster::Manifest m;
     m.job = "mutants";
     m.common = {{"rtl_hash", rtl_hash()},
-                {"quick", mutants::to_json(p.quick)},
+                {"quick", mutation::to_json(p.quick)},
                 {"longer", stimuli_json(p.longer)},
                 {"prove", p.prove},
                 {"proof_timeout_s", p.proof_timeout_s}};
@@ -75,11 +75,11 @@ cluster::Manifest mutants_manifest(const MutantsJob& p) {
     return m;
 }
 
-std::vector<mutants::Result> mutants_results(const json& merged) {
-    std::vector<mutants::Result> v;
+std::vector<mutation::Result> mutants_results(const json& merged) {
+    std::vector<mutation::Result> v;
     if (!merged.contains("results") || !merged["results"].is_array())
         throw cluster::ClusterInputError("merged data of a mutants run has no 'results' list");
-    for (const auto& r : merged["results"]) v.push_back(mutants::result_from_json(r));
+    for (const auto& r : merged["results"]) v.push_back(mutation::result_from_json(r));
     return v;
 }
 

@@ -20,20 +20,20 @@ std::string rtl_hash() {
 std::string file_hash(const fs::path& p) { return util::hex64(util::fnv1a(util::read_file(p, "mutation list"))); }
 
 /// The list of the manifest, refused when it changed since the manifest was made.
-mutate::Campaign campaign_of(const json& common) {
+mutation::SmokeList campaign_of(const json& common) {
     const fs::path list = common.at("list").get<std::string>();
     if (file_hash(list) != common.at("list_hash"))
         throw cluster::ClusterInputError("mutation list '" + list.string() + "' changed since the run was prepared");
-    return mutate::load_campaign(list);
+    return mutation::load_smoke_list(list);
 }
 
-const mutate::Mutant& find(const mutate::Campaign& c, const std::string& id) {
+const mutation::SmokeMutant& find(const mutation::SmokeList& c, const std::string& id) {
     for (const auto& m : c.mutants)
         if (m.id == id) return m;
     throw cluster::ClusterInputError("mutation list has no mutant '" + id + "'");
 }
 
-json outcome_json(const std::string& id, const mutate::Outcome& o) {
+json outcome_json(const std::string& id, const mutation::SmokeOutcome& o) {
     json j = o;
     j["id"] = id;
     return j;
@@ -42,7 +42,7 @@ json outcome_json(const std::string& id, const mutate::Outcome& o) {
 }  // namespace
 
 cluster::Manifest mutate_manifest(const MutateShards& p) {
-    const mutate::Campaign c = mutate::load_campaign(p.list);
+    const mutation::SmokeList c = mutation::load_smoke_list(p.list);
     std::vector<std::string> ids;
     for (const auto& m : c.mutants)
         if (p.only.empty() || m.id == p.only) ids.push_back(m.id);
@@ -50,7 +50,7 @@ cluster::Manifest mutate_manifest(const MutateShards& p) {
     cluster::Manifest m;
     m.job = "mutate";
     m.common = {{"list", fs::absolute(p.list).string()}, {"list_hash", file_hash(p.list)}, {"rtl_hash", rtl_hash()},
-                {"stream", mutate::stream_flags(c.stream)}};
+                {"stream", mutation::stream_flags(c.stream)}};
     // unit 0 is the baseline, unit i the i-th mutant
     for (auto [a, b] : detail::groups(static_cast<long>(ids.size()) + 1, p.shards)) {
         json s = {{"baseline", a == 0}, {"mutants", json::array()}};
@@ -60,13 +60,13 @@ cluster::Manifest mutate_manifest(const MutateShards& p) {
     return m;
 }
 
-mutate::Campaign mutate_campaign(const cluster::Manifest& m) { return campaign_of(m.common); }
+mutation::SmokeList mutate_campaign(const cluster::Manifest& m) { return campaign_of(m.common); }
 
-mutate::CampaignResult mutate_result(const cluster::Manifest& m, const json& merged) {
-    const mutate::Campaign c = campaign_of(m.common);
-    std::vector<mutate::Verdict> verdicts;
-    for (const auto& o : merged.at("mutants")) verdicts.push_back(mutate::judge(find(c, o.at("id")), o.get<mutate::Outcome>()));
-    return mutate::tally(merged.at("baseline").get<mutate::Outcome>(), std::move(verdicts));
+mutation::SmokeResult mutate_result(const cluster::Manifest& m, const json& merged) {
+    const mutation::SmokeList c = campaign_of(m.common);
+    std::vector<mutation::SmokeVerdict> verdicts;
+    for (const auto& o : merged.at("mutants")) verdicts.push_back(mutation::judge_smoke(find(c, o.at("id")), o.get<mutation::SmokeOutcome>()));
+    return mutation::tally_smoke(merged.at("baseline").get<mutation::SmokeOutcome>(), std::move(verdicts));
 }
 
 namespace detail {
@@ -76,14 +76,14 @@ cluster::ShardJob mutate_job() {
             [](const json& common, const json& shard, std::size_t index) {
                 if (rtl_hash() != common.at("rtl_hash"))
                     throw cluster::ClusterInputError("rtl/ changed since the mutation run was prepared");
-                const mutate::Campaign c = campaign_of(common);
+                const mutation::SmokeList c = campaign_of(common);
                 const frames::LoadedFrames lf = frames::load_frames(c.stream);
                 util::ScratchDir scratch("harris-mutate-shard-" + std::to_string(index));
                 json out = {{"mutants", json::array()}};
-                if (shard.at("baseline")) out["baseline"] = outcome_json("", mutate::run_mutant(nullptr, lf, scratch.path() / "baseline"));
+                if (shard.at("baseline")) out["baseline"] = outcome_json("", mutation::run_smoke_mutant(nullptr, lf, scratch.path() / "baseline"));
                 for (const auto& id : shard.at("mutants")) {
-                    const mutate::Mutant& mu = find(c, id);
-                    out["mutants"].push_back(outcome_json(mu.id, mutate::run_mutant(&mu, lf, scratch.path() / mu.id)));
+                    const mutation::SmokeMutant& mu = find(c, id);
+                    out["mutants"].push_back(outcome_json(mu.id, mutation::run_smoke_mutant(&mu, lf, scratch.path() / mu.id)));
                 }
                 return out;
             },

@@ -1,16 +1,19 @@
-// mutate.cpp: see mutate.hpp.
-#include "mutate/mutate.hpp"
+// smoke.cpp: see smoke.hpp.
+#include "mutation/smoke.hpp"
 
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "cosim/cosim.hpp"
+#include "mutation/mutated_run.hpp"
+#include "io/util/util.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace hc::mutate {
+namespace hc::mutation {
 
 namespace {
 
@@ -27,59 +30,54 @@ std::string md_code(std::string s) {
 
 }  // namespace
 
-Outcome run_mutant(const Mutant* m, const frames::LoadedFrames& lf, const fs::path& work) {
-    Outcome out;
+SmokeOutcome run_smoke_mutant(const SmokeMutant* m, const frames::LoadedFrames& lf, const fs::path& work) {
+    SmokeOutcome out;
     const auto t0 = std::chrono::steady_clock::now();
-    fs::remove_all(work);
-    fs::create_directories(work / "rtl");
-    for (const auto& e : fs::directory_iterator(cosim::rtl_dir())) fs::copy_file(e.path(), work / "rtl" / e.path().filename());
-    if (m) {
-        const fs::path f = work / "rtl" / m->file;
-        std::string text = util::read_file(f, "rtl/" + m->file + " (mutation " + m->id + ")");
-        const size_t at = text.find(m->find);
-        if (at == std::string::npos || text.find(m->find, at + 1) != std::string::npos)
-            throw InputError("mutation " + m->id + " does not match exactly once in " + m->file);
-        text.replace(at, m->find.size(), m->replace);
-        util::write_file_atomic(f, text);
-    }
-    const fs::path log = work / "log.txt";
-    if (!cosim::analyse_mcode(work / "rtl", work, log)) {
-        out.status = "does not analyse";
-        return out;
-    }
+    std::optional<FileEdit> edit;
+    if (m)
+        edit = FileEdit{m->file,
+                        [m](std::string text) {
+                            const size_t at = text.find(m->find);
+                            if (at == std::string::npos || text.find(m->find, at + 1) != std::string::npos)
+                                throw InputError("mutation " + m->id + " does not match exactly once in " + m->file);
+                            return text.replace(at, m->find.size(), m->replace);
+                        },
+                        "rtl/" + m->file + " (mutation " + m->id + ")"};
     cosim::GhdlRun run;
     run.frames = lf.frames;
     run.frame_names = lf.names;
-    run.backend = "mcode";
-    run.sim_dir = work;
-    run.progress = false;
-    run.log = log;
     run.summary_json = work / "summary.json";
     run.vcd = work / "mismatch.vcd";
-    try {
-        const cosim::GhdlResult r = cosim::run_ghdl(run);
-        out.status = r.summary.mismatching_cycles > 0 ? "mismatch" : "pass";
-        if (r.summary.first_mismatch) {
-            out.stage = r.summary.first_mismatch->stage;
-            out.signal = r.summary.first_mismatch->signal;
-            out.write = r.summary.first_mismatch->write;
+    const MutatedRun r = run_mutated(edit ? &*edit : nullptr, work, {run});
+    if (!r.analysed) {
+        out.status = "does not analyse";
+        return out;
+    }
+    const StreamOutcome& s = r.streams.front();
+    if (s.result) {
+        const cosim::Summary& sm = s.result->summary;
+        out.status = sm.mismatching_cycles > 0 ? "mismatch" : "pass";
+        if (sm.first_mismatch) {
+            out.stage = sm.first_mismatch->stage;
+            out.signal = sm.first_mismatch->signal;
+            out.write = sm.first_mismatch->write;
         }
-    } catch (const SimulatorError& e) {
-        out.status = std::string("simulator failed: ") + e.what();
+    } else {
+        out.status = "simulator failed: " + s.error;
     }
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }
 
-Verdict judge(const Mutant& m, const Outcome& o) {
-    Verdict v{m, o};
+SmokeVerdict judge_smoke(const SmokeMutant& m, const SmokeOutcome& o) {
+    SmokeVerdict v{m, o};
     v.caught = o.status == "mismatch";
     v.ok = m.equivalent ? o.status == "pass" : v.caught && o.stage == m.stage;
     return v;
 }
 
-CampaignResult tally(const Outcome& baseline, std::vector<Verdict> verdicts) {
-    CampaignResult r;
+SmokeResult tally_smoke(const SmokeOutcome& baseline, std::vector<SmokeVerdict> verdicts) {
+    SmokeResult r;
     r.baseline = baseline;
     if (r.baseline.status != "pass") ++r.problems;
     for (const auto& v : verdicts) {
@@ -93,7 +91,7 @@ CampaignResult tally(const Outcome& baseline, std::vector<Verdict> verdicts) {
     return r;
 }
 
-Campaign load_campaign(const fs::path& p) {
+SmokeList load_smoke_list(const fs::path& p) {
     const std::string what = "mutation list '" + p.string() + "'";
     json j;
     try {
@@ -101,7 +99,7 @@ Campaign load_campaign(const fs::path& p) {
     } catch (const json::exception& e) {
         throw InputError(what + ": not valid JSON: " + e.what());
     }
-    Campaign c;
+    SmokeList c;
     try {   // a value of the wrong type ("equivalent": "yes") is bad input, not a fault
         if (!j.contains("stream") || !j["stream"].is_object()) throw InputError(what + ": 'stream' must be an object");
         const json& s = j["stream"];
@@ -132,24 +130,24 @@ std::string stream_flags(const frames::FrameSource& s) {
     return f;
 }
 
-CampaignResult run_campaign(const Campaign& c, const std::string& only,
+SmokeResult run_smoke_list(const SmokeList& c, const std::string& only,
                             const std::function<void(const std::string&)>& progress) {
     const frames::LoadedFrames lf = frames::load_frames(c.stream);
     util::ScratchDir scratch("harris-mutate");
     progress("baseline (no mutation) ...");
-    const Outcome baseline = run_mutant(nullptr, lf, scratch.path() / "baseline");
-    std::vector<Verdict> verdicts;
+    const SmokeOutcome baseline = run_smoke_mutant(nullptr, lf, scratch.path() / "baseline");
+    std::vector<SmokeVerdict> verdicts;
     for (const auto& m : c.mutants) {
         if (!only.empty() && m.id != only) continue;
         progress(m.id + " " + m.file + ": " + m.kind + " ...");
-        verdicts.push_back(judge(m, run_mutant(&m, lf, scratch.path() / m.id)));
-        const Outcome& o = verdicts.back().outcome;
+        verdicts.push_back(judge_smoke(m, run_smoke_mutant(&m, lf, scratch.path() / m.id)));
+        const SmokeOutcome& o = verdicts.back().outcome;
         progress(m.id + ": " + o.status + (o.stage.empty() ? "" : ", first stage " + o.stage));
     }
-    return tally(baseline, std::move(verdicts));
+    return tally_smoke(baseline, std::move(verdicts));
 }
 
-std::string markdown(const Campaign& c, const CampaignResult& r, const std::string& list) {
+std::string smoke_markdown(const SmokeList& c, const SmokeResult& r, const std::string& list) {
     std::ostringstream md;
     md << "# Mutation campaign: the hand-written smoke set\n\n"
        << "Made by `harris-cosim mutate --report docs/mutation-smoke.md` (mutations: `" << list << "`).\n"
@@ -164,7 +162,7 @@ std::string markdown(const Campaign& c, const CampaignResult& r, const std::stri
        << "|---|---|---|---|---|---|---|---|---|---|\n";
     std::ostringstream eq;
     for (const auto& v : r.verdicts) {
-        const Mutant& m = v.mutant;
+        const SmokeMutant& m = v.mutant;
         std::string result;
         if (m.equivalent) {
             result = v.ok ? "not caught (equivalent, as expected)" : "CAUGHT: the mutant is not equivalent";
@@ -191,4 +189,4 @@ std::string markdown(const Campaign& c, const CampaignResult& r, const std::stri
     return md.str();
 }
 
-}  // namespace hc::mutate
+}  // namespace hc::mutation

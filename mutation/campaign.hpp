@@ -1,5 +1,5 @@
-// mutants.hpp: the generated mutation campaign. Every mutant hc::mutation generates from
-// rtl/ is applied to a scratch copy of rtl/ and judged:
+// campaign.hpp: the generated mutation campaign. Every mutant the generator (vhdl_mutants.hpp)
+// makes from rtl/ is applied to a scratch copy of rtl/ (run_mutated) and judged (Fate):
 //   stillborn   the mutated RTL does not analyse (GHDL mcode) or does not elaborate (GHDL
 //               reports an error during elaboration, e.g. a static index out of bounds)
 //   killed      a co-simulation against the unmutated cycle model fails: a mismatch, a
@@ -22,9 +22,13 @@
 // SimulatorError (GHDL or yosys cannot be started).
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -33,7 +37,7 @@
 #include "model/harris/harris_pkg.hpp"
 #include "mutation/vhdl_mutants.hpp"
 
-namespace hc::mutants {
+namespace hc::mutation {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -41,16 +45,16 @@ using nlohmann::json;
 /// A selection of the generated set (all empty: every mutant).
 struct Selection {
     std::vector<std::string> only;      ///< mutant names, or name prefixes ("sobel_x.vhd:30:")
-    std::vector<std::string> classes;   ///< class names (mutation::class_name)
+    std::vector<std::string> classes;   ///< class names (class_name)
     std::vector<std::string> files;     ///< rtl file names ("sobel_x.vhd")
 };
 
 /// Every mutant of the RTL files in `rtl_dir` (empty: the source tree's rtl/), in analysis
 /// order of the files, each file's mutants in the generator's order.
-std::vector<mutation::Mutant> generate_all(const fs::path& rtl_dir = {});
+std::vector<Mutant> generate_all(const fs::path& rtl_dir = {});
 /// The mutants of `all` that `s` selects, in order. InputError for a name, class or file
 /// that selects nothing.
-std::vector<mutation::Mutant> select(const std::vector<mutation::Mutant>& all, const Selection& s);
+std::vector<Mutant> select(const std::vector<Mutant>& all, const Selection& s);
 
 /// The entity a proof synthesises for a mutant of `file` (its entity; the package's: harris_top).
 std::string proof_entity(const std::string& file);
@@ -85,12 +89,29 @@ struct Proof {
     std::vector<std::string> assumptions;   ///< method "assume-guarantee": the proven guarantees it assumes
     double seconds = 0;
 };
+/// Its JSON (inside a Result's): one key a field, by the field's name.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Proof, equivalent, method, entity, script, synth, output, assumptions, seconds)
 
-/// A mutant's verdict.
+/// A mutant's verdict (the header comment says what each means).
+enum class Fate { stillborn, killed, equivalent, equivalent_assuming, surviving };
+/// Each verdict's name in the JSON, the CSV and the reports: the one table both ways use.
+inline constexpr std::array<std::pair<Fate, std::string_view>, 5> fate_names = {{
+    {Fate::stillborn, "stillborn"},
+    {Fate::killed, "killed"},
+    {Fate::equivalent, "equivalent"},
+    {Fate::equivalent_assuming, "equivalent-assuming"},
+    {Fate::surviving, "surviving"},
+}};
+/// The name of `f` (fate_names).
+std::string fate_name(Fate f);
+/// The verdict named `name` (fate_names); nullopt for any other text.
+std::optional<Fate> fate_from_name(std::string_view name);
+
+/// A mutant's verdict and what gave it.
 struct Result {
     std::string name, file, entity, cls;
     int line = 0, column = 0;
-    std::string fate;        ///< "stillborn", "killed", "equivalent", "equivalent-assuming", "surviving"
+    Fate fate = Fate::surviving;
     std::string detail;      ///< stillborn: why; killed: "mismatch", "metavalue" or "simulator failed"
     std::string killed_by;   ///< the stimulus that killed it
     std::string stage, signal;
@@ -111,9 +132,9 @@ struct Options {
 };
 
 /// Judges one mutant in a scratch directory of its own.
-Result run_mutant(const mutation::Mutant& m, const Options& o);
+Result run_mutant(const Mutant& m, const Options& o);
 /// The proof of a mutant alone (`work`: a directory for the netlists and scripts).
-Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s);
+Proof prove(const Mutant& m, const fs::path& work, int timeout_s);
 
 /// A closed interval of integers.
 struct Interval {
@@ -168,7 +189,7 @@ bool has_assumptions(const std::string& file);
 /// common, and `sat -tempinduct` proving the outputs equal together with invariants that make
 /// the induction close (harris_response: the step-1 products' top bits zero, the k-terms
 /// equal; threshold: r0_delay equal once a write followed the reset). Method "assume-guarantee".
-Proof prove_assuming(const mutation::Mutant& m, const fs::path& work, int timeout_s,
+Proof prove_assuming(const Mutant& m, const fs::path& work, int timeout_s,
                      const StageRanges& r = derive_ranges());
 
 /// Verdicts of the mutants `sel` from `old` (results_from_csv of an earlier run on this rtl/):
@@ -181,7 +202,7 @@ struct Reuse {
     int reused = 0;                ///< verdicts taken as they were
     double wall_seconds = 0;       ///< of the proofs run again
 };
-Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<mutation::Mutant>& sel, int jobs, int timeout_s,
+Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<Mutant>& sel, int jobs, int timeout_s,
                      const std::function<void(const std::string&)>& progress);
 
 /// Counts of a group of results.
@@ -220,4 +241,4 @@ std::vector<Result> results_from_csv(const std::string& text, const std::string&
 /// The file name of a proven mutant's script in ReportInfo::proofs_dir.
 std::string proof_file_name(const Result& r);
 
-}  // namespace hc::mutants
+}  // namespace hc::mutation

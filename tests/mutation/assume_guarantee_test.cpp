@@ -6,7 +6,7 @@
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
-#include "mutants/mutants.hpp"
+#include "mutation/mutation.hpp"
 #include "io/util/util.hpp"
 
 using namespace hc;
@@ -15,7 +15,7 @@ namespace {
 
 /// The generated mutant of this name (select takes name prefixes; the full name is unique).
 mutation::Mutant named(const std::string& name) {
-    const auto v = mutants::select(mutants::generate_all(), {{name}, {}, {}});
+    const auto v = mutation::select(mutation::generate_all(), {{name}, {}, {}});
     REQUIRE(v.size() == 1);
     return v.front();
 }
@@ -25,7 +25,7 @@ constexpr int timeout_s = 600;
 }  // namespace
 
 TEST_CASE("the interval ranges of the thesis formats", "[assume-guarantee]") {
-    const mutants::StageRanges r = mutants::derive_ranges();
+    const mutation::StageRanges r = mutation::derive_ranges();
     CHECK(r.sobel.lo == -1020);
     CHECK(r.sobel.hi == 1020);
     CHECK(r.m_square.lo == 0);
@@ -38,26 +38,26 @@ TEST_CASE("the interval ranges of the thesis formats", "[assume-guarantee]") {
     CHECK(r.bf_cross.hi == 18288);
     Formats narrow;
     narrow.m_prod_w = 20;                                    // 1020^2 needs 21 signed bits
-    CHECK_THROWS_AS(mutants::derive_ranges(narrow), InputError);
+    CHECK_THROWS_AS(mutation::derive_ranges(narrow), InputError);
 }
 
 TEST_CASE("every guarantee is proven on its stage's netlist", "[assume-guarantee]") {
     util::ScratchDir work("ag-test");
-    auto gs = mutants::response_guarantees(mutants::derive_ranges());
-    gs.push_back(mutants::enable_guarantee());
+    auto gs = mutation::response_guarantees(mutation::derive_ranges());
+    gs.push_back(mutation::enable_guarantee());
     REQUIRE(gs.size() == 6);
     for (std::size_t k = 0; k < gs.size(); ++k) {
         INFO(gs[k].name);
-        const mutants::Proof p = mutants::prove_guarantee(gs[k], work.path() / std::to_string(k), timeout_s);
+        const mutation::Proof p = mutation::prove_guarantee(gs[k], work.path() / std::to_string(k), timeout_s);
         CHECK(p.equivalent);
         CHECK(p.entity == gs[k].entity);
     }
     // the scripts the report's folder gets: the same proofs, with the GHDL command as a comment
-    const auto files = mutants::guarantee_files();
+    const auto files = mutation::guarantee_files();
     REQUIRE(files.size() == gs.size());
     for (std::size_t k = 0; k < gs.size(); ++k) {
         CHECK(files[k].first == "guarantee_" + std::to_string(k + 1) + "_" + gs[k].entity + ".ys");
-        const std::string script = mutants::guarantee_script(gs[k]);
+        const std::string script = mutation::guarantee_script(gs[k]);
         CHECK(files[k].second.substr(files[k].second.size() - script.size()) == script);
         CHECK(files[k].second.find("-e " + gs[k].entity + " > " + gs[k].entity + ".v") != std::string::npos);
     }
@@ -67,11 +67,11 @@ TEST_CASE("a range tighter than the netlist gives is refused and so is the proof
     util::ScratchDir work("ag-test");
     const auto m = named("harris_response.vhd:51:24 resize `RESP_W` -> `RESP_W - 1`");
     SECTION("M's a and c claimed one below their maximum") {
-        mutants::StageRanges r = mutants::derive_ranges();
+        mutation::StageRanges r = mutation::derive_ranges();
         r.m_square.hi -= 1;                                  // 1020^2 / 32 = 32512 is reached (ix = 1020)
-        const auto gs = mutants::response_guarantees(r);
-        CHECK_FALSE(mutants::prove_guarantee(gs[2], work.path() / "g", timeout_s).equivalent);
-        const mutants::Proof p = mutants::prove_assuming(m, work.path() / "p", timeout_s, r);
+        const auto gs = mutation::response_guarantees(r);
+        CHECK_FALSE(mutation::prove_guarantee(gs[2], work.path() / "g", timeout_s).equivalent);
+        const mutation::Proof p = mutation::prove_assuming(m, work.path() / "p", timeout_s, r);
         CHECK_FALSE(p.equivalent);
         CHECK(p.method == "assume-guarantee");
         CHECK(p.output.rfind("guarantee not proven, so no proof assumes it: m_products:", 0) == 0);
@@ -79,9 +79,9 @@ TEST_CASE("a range tighter than the netlist gives is refused and so is the proof
         CHECK_FALSE(std::filesystem::exists(work.path() / "p" / "assume-guarantee.ys"));
     }
     SECTION("the block sums of b claimed non-negative") {
-        mutants::StageRanges r = mutants::derive_ranges();
+        mutation::StageRanges r = mutation::derive_ranges();
         r.bf_cross.lo = 0;
-        const mutants::Proof p = mutants::prove_assuming(m, work.path() / "p", timeout_s, r);
+        const mutation::Proof p = mutation::prove_assuming(m, work.path() / "p", timeout_s, r);
         CHECK_FALSE(p.equivalent);
         CHECK(p.output.rfind("guarantee not proven, so no proof assumes it: block_filter: the sum of nine b", 0) == 0);
     }
@@ -91,8 +91,8 @@ TEST_CASE("a survivor of harris_response is proven equivalent under the proven r
     util::ScratchDir work("ag-test");
     // resize(ac, RESP_W - 1): equal while a*c fits 31 bits, which a, c in [0, 18288] give
     const auto m = named("harris_response.vhd:51:24 resize `RESP_W` -> `RESP_W - 1`");
-    REQUIRE(mutants::has_assumptions(m.file));
-    const mutants::Proof p = mutants::prove_assuming(m, work.path(), timeout_s);
+    REQUIRE(mutation::has_assumptions(m.file));
+    const mutation::Proof p = mutation::prove_assuming(m, work.path(), timeout_s);
     INFO(p.output);
     CHECK(p.equivalent);
     CHECK(p.method == "assume-guarantee");
@@ -105,32 +105,32 @@ TEST_CASE("a survivor of harris_response is proven equivalent under the proven r
 TEST_CASE("threshold's reset value of r0_delay is proven unobservable under the proven enable", "[assume-guarantee]") {
     util::ScratchDir work("ag-test");
     const auto m = named("threshold.vhd:37:29 literal `0` -> `1`");
-    const mutants::Proof entity_alone = mutants::prove(m, work.path() / "alone", 120);
+    const mutation::Proof entity_alone = mutation::prove(m, work.path() / "alone", 120);
     CHECK_FALSE(entity_alone.equivalent);                    // en free: the first write after reset shows r0_delay
-    const mutants::Proof p = mutants::prove_assuming(m, work.path() / "assuming", timeout_s);
+    const mutation::Proof p = mutation::prove_assuming(m, work.path() / "assuming", timeout_s);
     INFO(p.output);
     CHECK(p.equivalent);
-    CHECK(p.assumptions == std::vector<std::string>{mutants::enable_guarantee().name});
+    CHECK(p.assumptions == std::vector<std::string>{mutation::enable_guarantee().name});
 }
 
 TEST_CASE("a verdict list is reused only for the RTL it is about", "[assume-guarantee]") {
-    mutants::Result k;
+    mutation::Result k;
     k.name = "x.vhd:1:2 literal `0` -> `1`";
     k.file = "threshold.vhd";
     k.entity = "threshold";
     k.cls = "literal";
-    k.fate = "equivalent-assuming";
+    k.fate = mutation::Fate::equivalent_assuming;
     k.detail = "a \"quoted\", comma";
     k.proof.method = "assume-guarantee";
     k.proof.assumptions = {"one: [0, 1]", "two"};
-    const std::string text = mutants::csv({k}, "abc");
-    const auto back = mutants::results_from_csv(text, "t.csv", "abc");
+    const std::string text = mutation::csv({k}, "abc");
+    const auto back = mutation::results_from_csv(text, "t.csv", "abc");
     REQUIRE(back.size() == 1);
     CHECK(back[0].name == k.name);
     CHECK(back[0].fate == k.fate);
     CHECK(back[0].detail == k.detail);
     CHECK(back[0].proof.assumptions == k.proof.assumptions);
     CHECK(back[0].proof.entity == "threshold");
-    CHECK_THROWS_WITH(mutants::results_from_csv(text, "t.csv", "abd"), Catch::Contains("not about rtl/ as it is"));
-    CHECK_THROWS_AS(mutants::results_from_csv("name,file\n", "t.csv", "abc"), InputError);
+    CHECK_THROWS_WITH(mutation::results_from_csv(text, "t.csv", "abd"), Catch::Contains("not about rtl/ as it is"));
+    CHECK_THROWS_AS(mutation::results_from_csv("name,file\n", "t.csv", "abc"), InputError);
 }

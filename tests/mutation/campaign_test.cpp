@@ -1,4 +1,4 @@
-// mutants_test: generated mutants with known verdicts: one the quick stimulus kills, one
+// campaign_test: generated mutants with known verdicts: one the quick stimulus kills, one
 // that does not analyse (stillborn), one that passes every stimulus and yosys proves
 // equivalent; the selection flags and the job kind's manifest.
 #define CATCH_CONFIG_MAIN
@@ -11,7 +11,7 @@
 #include "model/driver/host_driver.hpp"
 #include "model/harris/find_max.hpp"
 #include "model/harris/harris_top.hpp"
-#include "mutants/mutants.hpp"
+#include "mutation/mutation.hpp"
 
 using namespace hc;
 
@@ -24,8 +24,8 @@ const mutation::Mutant& by_name(const std::vector<mutation::Mutant>& all, const 
     return all.front();
 }
 
-mutants::Options quick_only() {
-    mutants::Options o;
+mutation::Options quick_only() {
+    mutation::Options o;
     o.prove = false;
     return o;
 }
@@ -33,40 +33,40 @@ mutants::Options quick_only() {
 }  // namespace
 
 TEST_CASE("a product turned into a sum is killed by the quick stimulus in m_products", "[mutants]") {
-    const auto all = mutants::generate_all();
-    const auto r = mutants::run_mutant(by_name(all, "m_products.vhd:33:23 arith `*` -> `+`"), quick_only());
-    CHECK(r.fate == "killed");
-    CHECK(r.killed_by == mutants::quick_stimulus().name);
+    const auto all = mutation::generate_all();
+    const auto r = mutation::run_mutant(by_name(all, "m_products.vhd:33:23 arith `*` -> `+`"), quick_only());
+    CHECK(r.fate == mutation::Fate::killed);
+    CHECK(r.killed_by == mutation::quick_stimulus().name);
     CHECK(r.stage == "m_products");
     CHECK(r.runs == 1);
 }
 
 TEST_CASE("a mutant GHDL cannot analyse is stillborn, not killed", "[mutants]") {
-    const auto all = mutants::generate_all();
+    const auto all = mutation::generate_all();
     // `i > 1 or i <= 5 and load = '0'`: VHDL does not mix `and` and `or` without parentheses
-    const auto r = mutants::run_mutant(by_name(all, "input_converter_mux.vhd:72:28 logic `and` -> `or`"), quick_only());
-    CHECK(r.fate == "stillborn");
+    const auto r = mutation::run_mutant(by_name(all, "input_converter_mux.vhd:72:28 logic `and` -> `or`"), quick_only());
+    CHECK(r.fate == mutation::Fate::stillborn);
     CHECK(r.detail.rfind("does not analyse: ", 0) == 0);
     CHECK(r.runs == 0);
 }
 
 TEST_CASE("a mutant GHDL cannot elaborate is stillborn, not killed", "[mutants]") {
-    const auto all = mutants::generate_all();
+    const auto all = mutation::generate_all();
     // a(0, 1): a static index below the window's range
-    const auto r = mutants::run_mutant(by_name(all, "sobel_x.vhd:30:27 literal `1` -> `0`"), quick_only());
-    CHECK(r.fate == "stillborn");
+    const auto r = mutation::run_mutant(by_name(all, "sobel_x.vhd:30:27 literal `1` -> `0`"), quick_only());
+    CHECK(r.fate == mutation::Fate::stillborn);
     CHECK(r.detail.rfind("does not elaborate: ", 0) == 0);
     CHECK(r.runs == 1);
 }
 
 TEST_CASE("a mutant no stimulus kills is proven equivalent by yosys", "[mutants]") {
-    const auto all = mutants::generate_all();
-    mutants::Options o;
-    o.longer = mutants::long_stimuli({});
+    const auto all = mutation::generate_all();
+    mutation::Options o;
+    o.longer = mutation::long_stimuli({});
     // resize(a(2, 1), PIXEL_W + 1): an unsigned pixel fits, and so does its negation in the
     // wider difference
-    const auto r = mutants::run_mutant(by_name(all, "sobel_x.vhd:31:34 resize `PIXEL_W + 2` -> `(PIXEL_W + 2) - 1`"), o);
-    CHECK(r.fate == "equivalent");
+    const auto r = mutation::run_mutant(by_name(all, "sobel_x.vhd:31:34 resize `PIXEL_W + 2` -> `(PIXEL_W + 2) - 1`"), o);
+    CHECK(r.fate == mutation::Fate::equivalent);
     CHECK(r.runs == 1 + static_cast<int>(o.longer.size()));
     CHECK(r.proof.equivalent);
     CHECK(r.proof.entity == "sobel_x");
@@ -77,17 +77,62 @@ TEST_CASE("a mutant no stimulus kills is proven equivalent by yosys", "[mutants]
 }
 
 TEST_CASE("a selection takes classes, files and name prefixes, and refuses unknown ones", "[mutants]") {
-    const auto all = mutants::generate_all();
-    const auto cls = mutants::select(all, {{}, {"stuck"}, {}});
+    const auto all = mutation::generate_all();
+    const auto cls = mutation::select(all, {{}, {"stuck"}, {}});
     CHECK(!cls.empty());
     for (const auto& m : cls) CHECK(m.cls == mutation::MutantClass::stuck);
-    const auto file = mutants::select(all, {{}, {}, {"m_products.vhd"}});
+    const auto file = mutation::select(all, {{}, {}, {"m_products.vhd"}});
     CHECK(file.size() == 43);
-    const auto at = mutants::select(all, {{"m_products.vhd:46:21 "}, {}, {}});
+    const auto at = mutation::select(all, {{"m_products.vhd:46:21 "}, {}, {}});
     CHECK(at.size() == 2);
-    CHECK_THROWS_AS(mutants::select(all, {{}, {"swap"}, {}}), InputError);
-    CHECK_THROWS_AS(mutants::select(all, {{}, {}, {"nosuch.vhd"}}), InputError);
-    CHECK_THROWS_AS(mutants::select(all, {{"nosuch.vhd:1:1"}, {}, {}}), InputError);
+    CHECK_THROWS_AS(mutation::select(all, {{}, {"swap"}, {}}), InputError);
+    CHECK_THROWS_AS(mutation::select(all, {{}, {}, {"nosuch.vhd"}}), InputError);
+    CHECK_THROWS_AS(mutation::select(all, {{"nosuch.vhd:1:1"}, {}, {}}), InputError);
+}
+
+TEST_CASE("each verdict has one name, in the JSON and the CSV, read back as the same verdict", "[mutants]") {
+    const std::vector<std::pair<mutation::Fate, std::string>> expected = {
+        {mutation::Fate::stillborn, "stillborn"},
+        {mutation::Fate::killed, "killed"},
+        {mutation::Fate::equivalent, "equivalent"},
+        {mutation::Fate::equivalent_assuming, "equivalent-assuming"},
+        {mutation::Fate::surviving, "surviving"}};
+    REQUIRE(mutation::fate_names.size() == expected.size());
+    for (const auto& [fate, name] : expected) {
+        CHECK(mutation::fate_name(fate) == name);
+        CHECK(mutation::fate_from_name(name) == fate);
+        mutation::Result r;
+        r.name = "x.vhd:1:1 literal `0` -> `1`";
+        r.fate = fate;
+        const nlohmann::json j = mutation::to_json(r);
+        CHECK(j.at("fate") == name);
+        CHECK(mutation::result_from_json(j).fate == fate);
+        const std::string line = mutation::csv({r}, "abc");
+        CHECK(line.find("," + name + ",") != std::string::npos);
+        CHECK(mutation::results_from_csv(line, "t.csv", "abc").at(0).fate == fate);
+    }
+    CHECK_FALSE(mutation::fate_from_name("Killed"));
+    CHECK_FALSE(mutation::fate_from_name("equivalent_assuming"));
+    nlohmann::json bad = mutation::to_json(mutation::Result{});
+    bad["fate"] = "proven";
+    CHECK_THROWS_AS(mutation::result_from_json(bad), InputError);
+}
+
+TEST_CASE("a verdict's proof has one key a field; only its assumptions may be absent", "[mutants]") {
+    mutation::Result r;
+    r.proof.assumptions = {"one: [0, 1]"};
+    r.proof.method = "assume-guarantee";
+    nlohmann::json j = mutation::to_json(r);
+    std::vector<std::string> keys;
+    for (auto it = j.at("proof").begin(); it != j.at("proof").end(); ++it) keys.push_back(it.key());
+    CHECK(keys == std::vector<std::string>{"assumptions", "entity", "equivalent", "method", "output", "script", "seconds",
+                                           "synth"});
+    CHECK(mutation::result_from_json(j).proof.assumptions == r.proof.assumptions);
+    j["proof"].erase("assumptions");
+    CHECK(mutation::result_from_json(j).proof.assumptions.empty());
+    CHECK(mutation::result_from_json(j).proof.method == "assume-guarantee");
+    j["proof"].erase("method");
+    CHECK_THROWS_AS(mutation::result_from_json(j), InputError);
 }
 
 TEST_CASE("the mutants job splits the named mutants into shards in order", "[mutants]") {
@@ -105,8 +150,8 @@ TEST_CASE("the mutants job splits the named mutants into shards in order", "[mut
 
 /// The frames of the longer stimulus `name` (without the data directory's streams).
 frames::LoadedFrames longer_stream(const std::string& name) {
-    const auto longer = mutants::long_stimuli({});
-    const auto it = std::find_if(longer.begin(), longer.end(), [&](const mutants::Stimulus& s) { return s.name == name; });
+    const auto longer = mutation::long_stimuli({});
+    const auto it = std::find_if(longer.begin(), longer.end(), [&](const mutation::Stimulus& s) { return s.name == name; });
     if (it == longer.end()) FAIL("no longer stimulus named " << name);
     return frames::load_frames(it->source);
 }

@@ -1,5 +1,5 @@
 // mutants.cpp: see mutants.hpp.
-#include "mutants/mutants.hpp"
+#include "mutation/campaign.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -14,10 +14,11 @@
 
 #include "cosim/cosim.hpp"
 #include "model/harris/harris_pkg.hpp"
-#include "mutants/proof_steps.hpp"
+#include "mutation/mutated_run.hpp"
+#include "mutation/proof_steps.hpp"
 #include "io/util/util.hpp"
 
-namespace hc::mutants {
+namespace hc::mutation {
 
 namespace {
 
@@ -31,14 +32,9 @@ void say(const Options& o, const std::string& s) {
     if (o.progress) o.progress(s);
 }
 
-/// A copy of rtl/ in `dir` with `m` applied.
-fs::path mutated_copy(const mutation::Mutant& m, const fs::path& dir) {
-    const fs::path rtl = dir / "rtl";
-    fs::create_directories(rtl);
-    for (const auto& p : cosim::rtl_sources()) fs::copy_file(p, rtl / p.filename(), fs::copy_options::overwrite_existing);
-    const fs::path f = rtl / m.file;
-    util::write_file_atomic(f, m.apply(util::read_file(f, "rtl/" + m.file)));
-    return rtl;
+/// The edit `m` makes of its rtl/ file.
+FileEdit edit_of(const Mutant& m) {
+    return {m.file, [&m](const std::string& text) { return m.apply(text); }, "rtl/" + m.file};
 }
 
 /// The first line of a log that GHDL marks as an error (or the log's tail).
@@ -55,6 +51,16 @@ std::string first_error(const fs::path& log) {
 bool failed_in_elaboration(const fs::path& log) {
     const std::string t = util::log_tail(log, 8000);
     return t.find("error during elaboration") != std::string::npos || t.find("from: Elaboration of design") != std::string::npos;
+}
+
+/// What one stimulus's co-simulation says of a mutant: "" (it passes), "mismatch",
+/// "metavalue" (a failing run with metavalues), or "simulator failed: <its first error>" (a
+/// run that is incomplete counts as failing).
+std::string kill_reason(const StreamOutcome& s) {
+    if (!s.result) return "simulator failed: " + first_error(s.log);
+    const cosim::Summary& sm = s.result->summary;
+    if (sm.pass() && sm.complete) return "";
+    return sm.metavalue_elements > 0 ? "metavalue" : "mismatch";
 }
 
 const frames::LoadedFrames& frames_of(const Stimulus& s) {
@@ -92,19 +98,19 @@ std::string load_script(const std::string& entity, bool evert) {
 
 }  // namespace
 
-std::vector<mutation::Mutant> generate_all(const fs::path& rtl_dir) {
-    std::vector<mutation::Mutant> all;
+std::vector<Mutant> generate_all(const fs::path& rtl_dir) {
+    std::vector<Mutant> all;
     for (const auto& p : cosim::rtl_sources(rtl_dir)) {
-        auto v = mutation::generate_mutants(p.filename().string(), util::read_file(p));
+        auto v = generate_mutants(p.filename().string(), util::read_file(p));
         all.insert(all.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
     }
     return all;
 }
 
-std::vector<mutation::Mutant> select(const std::vector<mutation::Mutant>& all, const Selection& s) {
+std::vector<Mutant> select(const std::vector<Mutant>& all, const Selection& s) {
     for (const auto& c : s.classes) {
         bool known = false;
-        for (auto k : mutation::all_classes()) known = known || c == mutation::class_name(k);
+        for (auto k : all_classes()) known = known || c == class_name(k);
         if (!known) throw InputError("unknown mutant class '" + c + "' (arith, rel, logic, negate, literal, slice, resize, shift, stuck, enable)");
     }
     for (const auto& f : s.files)
@@ -113,10 +119,10 @@ std::vector<mutation::Mutant> select(const std::vector<mutation::Mutant>& all, c
     for (const auto& n : s.only)
         if (std::none_of(all.begin(), all.end(), [&](const auto& m) { return m.name().rfind(n, 0) == 0; }))
             throw InputError("no generated mutant is named '" + n + "' (see mutate --generate --list)");
-    std::vector<mutation::Mutant> out;
+    std::vector<Mutant> out;
     for (const auto& m : all) {
         const bool cls = s.classes.empty() ||
-                         std::find(s.classes.begin(), s.classes.end(), mutation::class_name(m.cls)) != s.classes.end();
+                         std::find(s.classes.begin(), s.classes.end(), class_name(m.cls)) != s.classes.end();
         const bool file = s.files.empty() || std::find(s.files.begin(), s.files.end(), m.file) != s.files.end();
         const bool name = s.only.empty() ||
                           std::any_of(s.only.begin(), s.only.end(), [&](const auto& n) { return m.name().rfind(n, 0) == 0; });
@@ -128,6 +134,18 @@ std::vector<mutation::Mutant> select(const std::vector<mutation::Mutant>& all, c
 std::string proof_entity(const std::string& file) {
     const std::string e = stem(file);
     return e == "harris_pkg" ? "harris_top" : e;
+}
+
+std::string fate_name(Fate f) {
+    for (const auto& [fate, name] : fate_names)
+        if (fate == f) return std::string(name);
+    throw InternalError("a verdict without a name");
+}
+
+std::optional<Fate> fate_from_name(std::string_view name) {
+    for (const auto& [fate, n] : fate_names)
+        if (n == name) return fate;
+    return std::nullopt;
 }
 
 json to_json(const Stimulus& s) {
@@ -209,7 +227,7 @@ json to_json(const Result& r) {
             {"class", r.cls},
             {"line", r.line},
             {"column", r.column},
-            {"fate", r.fate},
+            {"fate", fate_name(r.fate)},
             {"detail", r.detail},
             {"killed_by", r.killed_by},
             {"stage", r.stage},
@@ -219,15 +237,7 @@ json to_json(const Result& r) {
             {"analyse_seconds", r.analyse_seconds},
             {"sim_seconds", r.sim_seconds},
             {"seconds", r.seconds},
-            {"proof",
-             {{"equivalent", r.proof.equivalent},
-              {"method", r.proof.method},
-              {"entity", r.proof.entity},
-              {"script", r.proof.script},
-              {"synth", r.proof.synth},
-              {"output", r.proof.output},
-              {"assumptions", r.proof.assumptions},
-              {"seconds", r.proof.seconds}}}};
+            {"proof", r.proof}};
 }
 
 Result result_from_json(const json& j) {
@@ -239,7 +249,10 @@ Result result_from_json(const json& j) {
         r.cls = j.at("class").get<std::string>();
         r.line = j.at("line").get<int>();
         r.column = j.at("column").get<int>();
-        r.fate = j.at("fate").get<std::string>();
+        const std::string fate = j.at("fate").get<std::string>();
+        const std::optional<Fate> f = fate_from_name(fate);
+        if (!f) throw InputError("bad mutant result: unknown verdict '" + fate + "'");
+        r.fate = *f;
         r.detail = j.at("detail").get<std::string>();
         r.killed_by = j.at("killed_by").get<std::string>();
         r.stage = j.at("stage").get<std::string>();
@@ -249,15 +262,9 @@ Result result_from_json(const json& j) {
         r.analyse_seconds = j.at("analyse_seconds").get<double>();
         r.sim_seconds = j.at("sim_seconds").get<double>();
         r.seconds = j.at("seconds").get<double>();
-        const json& p = j.at("proof");
-        r.proof.equivalent = p.at("equivalent").get<bool>();
-        r.proof.method = p.at("method").get<std::string>();
-        r.proof.entity = p.at("entity").get<std::string>();
-        r.proof.script = p.at("script").get<std::string>();
-        r.proof.synth = p.at("synth").get<std::string>();
-        r.proof.output = p.at("output").get<std::string>();
-        r.proof.assumptions = p.value("assumptions", std::vector<std::string>{});
-        r.proof.seconds = p.at("seconds").get<double>();
+        json p = j.at("proof");
+        if (!p.contains("assumptions")) p["assumptions"] = json::array();   // absent: no assumptions
+        r.proof = p.get<Proof>();
         return r;
     } catch (const json::exception& e) {
         throw InputError(std::string("bad mutant result: ") + e.what());
@@ -290,14 +297,15 @@ bool synthesise(const std::string& entity, const fs::path& gate_rtl, const fs::p
     return true;
 }
 
-bool synthesise_pair(const mutation::Mutant& m, const fs::path& work, Proof& p) {
+bool synthesise_pair(const Mutant& m, const fs::path& work, Proof& p) {
     p.entity = proof_entity(m.file);
     fs::create_directories(work);
-    const fs::path gate_rtl = mutated_copy(m, work);
+    const FileEdit edit = edit_of(m);
+    const fs::path gate_rtl = mutated_copy(&edit, work);
     return synthesise(p.entity, {}, work, "gold", p) && synthesise(p.entity, gate_rtl, work, "gate", p);
 }
 
-std::string load_pair_script(const mutation::Mutant& m) {
+std::string load_pair_script(const Mutant& m) {
     const std::string e = proof_entity(m.file);
     return load_script(e, m.file == e + ".vhd" && e == "harris_top");
 }
@@ -316,7 +324,7 @@ bool run_yosys(const std::string& method, const std::string& script, const fs::p
     return rc == 0;
 }
 
-Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s) {
+Proof prove(const Mutant& m, const fs::path& work, int timeout_s) {
     const auto t0 = Clock::now();
     Proof p;
     if (!synthesise_pair(m, work, p)) {
@@ -348,81 +356,71 @@ Proof prove(const mutation::Mutant& m, const fs::path& work, int timeout_s) {
 namespace {
 
 /// run_mutant in the scratch directory `work`.
-Result run_mutant_in(const mutation::Mutant& m, const Options& o, const fs::path& work) {
+Result run_mutant_in(const Mutant& m, const Options& o, const fs::path& work) {
     const auto t0 = Clock::now();
     Result r;
     r.name = m.name();
     r.file = m.file;
     r.entity = stem(m.file);
-    r.cls = mutation::class_name(m.cls);
+    r.cls = class_name(m.cls);
     r.line = m.line;
     r.column = m.column;
-    const fs::path rtl = mutated_copy(m, work);
-    const fs::path alog = work / "analyse.log";
-    const auto ta = Clock::now();
-    const bool analysed = cosim::analyse_mcode(rtl, work, alog);
-    r.analyse_seconds = since(ta);
-    if (!analysed) {
-        r.fate = "stillborn";
-        r.detail = "does not analyse: " + first_error(alog);
+    std::vector<const Stimulus*> stimuli = {&o.quick};
+    for (const auto& s : o.longer) stimuli.push_back(&s);
+    const FileEdit edit = edit_of(m);
+    // stimulus after stimulus, up to the first that kills the mutant
+    const MutatedRun run = run_mutated(&edit, work, [&](const MutatedRun& so_far) -> std::optional<cosim::GhdlRun> {
+        const std::size_t k = so_far.streams.size();
+        if (k > 0) {
+            if (!kill_reason(so_far.streams.back()).empty()) return std::nullopt;
+            say(o, r.name + ": passes " + stimuli[k - 1]->name);
+        }
+        if (k == stimuli.size()) return std::nullopt;
+        const frames::LoadedFrames& lf = frames_of(*stimuli[k]);
+        cosim::GhdlRun g;
+        g.frames = lf.frames;
+        g.frame_names = lf.names;
+        g.idle_every = stimuli[k]->idle_every;
+        return g;
+    });
+    r.analyse_seconds = run.analyse_seconds;
+    if (!run.analysed) {
+        r.fate = Fate::stillborn;
+        r.detail = "does not analyse: " + first_error(run.analyse_log);
         r.seconds = since(t0);
         return r;
     }
-    std::vector<const Stimulus*> stimuli = {&o.quick};
-    for (const auto& s : o.longer) stimuli.push_back(&s);
-    for (const Stimulus* s : stimuli) {
-        const frames::LoadedFrames& lf = frames_of(*s);
-        cosim::GhdlRun run;
-        run.frames = lf.frames;
-        run.frame_names = lf.names;
-        run.backend = "mcode";
-        run.sim_dir = work;
-        run.progress = false;
-        run.idle_every = s->idle_every;
-        run.log = work / "sim.log";
-        fs::remove(run.log);
-        const auto ts = Clock::now();
-        ++r.runs;
-        std::string verdict;
-        try {
-            const cosim::GhdlResult g = cosim::run_ghdl(run);
-            if (!g.summary.pass() || !g.summary.complete) {
-                verdict = g.summary.metavalue_elements > 0 ? "metavalue" : "mismatch";
-                if (g.summary.first_mismatch) {
-                    r.stage = g.summary.first_mismatch->stage;
-                    r.signal = g.summary.first_mismatch->signal;
-                    r.write = g.summary.first_mismatch->write;
-                }
-            }
-        } catch (const SimulatorError& e) {
-            if (failed_in_elaboration(run.log)) {
-                r.sim_seconds += since(ts);
-                r.fate = "stillborn";
-                r.detail = "does not elaborate: " + first_error(run.log);
-                r.seconds = since(t0);
-                return r;
-            }
-            verdict = "simulator failed: " + first_error(run.log);
-        }
-        r.sim_seconds += since(ts);
-        if (!verdict.empty()) {
-            r.fate = "killed";
-            r.detail = verdict;
-            r.killed_by = s->name;
-            r.seconds = since(t0);
-            return r;
-        }
-        say(o, r.name + ": passes " + s->name);
+    r.runs = static_cast<int>(run.streams.size());
+    for (const auto& s : run.streams) r.sim_seconds += s.seconds;
+    const StreamOutcome& last = run.streams.back();
+    if (!last.result && failed_in_elaboration(last.log)) {
+        r.fate = Fate::stillborn;
+        r.detail = "does not elaborate: " + first_error(last.log);
+        r.seconds = since(t0);
+        return r;
     }
-    r.fate = "surviving";
+    if (const std::string reason = kill_reason(last); !reason.empty()) {
+        if (last.result && last.result->summary.first_mismatch) {
+            const cosim::FirstMismatch& f = *last.result->summary.first_mismatch;
+            r.stage = f.stage;
+            r.signal = f.signal;
+            r.write = f.write;
+        }
+        r.fate = Fate::killed;
+        r.detail = reason;
+        r.killed_by = stimuli[run.streams.size() - 1]->name;
+        r.seconds = since(t0);
+        return r;
+    }
+    r.fate = Fate::surviving;
     if (o.prove) {
         say(o, r.name + ": survives every stimulus, proving ...");
         r.proof = prove(m, work / "proof", o.proof_timeout_s);
-        if (r.proof.equivalent) r.fate = "equivalent";
+        if (r.proof.equivalent) r.fate = Fate::equivalent;
         else if (has_assumptions(m.file)) {
             say(o, r.name + ": no proof of the entity alone, proving under proven assumptions ...");
             r.proof = prove_assuming(m, work / "proof-assuming", o.proof_timeout_s);
-            if (r.proof.equivalent) r.fate = "equivalent-assuming";
+            if (r.proof.equivalent) r.fate = Fate::equivalent_assuming;
         }
     }
     r.seconds = since(t0);
@@ -438,7 +436,7 @@ std::string replace_path(std::string text, const std::string& dir, const std::st
 
 }  // namespace
 
-Result run_mutant(const mutation::Mutant& m, const Options& o) {
+Result run_mutant(const Mutant& m, const Options& o) {
     util::ScratchDir scratch("harris-mutant");
     Result r = run_mutant_in(m, o, scratch.path());
     // the tools' messages name files in the scratch directory, which is gone afterwards and
@@ -448,10 +446,10 @@ Result run_mutant(const mutation::Mutant& m, const Options& o) {
     return r;
 }
 
-Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<mutation::Mutant>& sel, int jobs, int timeout_s,
+Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<Mutant>& sel, int jobs, int timeout_s,
                      const std::function<void(const std::string&)>& progress) {
     Reuse u;
-    std::vector<const mutation::Mutant*> again;
+    std::vector<const Mutant*> again;
     // the CSV keeps a name's line breaks (a mutant of an expression over lines) as spaces
     auto one_line = [](std::string s) {
         std::replace(s.begin(), s.end(), '\n', ' ');
@@ -465,7 +463,7 @@ Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<mutation:
         if (it == old.end()) throw InputError("the reused verdicts have none for '" + m.name() + "'");
         u.results.push_back(*it);
         u.results.back().name = m.name();
-        if (it->fate == "surviving" || it->fate == "equivalent-assuming") again.push_back(&m);
+        if (it->fate == Fate::surviving || it->fate == Fate::equivalent_assuming) again.push_back(&m);
     }
     u.reused = static_cast<int>(sel.size() - again.size());
     if (progress)
@@ -477,7 +475,7 @@ Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<mutation:
     auto worker = [&] {
         try {
             for (std::size_t k; (k = next++) < again.size();) {
-                const mutation::Mutant& m = *again[k];
+                const Mutant& m = *again[k];
                 const auto t = Clock::now();
                 util::ScratchDir scratch("harris-mutant-ag");
                 Proof p = prove_assuming(m, scratch.path(), timeout_s);
@@ -485,9 +483,9 @@ Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<mutation:
                 const std::lock_guard<std::mutex> g(lock);
                 Result& r = *std::find_if(u.results.begin(), u.results.end(), [&](const Result& x) { return x.name == m.name(); });
                 r.proof = p;
-                r.fate = p.equivalent ? "equivalent-assuming" : "surviving";
+                r.fate = p.equivalent ? Fate::equivalent_assuming : Fate::surviving;
                 r.seconds = since(t);
-                if (progress) progress(fmt::format("{}: {} ({:.1f} s)", m.name(), r.fate, r.seconds));
+                if (progress) progress(fmt::format("{}: {} ({:.1f} s)", m.name(), fate_name(r.fate), r.seconds));
             }
         } catch (...) {
             const std::lock_guard<std::mutex> g(lock);
@@ -512,11 +510,11 @@ Tally tally(const std::vector<Result>& rs) {
     Tally t;
     for (const auto& r : rs) {
         ++t.mutants;
-        t.stillborn += r.fate == "stillborn";
-        t.killed += r.fate == "killed";
-        t.equivalent += r.fate == "equivalent";
-        t.assuming += r.fate == "equivalent-assuming";
-        t.surviving += r.fate == "surviving";
+        t.stillborn += r.fate == Fate::stillborn;
+        t.killed += r.fate == Fate::killed;
+        t.equivalent += r.fate == Fate::equivalent;
+        t.assuming += r.fate == Fate::equivalent_assuming;
+        t.surviving += r.fate == Fate::surviving;
         t.seconds += r.seconds;
     }
     return t;
@@ -628,11 +626,11 @@ void markdown_tallies(std::ostringstream& md, const std::vector<Result>& rs, con
     const std::string head =
         "| mutants | stillborn | killed | proven equivalent | proven under assumptions | surviving | score | s per mutant |\n";
     md << "## Per class\n\n| class " << head << "|---|---|---|---|---|---|---|---|---|\n";
-    for (auto c : mutation::all_classes()) {
+    for (auto c : all_classes()) {
         std::vector<Result> g;
         for (const auto& r : rs)
-            if (r.cls == mutation::class_name(c)) g.push_back(r);
-        if (!g.empty()) tally_row(md, mutation::class_name(c), tally(g));
+            if (r.cls == class_name(c)) g.push_back(r);
+        if (!g.empty()) tally_row(md, class_name(c), tally(g));
     }
     tally_row(md, "**all**", all);
     md << "\n## Per entity\n\n| entity (file) " << head << "|---|---|---|---|---|---|---|---|---|\n";
@@ -662,7 +660,7 @@ void markdown_verdict_lists(std::ostringstream& md, const std::vector<Result>& r
     md << "\n## Surviving mutants\n\n";
     bool any = false;
     for (const auto& r : rs) {
-        if (r.fate != "surviving") continue;
+        if (r.fate != Fate::surviving) continue;
         any = true;
         md << "### " << name_cell(r.name) << "\n\nPasses every stimulus. Proof of `" << r.proof.entity << "` ("
            << (r.proof.method.empty() ? "no proof ran" : r.proof.method) << ") fails:\n\n```\n"
@@ -674,7 +672,7 @@ void markdown_verdict_lists(std::ostringstream& md, const std::vector<Result>& r
        << "/`, with the GHDL commands that make its `gold.v` and `gate.v` as comments.\n\n";
     any = false;
     for (const auto& r : rs) {
-        if (r.fate != "equivalent") continue;
+        if (r.fate != Fate::equivalent) continue;
         if (!any) md << "| mutant | entity proven | method | script |\n|---|---|---|---|\n";
         any = true;
         md << "| " << name_cell(r.name) << " | " << r.proof.entity << " | " << r.proof.method << " | `"
@@ -688,7 +686,7 @@ void markdown_verdict_lists(std::ostringstream& md, const std::vector<Result>& r
        << info.proofs_dir << "/`, and so is each guarantee's (`guarantee_<k>_<entity>.ys`).\n\n";
     any = false;
     for (const auto& r : rs) {
-        if (r.fate != "equivalent-assuming") continue;
+        if (r.fate != Fate::equivalent_assuming) continue;
         if (!any) md << "| mutant | entity proven | assumptions (each proven) | script |\n|---|---|---|---|\n";
         any = true;
         std::string a;
@@ -701,7 +699,7 @@ void markdown_verdict_lists(std::ostringstream& md, const std::vector<Result>& r
     md << "\n## Stillborn mutants\n\n";
     any = false;
     for (const auto& r : rs) {
-        if (r.fate != "stillborn") continue;
+        if (r.fate != Fate::stillborn) continue;
         if (!any) md << "| mutant | why |\n|---|---|\n";
         any = true;
         md << "| " << name_cell(r.name) << " | " << md_cell(r.detail) << " |\n";
@@ -770,7 +768,7 @@ std::string csv(const std::vector<Result>& rs, const std::string& rtl) {
         std::string a;
         for (const auto& x : r.proof.assumptions) a += (a.empty() ? "" : ";") + x;
         out << q(r.name) << ',' << r.file << ',' << r.line << ',' << r.column << ',' << r.cls << ',' << r.entity << ','
-            << r.fate << ',' << q(r.detail) << ',' << r.killed_by << ',' << r.stage << ',' << q(r.signal) << ','
+            << fate_name(r.fate) << ',' << q(r.detail) << ',' << r.killed_by << ',' << r.stage << ',' << q(r.signal) << ','
             << r.write << ',' << r.runs << ',' << fmt::format("{:.2f}", r.seconds) << ',' << r.proof.method << ','
             << q(a) << ',' << rtl << '\n';
     }
@@ -793,15 +791,16 @@ std::vector<Result> results_from_csv(const std::string& text, const std::string&
         Result r;
         try {
             r.name = f[0], r.file = f[1], r.line = std::stoi(f[2]), r.column = std::stoi(f[3]), r.cls = f[4];
-            r.entity = f[5], r.fate = f[6], r.detail = f[7], r.killed_by = f[8], r.stage = f[9], r.signal = f[10];
+            r.entity = f[5], r.detail = f[7], r.killed_by = f[8], r.stage = f[9], r.signal = f[10];
             r.write = std::stol(f[11]), r.runs = std::stoi(f[12]), r.seconds = std::stod(f[13]);
         } catch (const std::exception&) {
             throw InputError(at + ": a number field is not a number");
         }
-        static const std::set<std::string> fates = {"stillborn", "killed", "equivalent", "equivalent-assuming", "surviving"};
-        if (!fates.count(r.fate)) throw InputError(at + ": unknown verdict '" + r.fate + "'");
+        const std::optional<Fate> fate = fate_from_name(f[6]);
+        if (!fate) throw InputError(at + ": unknown verdict '" + f[6] + "'");
+        r.fate = *fate;
         r.proof.method = f[14];
-        r.proof.equivalent = r.fate == "equivalent" || r.fate == "equivalent-assuming";
+        r.proof.equivalent = r.fate == Fate::equivalent || r.fate == Fate::equivalent_assuming;
         if (!r.proof.method.empty()) r.proof.entity = proof_entity(r.file);
         for (std::size_t a = 0, b; a < f[15].size(); a = b + 1) {
             b = f[15].find(';', a);
@@ -813,4 +812,4 @@ std::vector<Result> results_from_csv(const std::string& text, const std::string&
     return rs;
 }
 
-}  // namespace hc::mutants
+}  // namespace hc::mutation

@@ -1,15 +1,15 @@
-// assume_guarantee.cpp: proofs of mutants under proven assumptions (see mutants.hpp).
+// assume_guarantee.cpp: proofs of mutants under proven assumptions (see campaign.hpp).
 #include <algorithm>
 #include <chrono>
 
 #include <fmt/format.h>
 
-#include "mutants/mutants.hpp"
+#include "mutation/campaign.hpp"
 #include "cosim/cosim.hpp"
-#include "mutants/proof_steps.hpp"
+#include "mutation/proof_steps.hpp"
 #include "io/util/util.hpp"
 
-namespace hc::mutants {
+namespace hc::mutation {
 
 namespace {
 
@@ -188,7 +188,7 @@ Proof prove_guarantee(const Guarantee& g, const fs::path& work, int timeout_s) {
 
 bool has_assumptions(const std::string& file) { return file == "harris_response.vhd" || file == "threshold.vhd"; }
 
-Proof prove_assuming(const mutation::Mutant& m, const fs::path& work, int timeout_s, const StageRanges& r) {
+Proof prove_assuming(const Mutant& m, const fs::path& work, int timeout_s, const StageRanges& r) {
     const auto t0 = Clock::now();
     Proof p;
     p.method = "assume-guarantee";
@@ -265,4 +265,4 @@ Proof prove_assuming(const mutation::Mutant& m, const fs::path& work, int timeou
     return p;
 }
 
-}  // namespace hc::mutants
+}  // namespace hc::mutation
