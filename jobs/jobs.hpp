@@ -11,7 +11,7 @@
 
 #include "cluster/cluster.hpp"
 #include "eval/report.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "model/harris/harris_pkg.hpp"
 #include "mutants/mutants.hpp"
 #include "mutate/mutate.hpp"

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "slam/slam.hpp"
-#include "stereo/stereo.hpp"
+#include "slam/landmarks/stereo.hpp"
 
 namespace hc::slam {
 

@@ -16,7 +16,7 @@
 //   hc::slam::InputError, which the command line maps to exit status 2.
 #pragma once
 
-#include "stereo/stereo.hpp"
+#include "slam/landmarks/stereo.hpp"
 #include "util/errors.hpp"
 #include <Eigen/Core>
 #include <Eigen/Dense>

@@ -1,7 +1,7 @@
 // cmd_calibrate.cpp: `harris-cosim calibrate`, stereo calibration of a user's rig from
 // chessboard pairs (thesis 4.3) into a KITTI-style calib.txt, the OpenCV YAML/JSON with the
 // distortion model and Q, per-view errors (CSV) and a Markdown report. The work is in
-// calib/calib.hpp; docs/calibration.md describes the files.
+// slam/landmarks/calib.hpp; docs/calibration.md describes the files.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
 #include "tools/commands.hpp"
 #include "frames/frames.hpp"
 #include "model/harris/formats_json.hpp"

@@ -16,7 +16,7 @@
 #include "frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
 #include "util/util.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "slam/landmark_frames.hpp"
 #include "slam/slam.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "cluster/cluster.hpp"
 #include "frames/frames.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "model/harris/formats_json.hpp"
 #include "mutate/mutate.hpp"
 #include "slam/slam.hpp"

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <random>
 
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 
 using namespace hc::landmarks;
 

@@ -1,6 +1,6 @@
 // calib.cpp: chessboard detection over stereo pairs, stereo calibration and rectification
 // through OpenCV's calib3d, the calibration files, and the rectification of keypoints.
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
 
 #include <fmt/format.h>
 #include <glob.h>

@@ -38,9 +38,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
+#include "slam/landmarks/descriptors.hpp"
 #include "model/harris/harris_pkg.hpp"
-#include "stereo/stereo.hpp"
+#include "slam/landmarks/stereo.hpp"
 
 namespace hc::landmarks {
 

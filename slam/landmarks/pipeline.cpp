@@ -10,8 +10,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "features/features.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/descriptors.hpp"
+#include "slam/landmarks/landmarks.hpp"
 
 namespace hc::landmarks {
 

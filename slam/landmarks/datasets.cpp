@@ -8,8 +8,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "calib/calib.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/calib.hpp"
+#include "slam/landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
 
@@ -29,7 +29,7 @@ cv::Mat read_grey(const fs::path& p) {
 // The 2006 datasets come in full (1110 rows), half (555) and third (370) size; the
 // disparity PNGs of the reduced sizes hold the disparity in the reduced image's pixels
 // multiplied by the reduction factor (2 or 3), i.e. value = d * (1/scale), 0 = unknown.
-// Pinned by tests/landmarks/middlebury_test.cpp on pixels checked against the images.
+// Pinned by tests/landmarks/data_test.cpp on pixels checked against the images.
 float middlebury_disparity(std::uint8_t value, double scale) {
     return value == 0 ? 0.f : static_cast<float>(value * scale);
 }

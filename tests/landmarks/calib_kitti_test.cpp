@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
 #include "frames/frames.hpp"
 
 using namespace hc::calib;

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
 
 using namespace hc::calib;
 namespace fs = std::filesystem;

@@ -1,6 +1,6 @@
 // stereo.cpp: see stereo.hpp. With Z = B / D and dZ/dD = -B / D^2 = -Z / D, D = u_l - u_r - (cx0 - cx1):
 //   dZ/du_l = -Z / D, dZ/du_r = Z / D; X and Y follow by the product rule, v = (v_l + v_r) / 2.
-#include "stereo/stereo.hpp"
+#include "slam/landmarks/stereo.hpp"
 
 namespace hc::stereo {
 

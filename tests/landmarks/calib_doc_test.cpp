@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <map>
 
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
 
 using namespace hc::calib;
 namespace fs = std::filesystem;

@@ -1,5 +1,5 @@
 // geometry.cpp: triangulation through a rectified pair's projection matrices (thesis 4.3;
-// the formulas are hc::stereo's, stereo/stereo.hpp), covariance by first-order propagation of
+// the formulas are hc::stereo's, slam/landmarks/stereo.hpp), covariance by first-order propagation of
 // pixel noise, landmark files and the depth error against ground-truth disparity.
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 
 #include <fmt/format.h>
 
-#include "landmarks/landmarks.hpp"
-#include "stereo/stereo.hpp"
+#include "slam/landmarks/landmarks.hpp"
+#include "slam/landmarks/stereo.hpp"
 
 namespace hc::landmarks {
 
