@@ -2,25 +2,69 @@
 //   dZ/du_l = -Z / D, dZ/du_r = Z / D; X and Y follow by the product rule, v = (v_l + v_r) / 2.
 #include "slam/landmarks/stereo.hpp"
 
+#include "util/errors.hpp"
+
 namespace hc::stereo {
 
-Point3 triangulate(const RectifiedRig& c, double u_l, double v_l, double u_r, double v_r) {
+namespace {
+[[noreturn]] void refuse(const std::string& why) { throw InputError("stereo calibration: " + why); }
+}  // namespace
+
+void RectifiedRig::validate() const {
+    if (!(fx > 0) || !(fy > 0)) refuse("focal lengths must be positive");
+    if (!(tx0 - tx1 > 0)) refuse("P1's x translation must put the right camera to the right (P0[0][3] > P1[0][3])");
+}
+
+void RectifiedRig::projections(double P0[12], double P1[12]) const {
+    const double l[12] = {fx, 0, cx0, tx0, 0, fy, cy, ty, 0, 0, 1, 0};
+    const double r[12] = {fx, 0, cx1, tx1, 0, fy, cy, ty, 0, 0, 1, 0};
+    for (int i = 0; i < 12; ++i) {
+        P0[i] = l[i];
+        P1[i] = r[i];
+    }
+}
+
+RectifiedRig rig_from_projections(const double P0[12], const double P1[12], int width, int height) {
+    for (const double* P : {P0, P1}) {
+        if (P[1] != 0 || P[4] != 0 || P[8] != 0 || P[9] != 0 || P[10] != 1 || P[11] != 0)
+            refuse("P0 and P1 must be rectified projection matrices [fx 0 cx tx; 0 fy cy ty; 0 0 1 0]");
+        if (!(P[0] > 0) || !(P[5] > 0)) refuse("focal lengths must be positive");
+    }
+    if (P0[0] != P1[0] || P0[5] != P1[5] || P0[6] != P1[6] || P0[7] != P1[7])
+        refuse("P0 and P1 differ in fx, fy, cy or ty: the pair is not rectified");
+    RectifiedRig r;
+    r.fx = P0[0];
+    r.fy = P0[5];
+    r.cx0 = P0[2];
+    r.cx1 = P1[2];
+    r.cy = P0[6];
+    r.tx0 = P0[3];
+    r.tx1 = P1[3];
+    r.ty = P0[7];
+    r.width = width;
+    r.height = height;
+    r.validate();
+    return r;
+}
+
+Point3 triangulate(const RectifiedRig& c, const StereoPixels& m, const PixelNoise& noise) {
     const double B = c.tx0 - c.tx1;
-    const double D = u_l - u_r - (c.cx0 - c.cx1);
+    const double D = m.u_l - m.u_r - (c.cx0 - c.cx1);
     Point3 t;
     if (!(D > 0)) return t;
-    const double Z = B / D, v = 0.5 * (v_l + v_r);
-    t.p[0] = ((u_l - c.cx0) * Z - c.tx0) / c.fx;
+    const double Z = B / D, v = 0.5 * (m.v_l + m.v_r);
+    t.p[0] = ((m.u_l - c.cx0) * Z - c.tx0) / c.fx;
     t.p[1] = ((v - c.cy) * Z - c.ty) / c.fy;
     t.p[2] = Z;
     const double dZ_dul = -Z / D, dZ_dur = Z / D;
     const double J[3][4] = {
-        {(Z + (u_l - c.cx0) * dZ_dul) / c.fx, 0, (u_l - c.cx0) * dZ_dur / c.fx, 0},
+        {(Z + (m.u_l - c.cx0) * dZ_dul) / c.fx, 0, (m.u_l - c.cx0) * dZ_dur / c.fx, 0},
         {(v - c.cy) * dZ_dul / c.fy, Z / (2 * c.fy), (v - c.cy) * dZ_dur / c.fy, Z / (2 * c.fy)},
         {dZ_dul, 0, dZ_dur, 0},
     };
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 4; ++k) t.J[i][k] = J[i][k];
+    noise.covariance(t, t.cov);
     t.valid = true;
     return t;
 }
