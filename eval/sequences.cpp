@@ -111,10 +111,11 @@ std::vector<std::string> parse_sequences(const std::string& s) {
 void check_sequences(const fs::path& kitti, const std::vector<std::string>& seqs) {
     std::string missing;
     for (const auto& q : seqs)
-        if (!fs::is_directory(kitti / "sequences" / q / "image_0") || !fs::is_directory(kitti / "sequences" / q / "image_1"))
+        if (!frames::is_kitti_sequence(kitti, q))
             missing += (missing.empty() ? "" : ", ") + q;
     if (!missing.empty())
-        throw InputError("--sequences: no KITTI sequence " + missing + " under " + (kitti / "sequences").string() +
+        throw InputError("--sequences: no KITTI sequence " + missing + " under " +
+                         frames::kitti_sequences_dir(kitti).string() +
                          " (each needs image_0/ and image_1/)");
 }
 

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "slam/slam.hpp"
-#include "stereo/stereo.hpp"
+#include "slam/landmarks/stereo.hpp"
 
 namespace hc::slam {
 
@@ -366,34 +366,31 @@ SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<Ster
     return run_filter(frames, u, std::vector<Mat3>(u.size(), odometry.covariance()), truth[0], association, truth);
 }
 
-stereo::RectifiedRig StereoCamera::rig() const {
+stereo::RectifiedRig synthetic_rig() {
+    const double fx = 718.856, baseline = 0.5372;
     stereo::RectifiedRig r;
     r.fx = r.fy = fx;
-    r.cx0 = r.cx1 = cx;
-    r.cy = cy;
+    r.cx0 = r.cx1 = 607.1928;
+    r.cy = 185.2157;
     r.tx1 = -fx * baseline;
+    r.width = 1241;
+    r.height = 376;
     return r;
 }
 
-StereoLandmarkObs triangulate(const StereoCamera& cam, const stereo::StereoPixels& m) {
-    const stereo::Point3 t = stereo::triangulate(cam.rig(), m.u_l, m.v_l, m.u_r, m.v_r);
+StereoLandmarkObs to_observation(const stereo::Point3& t) {
     StereoLandmarkObs o;
     o.p_cam = Eigen::Vector3d(t.p[0], t.p[1], t.p[2]);
-    double cov[3][3];
-    cam.noise.covariance(t, cov);
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) o.cov(i, j) = cov[i][j];
+        for (int j = 0; j < 3; ++j) o.cov(i, j) = t.cov[i][j];
     return o;
 }
 
-stereo::StereoPixels project(const StereoCamera& cam, const Eigen::Vector3d& p) {
-    const double q[3] = {p.x(), p.y(), p.z()};
-    return stereo::project(cam.rig(), q);
-}
-
-std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const StereoCamera& cam,
-                                                  int count, int flip_bits, uint64_t seed) {
+std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const stereo::RectifiedRig& rig,
+                                                  const stereo::PixelNoise& noise, int count, int flip_bits,
+                                                  uint64_t seed) {
     if (poses.empty()) throw InputError("synthetic landmarks need at least one pose");
+    if (rig.width < 1 || rig.height < 1) throw InputError("synthetic landmarks need a rig with an image size");
     if (count < 1) throw InputError("the synthetic world is empty: the landmark count must be at least 1");
     std::mt19937_64 rng(seed);
     std::uniform_int_distribution<int> pick(0, static_cast<int>(poses.size()) - 1), byte(0, 255), bit(0, 255);
@@ -416,11 +413,12 @@ std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& pose
         for (int i = 0; i < count; ++i) {
             const Eigen::Vector3d p = Rt * (world[i] - T.col(3));
             if (p.z() < 2 || p.z() > 60) continue;
-            const stereo::StereoPixels m = project(cam, p);
-            if (m.u_l < 0 || m.u_l >= cam.width || m.u_r < 0 || m.v_l < 0 || m.v_l >= cam.height) continue;
-            const stereo::StereoPixels n = cam.noise.perturb(m, rng);
+            const double q[3] = {p.x(), p.y(), p.z()};
+            const stereo::StereoPixels m = stereo::project(rig, q);
+            if (m.u_l < 0 || m.u_l >= rig.width || m.u_r < 0 || m.v_l < 0 || m.v_l >= rig.height) continue;
+            const stereo::StereoPixels n = noise.perturb(m, rng);
             if (n.u_l - n.u_r < 1) continue;
-            StereoLandmarkObs o = triangulate(cam, n);
+            StereoLandmarkObs o = to_observation(stereo::triangulate(rig, n, noise));
             o.descriptor = desc[i];
             o.id_hint = i;
             for (int b = 0; b < flip_bits; ++b) {

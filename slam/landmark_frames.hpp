@@ -1,9 +1,9 @@
-// landmark_frames.hpp: the landmark pipeline of landmarks/ (corners, descriptors, the
+// landmark_frames.hpp: the landmark pipeline of slam/landmarks/ (corners, descriptors, the
 // thesis's stereo matching, triangulation) as the filter's stereo frames. A separate target
 // (hc_slam_landmarks) so that hc_slam itself needs no OpenCV.
 #pragma once
 
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "slam/slam.hpp"
 
 namespace hc::slam {

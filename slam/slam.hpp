@@ -16,7 +16,7 @@
 //   hc::slam::InputError, which the command line maps to exit status 2.
 #pragma once
 
-#include "stereo/stereo.hpp"
+#include "slam/landmarks/stereo.hpp"
 #include "io/util/errors.hpp"
 #include <Eigen/Core>
 #include <Eigen/Dense>
@@ -481,30 +481,24 @@ SequenceRun run_filter(const std::vector<StereoFrame>& frames, const std::vector
 SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<StereoFrame>& frames,
                          const SyntheticOdometry& odometry, const AssociationConfig& association, uint64_t seed);
 
-/// Stereo camera for synthetic landmarks (KITTI's rectified camera 0/1 by default) and the
-/// pixel-noise model of its measurements (hc::stereo's, the landmark pipeline's).
-struct StereoCamera {
-    double fx = 718.856, cx = 607.1928, cy = 185.2157, baseline = 0.5372;
-    int width = 1241, height = 376;
-    stereo::PixelNoise noise{};   ///< sigma_px on each of u_l, v_l, u_r, v_r
-    /// The rectified rig: fx = fy, one principal point for both cameras, tx1 = -fx baseline.
-    stereo::RectifiedRig rig() const;
-};
+/// The rig of the synthetic landmarks: KITTI's rectified cameras 0 and 1 (sequences 00-02):
+/// fx = fy = 718.856 px, principal point (607.1928, 185.2157) px for both, the right camera
+/// 0.5372 m to the right (tx1 = -fx * 0.5372), images 1241 x 376.
+stereo::RectifiedRig synthetic_rig();
 /// Synthetic stereo landmarks along a trajectory: `count` world points scattered on both
 /// sides of the path (lateral 4..30 m, height -3..1 m in camera y), each with a random
 /// 256-bit descriptor; frame k lists the points in front of camera k (z 2..60 m) that
-/// project inside both images, measured through the camera with its pixel noise (drawn on
-/// u_l, v_l, u_r, v_r; a point whose noisy disparity is below 1 px is dropped), triangulated,
-/// with their first-order covariance, and the descriptor with `flip_bits` random bits flipped;
-/// id_hint = the world point's index (to score the association, never used by it).
-std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const StereoCamera& camera,
-                                                  int count, int flip_bits, uint64_t seed);
-/// The point measured at `m` (left and right pixels) through the camera's rig, and its
-/// covariance under the camera's pixel-noise model (camera.noise.covariance). p_cam is zero
-/// and cov zero when the disparity is not positive.
-StereoLandmarkObs triangulate(const StereoCamera& camera, const stereo::StereoPixels& m);
-/// What the camera measures of p_cam (z > 0) without noise: stereo::project on its rig.
-stereo::StereoPixels project(const StereoCamera& camera, const Eigen::Vector3d& p_cam);
+/// project inside both images of `rig` (stereo::project), measured with `noise` (drawn on
+/// u_l, v_l, u_r, v_r; a point whose noisy disparity is below 1 px is dropped), triangulated
+/// (stereo::triangulate, with their first-order covariance under `noise`), and the descriptor
+/// with `flip_bits` random bits flipped; id_hint = the world point's index (to score the
+/// association, never used by it). Throws InputError when the rig has no image size.
+std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const stereo::RectifiedRig& rig,
+                                                  const stereo::PixelNoise& noise, int count, int flip_bits,
+                                                  uint64_t seed);
+/// A triangulated point (stereo::triangulate) as a filter observation: p_cam and cov (zero
+/// when the disparity is not positive); no descriptor, no id hint.
+StereoLandmarkObs to_observation(const stereo::Point3& t);
 
 // ---- reports ------------------------------------------------------------------------------
 

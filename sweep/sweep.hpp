@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "eval/eval.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "sweep/cost.hpp"
 #include "sweep/overflow.hpp"
 #include "sweep/ranges.hpp"

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "model/harris/formats_json.hpp"
 #include "io/util/util.hpp"
 

@@ -1,7 +1,7 @@
 // cmd_calibrate.cpp: `harris-cosim calibrate`, stereo calibration of a user's rig from
 // chessboard pairs (thesis 4.3) into a KITTI-style calib.txt, the OpenCV YAML/JSON with the
 // distortion model and Q, per-view errors (CSV) and a Markdown report. The work is in
-// calib/calib.hpp; docs/calibration.md describes the files.
+// slam/landmarks/calib.hpp; docs/calibration.md describes the files.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
 #include "tools/commands.hpp"
 #include "io/frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
@@ -77,7 +77,7 @@ void run_calibrate(const CalibrateOptions& o) {
         std::printf("%zu pairs used, %zu skipped; RMS %.4f px; left fx %.3f fy %.3f cx %.3f cy %.3f; "
                     "baseline %.6g; rectified mean |y_l - y_r| %.4f px\n",
                     d.views.size(), d.skipped.size(), c.rms, c.K1.at<double>(0, 0), c.K1.at<double>(1, 1),
-                    c.K1.at<double>(0, 2), c.K1.at<double>(1, 2), calib::baseline(c), check.mean_abs_dy);
+                    c.K1.at<double>(0, 2), c.K1.at<double>(1, 2), c.rectified.baseline(), check.mean_abs_dy);
         std::printf("wrote %s/{calib.txt, calib.yml, calib.json, views.csv, rectified.png, report.md}\n",
                     out.string().c_str());
     } catch (const calib::InputError& e) {

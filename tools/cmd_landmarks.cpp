@@ -1,7 +1,7 @@
 // cmd_landmarks.cpp: `harris-cosim landmarks`, landmark acquisition downstream of a corner
 // source (thesis Figure 1): descriptor, stereo matching, scoring against the thesis's
 // definition and the ground truth, triangulation, the descriptor comparison (Tables 6-10)
-// and the grid's g x h study (Figures 29-34). Logic: landmarks/landmarks.hpp; docs/landmarks.md.
+// and the grid's g x h study (Figures 29-34). Logic: slam/landmarks/landmarks.hpp; docs/landmarks.md.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -20,7 +20,7 @@
 #include "io/frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
 #include "io/util/util.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
 

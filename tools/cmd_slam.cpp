@@ -16,7 +16,7 @@
 #include "io/frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
 #include "io/util/util.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "slam/landmark_frames.hpp"
 #include "slam/slam.hpp"
 
@@ -141,7 +141,7 @@ std::string odometry_label(const SlamOptions& o) {
 
 slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::path& kitti, const std::string& sequence,
                                    const std::filesystem::path& out) {
-    auto poses = slam::read_kitti_poses(kitti / "poses" / (sequence + ".txt"));
+    auto poses = slam::read_kitti_poses(frames::kitti_poses_file(kitti, sequence));
     if (poses.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
     slam::AssociationConfig ac;
     ac.method = o.association == "nearest" ? slam::AssociationMethod::Nearest : slam::AssociationMethod::Jcbb;
@@ -173,7 +173,7 @@ slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::
                 o.odometry + " odometry)";
     } else {
         if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
-        frames = slam::synthesize_stereo_frames(poses, slam::StereoCamera{}, o.synthetic_count, o.flip_bits, o.seed);
+        frames = slam::synthesize_stereo_frames(poses, slam::synthetic_rig(), {}, o.synthetic_count, o.flip_bits, o.seed);
         source_args = " --synthetic-count " + std::to_string(o.synthetic_count) + " --flip-bits " + std::to_string(o.flip_bits);
         title = "KITTI " + sequence + " (synthetic landmarks on the real trajectory, " + o.odometry + " odometry)";
     }

@@ -76,9 +76,24 @@ std::vector<fs::path> sorted_images(const fs::path& dir) {
 }
 }  // namespace
 
+fs::path kitti_sequences_dir(const fs::path& kitti_root) { return kitti_root / "sequences"; }
+
+fs::path kitti_sequence_dir(const fs::path& kitti_root, const std::string& sequence) {
+    return kitti_sequences_dir(kitti_root) / sequence;
+}
+
+bool is_kitti_sequence(const fs::path& kitti_root, const std::string& sequence) {
+    const fs::path s = kitti_sequence_dir(kitti_root, sequence);
+    return fs::is_directory(s / "image_0") && fs::is_directory(s / "image_1");
+}
+
+fs::path kitti_poses_file(const fs::path& kitti_root, const std::string& sequence) {
+    return kitti_root / "poses" / (sequence + ".txt");
+}
+
 KittiSequence open_kitti(const fs::path& kitti_dir, const std::string& sequence) {
     KittiSequence s;
-    s.root = kitti_dir / "sequences" / sequence;
+    s.root = kitti_sequence_dir(kitti_dir, sequence);
     if (!fs::is_directory(s.root))
         throw InputError("KITTI sequence directory '" + s.root.string() + "' does not exist");
     s.left = sorted_images(s.root / "image_0");

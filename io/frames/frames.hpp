@@ -39,11 +39,26 @@ std::filesystem::path kitti_root(const std::string& kitti_flag, const std::strin
 std::filesystem::path require_kitti_root(const std::string& kitti_flag, const std::string& data_flag,
                                          const std::string& needs);
 
+// The KITTI odometry layout, known here only (every command and library that reads KITTI asks
+// these functions): a KITTI root holds sequences/NN/ (image_0/ the left images, image_1/ the
+// right ones, calib.txt the rectified projections) and poses/NN.txt (the ground-truth poses).
+
+/// <kitti_root>/sequences, the folder of the sequences.
+std::filesystem::path kitti_sequences_dir(const std::filesystem::path& kitti_root);
+/// <kitti_root>/sequences/NN.
+std::filesystem::path kitti_sequence_dir(const std::filesystem::path& kitti_root, const std::string& sequence);
+/// True when sequence NN has both image folders (image_0/ and image_1/).
+bool is_kitti_sequence(const std::filesystem::path& kitti_root, const std::string& sequence);
+/// <kitti_root>/poses/NN.txt, the ground-truth poses of sequence NN.
+std::filesystem::path kitti_poses_file(const std::filesystem::path& kitti_root, const std::string& sequence);
+
 /// A KITTI odometry sequence: sequences/NN/image_0 (left) and image_1 (right).
 struct KittiSequence {
     std::filesystem::path root;   ///< .../sequences/NN
     std::vector<std::filesystem::path> left, right;   ///< sorted; right may be shorter
     int pairs() const { return static_cast<int>(std::min(left.size(), right.size())); }
+    /// The sequence's calib.txt (rectified projections P0, P1, ...).
+    std::filesystem::path calib_txt() const { return root / "calib.txt"; }
 };
 /// Throws InputError when the directory is not a KITTI sequence.
 KittiSequence open_kitti(const std::filesystem::path& kitti_dir, const std::string& sequence);

@@ -22,8 +22,8 @@
 #include <set>
 #include <string>
 
-#include "features/features.hpp"
-#include "tests/features/stereo_sample.hpp"
+#include "slam/landmarks/descriptors.hpp"
+#include "tests/landmarks/stereo_sample.hpp"
 
 namespace {
 

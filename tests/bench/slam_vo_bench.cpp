@@ -15,7 +15,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "io/frames/frames.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "slam/landmark_frames.hpp"
 #include "slam/slam.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "io/cluster/cluster.hpp"
 #include "io/frames/frames.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "model/harris/formats_json.hpp"
 #include "mutation/mutation.hpp"
 #include "slam/slam.hpp"
@@ -78,7 +78,7 @@ std::vector<Target> targets(const fs::path& src) {
     t.push_back({"kitti-calib", "KITTI sequences/NN/calib.txt", "calib.txt", {calib, "P0: 1 2 3\n"},
                  with(kTextTokens, {"P0:", "P1:", "P2:", "Tr:", "e+02", "e-300"}),
                  [](const fs::path& p) {
-                     (void)landmarks::load_kitti_calib(p);
+                     (void)calib::read_kitti_calib(p);
                  }});
 
     // --- KITTI poses/NN.txt (slam --sequence) --------------------------------------------

@@ -11,7 +11,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
 using namespace hc::landmarks;
@@ -109,7 +109,7 @@ TEST_CASE("KITTI 01 pairs load with the sequence's P0 and P1", "[landmarks][data
     const Dataset ds = kitti_dataset(g_data / "kitti", "01", 0, 2);
     REQUIRE(ds.pairs.size() == 2);
     CHECK(ds.pairs[0].left.size() == cv::Size(1241, 376));
-    CHECK(ds.calib[0].fx() == 718.856);
+    CHECK(ds.calib[0].fx == 718.856);
     CHECK(ds.calib[0].baseline() == Approx(386.1448 / 718.856).epsilon(1e-15));
     CHECK(ds.disparity[0].empty());
 }

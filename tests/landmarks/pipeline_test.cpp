@@ -7,7 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "model/spec/opencv_reference.hpp"
 #include "model/spec/spec_model.hpp"
 
@@ -126,9 +126,8 @@ TEST_CASE("a ground-truth-correct match has |x_l - x_r - d| <= 1 and |y_r - y_l|
 }
 
 TEST_CASE("acquire puts the landmarks of a shifted pair at fx * b / disparity", "[landmarks]") {
-    StereoCalib c;
-    c.P0 = cv::Matx34d(718.856, 0, 160, 0, 0, 718.856, 120, 0, 0, 0, 1, 0);
-    c.P1 = cv::Matx34d(718.856, 0, 160, -386.1448, 0, 718.856, 120, 0, 0, 0, 1, 0);
+    const double P0[12] = {718.856, 0, 160, 0, 0, 718.856, 120, 0, 0, 0, 1, 0}, P1[12] = {718.856, 0, 160, -386.1448, 0, 718.856, 120, 0, 0, 0, 1, 0};
+    const hc::stereo::RectifiedRig c = hc::stereo::rig_from_projections(P0, P1);
     const StereoImages p = shifted_pair();
     PipelineOptions o;
     o.descriptor = Descriptor::grid;
@@ -164,9 +163,8 @@ TEST_CASE("score_formats scores a configuration as the comparison scores grid on
     ds.name = "shifted";
     ds.pairs = {shifted_pair()};
     ds.disparity = {shifted_truth()};
-    StereoCalib c;
-    c.P0 = cv::Matx34d(700, 0, 160, 0, 0, 700, 120, 0, 0, 0, 1, 0);
-    c.P1 = cv::Matx34d(700, 0, 160, -350, 0, 700, 120, 0, 0, 0, 1, 0);
+    const double P0[12] = {700, 0, 160, 0, 0, 700, 120, 0, 0, 0, 1, 0}, P1[12] = {700, 0, 160, -350, 0, 700, 120, 0, 0, 0, 1, 0};
+    const hc::stereo::RectifiedRig c = hc::stereo::rig_from_projections(P0, P1);
     ds.calib = {c};
     const Totals t = score_formats(ds, hc::Formats{}, Detector::spec, GridParams{16, 2});
     ComparisonOptions o;
@@ -194,9 +192,8 @@ TEST_CASE("the g x h study of a fixed pair gives the counts of the reference mat
     ds.name = "shifted";
     ds.pairs = {shifted_pair(), shifted_pair(400, 300)};
     ds.disparity = {shifted_truth(), shifted_truth(400, 300)};
-    StereoCalib c;
-    c.P0 = cv::Matx34d(700, 0, 160, 0, 0, 700, 120, 0, 0, 0, 1, 0);
-    c.P1 = cv::Matx34d(700, 0, 160, -350, 0, 700, 120, 0, 0, 0, 1, 0);
+    const double P0[12] = {700, 0, 160, 0, 0, 700, 120, 0, 0, 0, 1, 0}, P1[12] = {700, 0, 160, -350, 0, 700, 120, 0, 0, 0, 1, 0};
+    const hc::stereo::RectifiedRig c = hc::stereo::rig_from_projections(P0, P1);
     ds.calib = {c, c};
     StudyOptions o;
     o.g_min = 4;

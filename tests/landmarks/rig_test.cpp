@@ -18,7 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
 using namespace hc::landmarks;
@@ -48,11 +48,11 @@ TEST_CASE("on a calibrated rig's unrectified pair, the chessboard's landmarks ar
     REQUIRE(left.size() == 13);
     const calib::Board board{{9, 6}, 1.0};   // unit: one square
     const calib::Detection det = calib::detect_boards(left, right, board);
-    const calib::StereoCalib rig = calib::calibrate(det, board);
+    const calib::Calibration rig = calib::calibrate(det, board);
     // through the file `harris-cosim calibrate` writes
     const fs::path file = fs::temp_directory_path() / ("hc_rig_test_" + std::to_string(::getpid()) + ".yml");
     write_atomic(file, calib::to_opencv_storage(rig, false));
-    const calib::StereoCalib read = read_rig_calibration(file);
+    const calib::Calibration read = read_rig_calibration(file);
     fs::remove(file);
 
     const fs::path l3 = g_samples / "left03.jpg", r3 = g_samples / "right03.jpg";
@@ -75,13 +75,13 @@ TEST_CASE("on a calibrated rig's unrectified pair, the chessboard's landmarks ar
         raw_dy += std::abs(bl[i].y - br[i].y) / 54.0;
         rect_dy += std::abs(rl[i].y - rr[i].y) / 54.0;
     }
-    // the board's corners triangulated through the rectified projections: one square apart, flat
-    const StereoCalib rect = ds.calib.at(0);
+    // the board's corners triangulated through the rectified rig: one square apart, flat
+    const hc::stereo::RectifiedRig rect = ds.calib.at(0);
     std::vector<cv::Vec3d> corners;
     for (size_t i = 0; i < 54; ++i) {
-        const Triangulated t = triangulate(rect, rl[i], rr[i]);
+        const hc::stereo::Point3 t = hc::stereo::triangulate(rect, pixels(rl[i], rr[i]));
         REQUIRE(t.valid);
-        corners.push_back(t.p);
+        corners.emplace_back(t.p[0], t.p[1], t.p[2]);
     }
     std::vector<double> sides;
     for (int i = 0; i < 54; ++i) {
@@ -132,7 +132,7 @@ TEST_CASE("a bad rig calibration file is an input error naming it", "[landmarks]
     fs::remove(bad);
     CHECK_THROWS_WITH(read_rig_calibration("no/such/calib.yml"), Catch::Contains("no/such/calib.yml"));
     CHECK_THROWS_WITH(read_rig_calibration("no/such/calib.txt"), Catch::Contains("no/such/calib.txt"));
-    const calib::StereoCalib kitti = calib::parse_kitti_calib(
+    const calib::Calibration kitti = calib::parse_kitti_calib(
         "P0: 700 0 320 0 0 700 240 0 0 0 1 0\nP1: 700 0 320 -350 0 700 240 0 0 0 1 0\n", "t");
     CHECK_THROWS_WITH(rig_dataset({g_samples / "left01.jpg"}, {}, kitti), Catch::Contains("1 left images but 0 right"));
     CHECK_THROWS_WITH(rig_dataset({g_samples / "left01.jpg"}, {g_samples / "nothere.jpg"}, kitti), Catch::Contains("nothere.jpg"));

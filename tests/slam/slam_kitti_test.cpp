@@ -29,7 +29,7 @@ TEST_CASE("on KITTI 01's trajectory with synthetic landmarks EKF-SLAM beats synt
     std::vector<Motion> exact;
     for (size_t k = 1; k < truth.size(); ++k) exact.push_back(between(truth[k - 1], truth[k]));
     CHECK(absolute_trajectory_error(dead_reckoning(truth[0], exact), truth) < 1e-9);
-    const auto frames = synthesize_stereo_frames(poses, StereoCamera{}, 1000, 8, 1);
+    const auto frames = synthesize_stereo_frames(poses, synthetic_rig(), {}, 1000, 8, 1);
     double slam_sum = 0, dr_sum = 0;
     for (uint64_t seed = 1; seed <= 10; ++seed) {
         const SequenceRun r = run_sequence(poses, frames, SyntheticOdometry{}, AssociationConfig{}, seed);

@@ -36,18 +36,20 @@ Scene make_scene(int count, uint64_t seed, double z_max = 30) {
 /// The scene seen from top-view pose r through KITTI's stereo camera with pixel noise
 /// sigma_px (the camera's model: on each of u_l, v_l, u_r, v_r) drawn from `noise` when it
 /// is given, else exact pixels (the covariance is the same).
-StereoFrame view(const Scene& s, const Pose& r, std::mt19937_64* noise, double sigma_px = StereoCamera{}.noise.sigma_px) {
-    StereoCamera cam;
-    cam.noise.sigma_px = sigma_px;
+StereoFrame view(const Scene& s, const Pose& r, std::mt19937_64* noise,
+                 double sigma_px = hc::stereo::PixelNoise{}.sigma_px) {
+    const hc::stereo::RectifiedRig cam = synthetic_rig();
+    const hc::stereo::PixelNoise pixel_noise{sigma_px};
     const Mat34 T = kitti_pose(r);
     StereoFrame f;
     for (size_t i = 0; i < s.world.size(); ++i) {
         const Eigen::Vector3d p = T.leftCols<3>().transpose() * (s.world[i] - T.col(3));
         if (p.z() < 2) continue;
-        hc::stereo::StereoPixels m = project(cam, p);
+        const double q[3] = {p.x(), p.y(), p.z()};
+        hc::stereo::StereoPixels m = hc::stereo::project(cam, q);
         if (m.u_l < 0 || m.u_l >= cam.width || m.v_l < 0 || m.v_l >= cam.height || m.u_r < 0) continue;
-        if (noise) m = cam.noise.perturb(m, *noise);
-        StereoLandmarkObs o = triangulate(cam, m);
+        if (noise) m = pixel_noise.perturb(m, *noise);
+        StereoLandmarkObs o = to_observation(hc::stereo::triangulate(cam, m, pixel_noise));
         o.descriptor = s.desc[i];
         o.id_hint = static_cast<int>(i);
         f.push_back(std::move(o));
@@ -115,7 +117,7 @@ TEST_CASE("visual odometry with pixel noise errs within its covariance (NEES ove
     // over-confident (3.51 on these draws; 3.51-3.83 over rng seeds 11-13, against
     // 3.00-3.39 at 0.02 px), since each point's covariance is evaluated at its noisy position;
     // bounded here at 1.25 times the upper chi-square bound
-    const double nominal = mean_odometry_nees(StereoCamera{}.noise.sigma_px, draws);
+    const double nominal = mean_odometry_nees(hc::stereo::PixelNoise{}.sigma_px, draws);
     INFO("0.5 px: mean NEES " << nominal);
     CHECK(nominal > lo);
     CHECK(nominal < 1.25 * hi);
@@ -141,12 +143,12 @@ TEST_CASE("the descriptor threshold is a fraction of the descriptor's bits", "[s
     CHECK(hamming_threshold(0.1, 32) == 25);
     CHECK(hamming_threshold(0, 64) == 0);
     // 100 differing bits: refused for a 256-bit descriptor, accepted for a 512-bit one
-    const StereoCamera cam;
+    const hc::stereo::RectifiedRig cam = synthetic_rig();
     for (const size_t bytes : {size_t(32), size_t(64)}) {
         AssociationConfig ac;
         ac.forget_after = 0;
         LandmarkSlam s(Pose::Zero(), ac);
-        StereoLandmarkObs a = triangulate(cam, {700, 200, 670, 200});
+        StereoLandmarkObs a = to_observation(hc::stereo::triangulate(cam, {700, 200, 670, 200}));
         a.descriptor.assign(bytes, 0x00);
         s.first_frame({a});
         StereoLandmarkObs b = a;

@@ -100,11 +100,13 @@ TEST_CASE("trajectories are written in the KITTI and TUM formats", "[slam]") {
 }
 
 TEST_CASE("triangulation covariance is the pixel noise on u_l, v_l, u_r, v_r through the Jacobian", "[slam]") {
-    const StereoCamera cam;
+    const hc::stereo::RectifiedRig cam = synthetic_rig();
     const Eigen::Vector4d m(800, 150, 780, 151);   // disparity 20 px, rows one apart
-    const auto f = [&](const Eigen::Vector4d& x) { return triangulate(cam, {x(0), x(1), x(2), x(3)}).p_cam; };
-    const StereoLandmarkObs o = triangulate(cam, {m(0), m(1), m(2), m(3)});
-    const double z = cam.fx * cam.baseline / 20, s = cam.noise.sigma_px;
+    const auto f = [&](const Eigen::Vector4d& x) {
+        return to_observation(hc::stereo::triangulate(cam, {x(0), x(1), x(2), x(3)})).p_cam;
+    };
+    const StereoLandmarkObs o = to_observation(hc::stereo::triangulate(cam, {m(0), m(1), m(2), m(3)}));
+    const double z = cam.fx * cam.baseline() / 20, s = hc::stereo::PixelNoise{}.sigma_px;
     CHECK(o.p_cam.z() == Approx(z));
     CHECK(o.p_cam.y() == Approx((150.5 - cam.cy) * z / cam.fx));   // v = (v_l + v_r) / 2
     const Eigen::Matrix<double, 3, 4> J = numeric_jacobian<3, 4>(f, m);
@@ -112,24 +114,23 @@ TEST_CASE("triangulation covariance is the pixel noise on u_l, v_l, u_r, v_r thr
     // the disparity u_l - u_r has variance 2 σ²: σ_z = √2 z²/(f b) σ (σ on the disparity
     // itself would give z²/(f b) σ); y from the mean of two rows and from z:
     // σ_y² = σ² (z²/(2 f²) + 2 ((v - cy)/f)² z⁴/(f b)²)
-    CHECK(std::sqrt(o.cov(2, 2)) == Approx(std::sqrt(2.0) * z * z / (cam.fx * cam.baseline) * s).epsilon(1e-12));
+    CHECK(std::sqrt(o.cov(2, 2)) == Approx(std::sqrt(2.0) * z * z / (cam.fx * cam.baseline()) * s).epsilon(1e-12));
     const double yv = o.p_cam.y() / z;   // (v - cy) / f
     CHECK(o.cov(1, 1) == Approx(s * s * (z * z / (2 * cam.fx * cam.fx) + 2 * yv * yv * z * z * z * z /
-                                                                            (cam.fx * cam.baseline * cam.fx * cam.baseline)))
+                                                                            (cam.fx * cam.baseline() * cam.fx * cam.baseline())))
                              .epsilon(1e-12));
 }
 
 TEST_CASE("the pixel noise is σ on each of u_l, v_l, u_r, v_r: Σ(u, v, d) = σ² [[1,0,1],[0,½,0],[1,0,2]]",
           "[slam]") {
-    StereoCamera cam;
-    cam.noise.sigma_px = 0.7;
+    hc::stereo::PixelNoise noise{0.7};
     const hc::stereo::StereoPixels exact{600, 200, 580, 200};
     std::mt19937_64 rng(5);
     const int n = 200000;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
     for (int k = 0; k < n; ++k) {
-        const hc::stereo::StereoPixels m = cam.noise.perturb(exact, rng);
+        const hc::stereo::StereoPixels m = noise.perturb(exact, rng);
         // error of (u, v, d) = (u_l, (v_l + v_r)/2, u_l - u_r)
         const Eigen::Vector3d e(m.u_l - exact.u_l, (m.v_l + m.v_r) / 2 - 200, (m.u_l - m.u_r) - 20);
         mean += e;
@@ -145,8 +146,8 @@ TEST_CASE("the pixel noise is σ on each of u_l, v_l, u_r, v_r: Σ(u, v, d) = σ
     // 200,000 draws: each entry within 0.01 (its standard error is below 0.0045)
     CHECK((C - model).cwiseAbs().maxCoeff() < 0.01);
     // a zero σ leaves the pixels exact
-    cam.noise.sigma_px = 0;
-    const hc::stereo::StereoPixels same = cam.noise.perturb(exact, rng);
+    noise.sigma_px = 0;
+    const hc::stereo::StereoPixels same = noise.perturb(exact, rng);
     CHECK((same.u_l == exact.u_l && same.v_l == exact.v_l && same.u_r == exact.u_r && same.v_r == exact.v_r));
 }
 
@@ -161,8 +162,8 @@ TEST_CASE("association matches inside the gate and refuses a descriptor that dif
     ac.forget_after = 0;
     LandmarkSlam s(Pose::Zero(), ac);
     StereoFrame f0;
-    const StereoCamera cam;
-    StereoLandmarkObs a = triangulate(cam, {700, 200, 670, 200}), b = triangulate(cam, {400, 200, 375, 200});
+    const hc::stereo::RectifiedRig cam = synthetic_rig();
+    StereoLandmarkObs a = to_observation(hc::stereo::triangulate(cam, {700, 200, 670, 200})), b = to_observation(hc::stereo::triangulate(cam, {400, 200, 375, 200}));
     a.descriptor = std::vector<uint8_t>(32, 0x00);
     b.descriptor = std::vector<uint8_t>(32, 0xff);
     f0 = {a, b};
@@ -194,8 +195,8 @@ TEST_CASE("landmarks unseen for forget_after frames are removed", "[slam]") {
     AssociationConfig ac;
     ac.forget_after = 2;
     LandmarkSlam s(Pose::Zero(), ac);
-    const StereoCamera cam;
-    StereoLandmarkObs a = triangulate(cam, {700, 200, 670, 200});
+    const hc::stereo::RectifiedRig cam = synthetic_rig();
+    StereoLandmarkObs a = to_observation(hc::stereo::triangulate(cam, {700, 200, 670, 200}));
     s.first_frame({a});
     CHECK(s.next_frame(Motion::Zero(), Q0, {}).removed == 0);
     const FrameStats f = s.next_frame(Motion::Zero(), Q0, {});
@@ -218,12 +219,12 @@ TEST_CASE("bad association settings and sequences are refused with InputError", 
                       Catch::Contains("one landmark frame per pose"));
     CHECK_THROWS_AS(run_sequence({poses[0]}, std::vector<StereoFrame>(1), SyntheticOdometry{}, AssociationConfig{}, 1),
                     InputError);
-    CHECK_THROWS_AS(synthesize_stereo_frames(poses, StereoCamera{}, 0, 0, 1), InputError);
+    CHECK_THROWS_AS(synthesize_stereo_frames(poses, synthetic_rig(), {}, 0, 0, 1), InputError);
 }
 
 TEST_CASE("on a synthetic curved drive EKF-SLAM beats dead reckoning with the same odometry", "[slam]") {
     const auto poses = arc_poses(80, 0.01);
-    const auto frames = synthesize_stereo_frames(poses, StereoCamera{}, 300, 8, 3);
+    const auto frames = synthesize_stereo_frames(poses, synthetic_rig(), {}, 300, 8, 3);
     SyntheticOdometry om;
     om.sigma_dx = 0.05;
     om.sigma_dy = 0.01;

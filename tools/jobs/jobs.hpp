@@ -11,7 +11,7 @@
 
 #include "io/cluster/cluster.hpp"
 #include "eval/report.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks.hpp"
 #include "model/harris/harris_pkg.hpp"
 #include "mutation/mutation.hpp"
 #include "slam/slam.hpp"

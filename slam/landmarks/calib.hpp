@@ -16,6 +16,7 @@
 // baseline is -P2(0,3) / P2(0,0); Q maps (x, y, x_l - x_r, 1) to homogeneous 3D.
 #pragma once
 
+#include "slam/landmarks/stereo.hpp"
 #include "io/util/errors.hpp"
 #include <opencv2/core.hpp>
 
@@ -96,13 +97,14 @@ Detection detect_boards(const std::vector<std::filesystem::path>& left,
                         const std::vector<std::filesystem::path>& right, const Board& board,
                         const DetectOptions& opt = {}, const Progress& progress = {});
 
-/// A calibrated and rectified stereo rig. Matrices are CV_64F.
-struct StereoCalib {
-    cv::Size image_size;       ///< 0x0 when unknown (a KITTI calib.txt does not say)
+/// A calibrated stereo rig and its rectification. Matrices are CV_64F.
+struct Calibration {
     cv::Mat K1, D1, K2, D2;    ///< intrinsics 3x3; distortion 1x5 (k1 k2 p1 p2 k3)
     cv::Mat R, T;              ///< right from left: X_r = R X_l + T (3x3, 3x1)
     cv::Mat R1, R2;            ///< rectifying rotations (3x3)
-    cv::Mat P1, P2;            ///< rectified projections (3x4): calib.txt's P0 and P1
+    /// The rectified pair: stereoRectify's P1 and P2 (calib.txt's P0 and P1) and the images'
+    /// size (0x0 when unknown: a KITTI calib.txt does not say).
+    stereo::RectifiedRig rectified;
     cv::Mat Q;                 ///< disparity-to-depth (4x4)
     double rms = 0;            ///< stereo reprojection RMS, px (0 when not calibrated here)
     /// Standard deviations of fx, fy, cx, cy from each camera's own calibration
@@ -114,6 +116,9 @@ struct StereoCalib {
     /// rectify_points returns its input unchanged.
     bool rectified_input = false;
 };
+
+/// The images' size of a calibration (0x0 when unknown).
+inline cv::Size image_size(const Calibration& c) { return {c.rectified.width, c.rectified.height}; }
 
 /// Options of the calibration.
 struct CalibOptions {
@@ -128,7 +133,7 @@ struct CalibOptions {
 /// Calibrates each camera, then the pair, then rectifies: the RMS is stereoCalibrate's
 /// (over both images of every view). Throws InputError when `d` holds fewer than 3 views,
 /// when OpenCV's optimisation fails on them, or for a vertical rig.
-StereoCalib calibrate(const Detection& d, const Board& board, const CalibOptions& opt = {});
+Calibration calibrate(const Detection& d, const Board& board, const CalibOptions& opt = {});
 
 /// Which camera a point comes from.
 enum class Side { left, right };
@@ -137,7 +142,7 @@ enum class Side { left, right };
 /// that camera's K, D, rectifying rotation and rectified projection (iterated to 1e-10 in
 /// normalised coordinates, at most 100 steps). Points only, no image is warped. For a rig
 /// whose images are already rectified (rectified_input) the points are returned unchanged.
-std::vector<cv::Point2f> rectify_points(const StereoCalib& c, Side side,
+std::vector<cv::Point2f> rectify_points(const Calibration& c, Side side,
                                         const std::vector<cv::Point2f>& pts);
 
 /// Rectified rows of the board corners of every view: mean and largest |y_l - y_r| over all
@@ -146,7 +151,7 @@ struct RectificationCheck {
     double mean_abs_dy = 0, max_abs_dy = 0;
     std::size_t corners = 0;
 };
-RectificationCheck check_rectification(const StereoCalib& c, const Detection& d);
+RectificationCheck check_rectification(const Calibration& c, const Detection& d);
 /// Above this mean |y_l - y_r| (px) a calibration is reported as not usable: the thesis's
 /// epipolar test (|dy| < 5 px) would then reject good matches. A good one measures 0.1 px
 /// (docs/calibration.md).
@@ -157,43 +162,45 @@ inline constexpr double kUsableMeanDy = 1.0;
 /// `view` moved by rectify_points drawn on them (green left, red right) and a horizontal
 /// line every 20 px: on a good calibration every corner pair sits on one row. BGR, 2W x H.
 /// Throws InputError when the images are not of the calibration's size.
-cv::Mat rectified_pair_figure(const StereoCalib& c, const cv::Mat& left, const cv::Mat& right,
+cv::Mat rectified_pair_figure(const Calibration& c, const cv::Mat& left, const cv::Mat& right,
                               const StereoView& view);
 
-/// Focal length of the rectified pair, px (P1(0,0)).
-double focal(const StereoCalib& c);
-/// Baseline, in the board's unit: -P2(0,3) / P2(0,0).
-double baseline(const StereoCalib& c);
+/// A rectified camera's projection as OpenCV takes it (3x4, CV_64F): the rig's P0 for the
+/// left camera, P1 for the right (stereoRectify's P1, P2). The focal length of the pair is
+/// rig.fx, its baseline in the board's unit rig.baseline().
+cv::Mat projection(const stereo::RectifiedRig& rig, Side side);
 
-/// The KITTI-style calib.txt: two rows "P0: " and "P1: " of the 12 numbers of P1 and P2,
-/// row-major, each in the shortest scientific form that reads back to the same double.
-std::string to_kitti_calib(const StereoCalib& c);
+/// The KITTI-style calib.txt: two rows "P0: " and "P1: " of the 12 numbers of the rectified
+/// pair's projections, row-major, each in the shortest scientific form that reads back to the same double.
+std::string to_kitti_calib(const Calibration& c);
 /// Reads a KITTI calib.txt: the rows P0 and P1 (12 numbers each) are required; other rows
-/// (P2, P3, Tr, ...) are ignored. The result is a rectified rig: K1, K2 the left 3x3 of P0,
-/// P1; no distortion; identity rotations; T = (P1[3]/P1[0] - P0[3]/P0[0], 0, 0), which is
-/// -baseline for KITTI's P0 (P0[3] = 0); Q from P0 and P1; rectified_input = true. Throws InputError naming `name` and the row when a row is
-/// malformed or P0/P1 is missing.
-StereoCalib parse_kitti_calib(const std::string& text, const std::string& name);
+/// (P2, P3, Tr, ...) are ignored. The result is a rectified rig: `rectified` from P0 and P1
+/// (stereo::rig_from_projections), K1, K2 the left 3x3 of P0, P1; no distortion; identity
+/// rotations; T = (P1[3]/P1[0] - P0[3]/P0[0], 0, 0), which is -baseline for KITTI's P0
+/// (P0[3] = 0); Q from the rig; rectified_input = true. Throws InputError naming `name` (and
+/// the row) when a row is malformed, P0/P1 is missing, or P0 and P1 are not a rectified pair
+/// with the right camera to the right.
+Calibration parse_kitti_calib(const std::string& text, const std::string& name);
 /// Reads the file `p` with parse_kitti_calib; InputError naming it when it cannot be read.
-StereoCalib read_kitti_calib(const std::filesystem::path& p);
+Calibration read_kitti_calib(const std::filesystem::path& p);
 
 /// The whole calibration as OpenCV FileStorage text: YAML when `json` is false, else JSON.
 /// Keys: image_width, image_height, distortion_model, K1, D1, K2, D2, R, T, R1, R2, P1, P2,
 /// Q, rms, per_view_errors, view_names, sigma1, sigma2 (1x4: fx fy cx cy), rectified_input.
-std::string to_opencv_storage(const StereoCalib& c, bool json);
+std::string to_opencv_storage(const Calibration& c, bool json);
 /// Reads a file written by to_opencv_storage (.yml, .yaml, .json). Throws InputError naming
 /// it when it is missing, unreadable or lacks a key.
-StereoCalib read_opencv_storage(const std::filesystem::path& p);
+Calibration read_opencv_storage(const std::filesystem::path& p);
 
-/// The disparity-to-depth matrix of two rectified projections (stereoRectify's Q with
+/// The disparity-to-depth matrix of a rectified rig (stereoRectify's Q with
 /// CALIB_ZERO_DISPARITY semantics): (x, y, x_l - x_r, 1) -> (X, Y, Z, W).
-cv::Mat disparity_to_depth(const cv::Mat& P1, const cv::Mat& P2);
+cv::Mat disparity_to_depth(const stereo::RectifiedRig& rig);
 
 /// A Markdown report of a calibration: RMS, per-view errors, intrinsics, distortion,
 /// extrinsics, rectified projections, Q, the rectification check and the skipped pairs;
 /// with `figure` (a PNG file name beside the report, of rectified_pair_figure for the view
 /// named `figure_view`), a link to it.
-std::string report_markdown(const StereoCalib& c, const Detection& d, const Board& board,
+std::string report_markdown(const Calibration& c, const Detection& d, const Board& board,
                             const RectificationCheck& check, const std::string& figure = {},
                             const std::string& figure_view = {});
 

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
 
 using namespace hc::calib;
 namespace fs = std::filesystem;
@@ -92,11 +92,13 @@ TEST_CASE("undistortPoints inverts the thesis's radial model at a point checked 
     // r^2 = 0.25, so eq. 4.2 scales it by 1 - 0.2 * 0.25 = 0.95 to (0.38, 0.285): the camera
     // sees it at (500 * 0.38 + 320, 500 * 0.285 + 240) = (510, 382.5). Undistorted and put
     // back through the same K it is (500 * 0.4 + 320, 500 * 0.3 + 240) = (520, 390).
-    StereoCalib c;
+    Calibration c;
     c.K1 = (cv::Mat_<double>(3, 3) << 500, 0, 320, 0, 500, 240, 0, 0, 1);
     c.D1 = (cv::Mat_<double>(1, 5) << -0.2, 0, 0, 0, 0);
     c.R1 = cv::Mat::eye(3, 3, CV_64F);
-    c.P1 = (cv::Mat_<double>(3, 4) << 500, 0, 320, 0, 0, 500, 240, 0, 0, 0, 1, 0);
+    c.rectified.fx = c.rectified.fy = 500;   // the left rectified projection [500 0 320 0; 0 500 240 0; 0 0 1 0]
+    c.rectified.cx0 = 320;
+    c.rectified.cy = 240;
     auto p = rectify_points(c, Side::left, {{510.f, 382.5f}});
     REQUIRE(p.size() == 1);
     CHECK(p[0].x == Approx(520).margin(1e-3));   // float32 points: 1e-3 px is ~30 ulp at 520
@@ -105,25 +107,31 @@ TEST_CASE("undistortPoints inverts the thesis's radial model at a point checked 
     // becomes (-0.3, 0.4, 1); a rectified projection f = 600, (cx, cy) = (300, 200) puts it at
     // (600 * -0.3 + 300, 600 * 0.4 + 200) = (120, 440).
     c.R1 = (cv::Mat_<double>(3, 3) << 0, -1, 0, 1, 0, 0, 0, 0, 1);
-    c.P1 = (cv::Mat_<double>(3, 4) << 600, 0, 300, 0, 0, 600, 200, 0, 0, 0, 1, 0);
+    c.rectified.fx = c.rectified.fy = 600;
+    c.rectified.cx0 = 300;
+    c.rectified.cy = 200;
     p = rectify_points(c, Side::left, {{510.f, 382.5f}});
     CHECK(p[0].x == Approx(120).margin(1e-3));
     CHECK(p[0].y == Approx(440).margin(1e-3));
-    // The right camera uses K2, D2, R2, P2: here no distortion, identity, so no change.
+    // The right camera uses K2, D2, R2 and the right rectified projection (stereoRectify's P2,
+    // here [500 0 320 -50; 0 500 240 0; 0 0 1 0]): no distortion, identity, so no change.
     c.K2 = c.K1.clone();
     c.D2 = cv::Mat::zeros(1, 5, CV_64F);
     c.R2 = cv::Mat::eye(3, 3, CV_64F);
-    c.P2 = (cv::Mat_<double>(3, 4) << 500, 0, 320, -50, 0, 500, 240, 0, 0, 0, 1, 0);
+    c.rectified.fx = c.rectified.fy = 500;
+    c.rectified.cx1 = 320;
+    c.rectified.tx1 = -50;
+    c.rectified.cy = 240;
     p = rectify_points(c, Side::right, {{510.f, 382.5f}});
     CHECK(p[0].x == Approx(510).margin(1e-3));
     CHECK(p[0].y == Approx(382.5).margin(1e-3));
 }
 
 TEST_CASE("KITTI's calib.txt is read from P0 and P1, ignoring P2, P3 and Tr", "[calib]") {
-    const StereoCalib c = parse_kitti_calib(kKittiFull, "calib.txt");
+    const Calibration c = parse_kitti_calib(kKittiFull, "calib.txt");
     CHECK(c.rectified_input);
-    CHECK(focal(c) == 718.856);
-    CHECK(baseline(c) == Approx(386.1448 / 718.856).epsilon(1e-15));
+    CHECK(c.rectified.fx == 718.856);
+    CHECK(c.rectified.baseline() == Approx(386.1448 / 718.856).epsilon(1e-15));
     CHECK(c.K1.at<double>(0, 2) == 607.1928);
     CHECK(c.K1.at<double>(1, 2) == 185.2157);
     CHECK(c.T.at<double>(0) == Approx(-386.1448 / 718.856).epsilon(1e-15));
@@ -152,22 +160,22 @@ TEST_CASE("a malformed KITTI calib.txt is refused naming the file, line and row"
 }
 
 TEST_CASE("calib.txt written and read back gives the same projections bit for bit", "[calib]") {
-    StereoCalib c;
-    c.P1 = (cv::Mat_<double>(3, 4) << 535.9157339616320, 0, 342.28315473308373, 0, 0, 535.9157339616320,
-            235.57082909788173, 0, 0, 0, 1, 0);
-    c.P2 = c.P1.clone();
-    c.P2.at<double>(0, 3) = -1.0 / 3.0 * 535.9157339616320;
+    Calibration c;
+    c.rectified.fx = c.rectified.fy = 535.9157339616320;
+    c.rectified.cx0 = c.rectified.cx1 = 342.28315473308373;
+    c.rectified.cy = 235.57082909788173;
+    c.rectified.tx1 = -1.0 / 3.0 * 535.9157339616320;
     const std::string text = to_kitti_calib(c);
-    const StereoCalib r = parse_kitti_calib(text, "round trip");
-    CHECK(bit_equal(r.P1, c.P1));
-    CHECK(bit_equal(r.P2, c.P2));
+    const Calibration r = parse_kitti_calib(text, "round trip");
+    CHECK(bit_equal(projection(r.rectified, Side::left), projection(c.rectified, Side::left)));
+    CHECK(bit_equal(projection(r.rectified, Side::right), projection(c.rectified, Side::right)));
     CHECK(to_kitti_calib(r) == text);
     // The format is KITTI's: two rows of 12 numbers; KITTI's own numbers keep their value.
     CHECK(text.rfind("P0: 5.35915733961632e+02 0e+00 3.4228315473308373e+02 0e+00 ", 0) == 0);
-    const StereoCalib k = parse_kitti_calib(kKittiFull, "kitti");
-    const StereoCalib k2 = parse_kitti_calib(to_kitti_calib(k), "kitti rewritten");
-    CHECK(bit_equal(k.P1, k2.P1));
-    CHECK(bit_equal(k.P2, k2.P2));
+    const Calibration k = parse_kitti_calib(kKittiFull, "kitti");
+    const Calibration k2 = parse_kitti_calib(to_kitti_calib(k), "kitti rewritten");
+    CHECK(bit_equal(projection(k.rectified, Side::left), projection(k2.rectified, Side::left)));
+    CHECK(bit_equal(projection(k.rectified, Side::right), projection(k2.rectified, Side::right)));
     CHECK(to_kitti_calib(k).rfind("P0: 7.18856e+02 0e+00 6.071928e+02 0e+00", 0) == 0);
 }
 
@@ -177,7 +185,7 @@ TEST_CASE("the disparity-to-depth matrix equals stereoRectify's Q", "[calib]") {
     cv::Rodrigues(s.rvec, R);
     cv::stereoRectify(s.K1, s.D1, s.K2, s.D2, cv::Size(640, 480), R, s.T, R1, R2, P1, P2, Q,
                       cv::CALIB_ZERO_DISPARITY, 0);
-    const cv::Mat q = disparity_to_depth(P1, P2);
+    const cv::Mat q = disparity_to_depth(hc::stereo::rig_from_projections(P1.ptr<double>(), P2.ptr<double>()));
     INFO("Q " << Q << "\nours " << q);
     CHECK(cv::norm(q, Q, cv::NORM_INF) <= 1e-12 * cv::norm(Q, cv::NORM_INF));
 }
@@ -210,7 +218,7 @@ TEST_CASE("calibrating a synthetic rig from its exact corners recovers it", "[ca
         cv::projectPoints(obj, rvr, tr, s.K2, s.D2, view.right);
         d.views.push_back(view);
     }
-    const StereoCalib c = calibrate(d, board);
+    const Calibration c = calibrate(d, board);
     INFO("K1 " << c.K1 << "\nK2 " << c.K2 << "\nT " << c.T << "\nrms " << c.rms);
     // float32 corners: the residual is rounding only. Measured: RMS 9e-6 px, K within 4.4e-5 px,
     // T within 7e-9.
@@ -218,7 +226,7 @@ TEST_CASE("calibrating a synthetic rig from its exact corners recovers it", "[ca
     CHECK(cv::norm(c.K1, s.K1, cv::NORM_INF) < 1e-3);
     CHECK(cv::norm(c.K2, s.K2, cv::NORM_INF) < 1e-3);
     CHECK(cv::norm(c.T, s.T, cv::NORM_INF) < 1e-7);
-    CHECK(baseline(c) == Approx(cv::norm(s.T)).epsilon(1e-4));
+    CHECK(c.rectified.baseline() == Approx(cv::norm(s.T)).epsilon(1e-4));
     REQUIRE(c.per_view_errors.size() == 12);
     CHECK(c.view_names[3] == "view 3");
     const RectificationCheck chk = check_rectification(c, d);
@@ -250,9 +258,10 @@ TEST_CASE("calibrating a synthetic rig from its exact corners recovers it", "[ca
 }
 
 TEST_CASE("the OpenCV storage reads back what it wrote, in YAML and in JSON", "[calib]") {
-    const StereoCalib k = parse_kitti_calib(kKittiFull, "kitti");
-    StereoCalib c = k;
-    c.image_size = cv::Size(1241, 376);
+    const Calibration k = parse_kitti_calib(kKittiFull, "kitti");
+    Calibration c = k;
+    c.rectified.width = 1241;
+    c.rectified.height = 376;
     c.D1.at<double>(0, 0) = -0.1234567890123456789;
     c.rms = 0.3333333333333333;
     c.per_view_errors = {{0.1, 0.2}, {1.0 / 3.0, 2.0 / 7.0}};
@@ -262,13 +271,15 @@ TEST_CASE("the OpenCV storage reads back what it wrote, in YAML and in JSON", "[
     for (const bool json : {false, true}) {
         const fs::path p = fs::temp_directory_path() / (json ? "hc_calib_test.json" : "hc_calib_test.yml");
         std::ofstream(p) << to_opencv_storage(c, json);
-        const StereoCalib r = read_opencv_storage(p);
+        const Calibration r = read_opencv_storage(p);
         fs::remove(p);
-        CHECK(r.image_size == c.image_size);
+        CHECK(image_size(r) == image_size(c));
         for (const auto& [a, b] : {std::pair{&r.K1, &c.K1}, {&r.D1, &c.D1}, {&r.K2, &c.K2}, {&r.D2, &c.D2},
                                    {&r.R, &c.R}, {&r.T, &c.T}, {&r.R1, &c.R1}, {&r.R2, &c.R2},
-                                   {&r.P1, &c.P1}, {&r.P2, &c.P2}, {&r.Q, &c.Q}})
+                                   {&r.Q, &c.Q}})
             CHECK(bit_equal(*a, *b));
+        for (const Side side : {Side::left, Side::right})
+            CHECK(bit_equal(projection(r.rectified, side), projection(c.rectified, side)));
         CHECK(r.rms == c.rms);
         CHECK(r.per_view_errors == c.per_view_errors);
         CHECK(r.view_names == c.view_names);

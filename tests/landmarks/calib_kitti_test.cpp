@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
 #include "io/frames/frames.hpp"
 
 using namespace hc::calib;
@@ -17,13 +17,13 @@ std::filesystem::path g_calib;
 }
 
 TEST_CASE("KITTI 01's calib.txt gives fx 718.856 px and a 0.537 m baseline", "[calib][kitti]") {
-    const StereoCalib c = read_kitti_calib(g_calib);
+    const Calibration c = read_kitti_calib(g_calib);
     CHECK(c.rectified_input);
-    CHECK(focal(c) == 718.856);
-    CHECK(c.P1.at<double>(0, 2) == 607.1928);
-    CHECK(c.P1.at<double>(1, 2) == 185.2157);
-    CHECK(c.P2.at<double>(0, 3) == -386.1448);
-    CHECK(baseline(c) == Approx(0.537).margin(0.0005));   // 386.1448 / 718.856 = 0.53716 m
+    CHECK(c.rectified.fx == 718.856);
+    CHECK(c.rectified.cx0 == 607.1928);
+    CHECK(c.rectified.cy == 185.2157);
+    CHECK(c.rectified.tx1 == -386.1448);
+    CHECK(c.rectified.baseline() == Approx(0.537).margin(0.0005));   // 386.1448 / 718.856 = 0.53716 m
     // 1 px of disparity at the far end: Z = f b / d = 386.1448 m.
     const cv::Mat X = c.Q * (cv::Mat_<double>(4, 1) << 607.1928, 185.2157, 1, 1);
     CHECK(X.at<double>(2) / X.at<double>(3) == Approx(386.1448).epsilon(1e-12));

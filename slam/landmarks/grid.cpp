@@ -10,7 +10,7 @@
 //     for each keypoint j (i included): X = x_j + lx; Y = y_j + ly;  (float sum, int truncation)
 //       if (X >= 0 && Y >= 0 && X <= g && Y <= g) set bit g*Y + X of dsc
 //     row i = dsc
-#include "features/features.hpp"
+#include "slam/landmarks/descriptors.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // grey 8-bit image padded by reflection, so the `pad` border policy and the `drop` policy
 // produce identical descriptors for keypoints whose pattern lies inside the image.
 // docs/landmarks.md ("BRIEF and FREAK") lists where they may differ from the authors'.
-#include "features/features.hpp"
+#include "slam/landmarks/descriptors.hpp"
 
 #include <opencv2/imgproc.hpp>
 

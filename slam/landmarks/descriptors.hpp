@@ -1,3 +1,6 @@
+// descriptors.hpp: the star-ID grid, BRIEF and FREAK descriptors and the stereo matcher of
+// the landmark chain (namespace hc::features; included by slam/landmarks/landmarks.hpp).
+//
 // Purpose: binary descriptors for stereo landmark acquisition and the stereo matcher that
 // pairs them (thesis sections 5.3.2, 6.1, 6.4; appendices E and F).
 //

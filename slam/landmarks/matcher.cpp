@@ -2,7 +2,7 @@
 // the 2-NN ratio test (as printed, or dropping ties), the symmetry (cross-check) test and the
 // epipolar test for rectified pairs, in appendix F's order: ratio test on both 2-NN lists,
 // symmetry test on what remains (a list emptied by the ratio test fails it), epipolar test.
-#include "features/features.hpp"
+#include "slam/landmarks/descriptors.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "features/features.hpp"
+#include "slam/landmarks/descriptors.hpp"
 
 using namespace hc::features;
 

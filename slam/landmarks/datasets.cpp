@@ -1,5 +1,5 @@
 // datasets.cpp: Middlebury 2006 scenes and KITTI odometry pairs as stereo datasets, with
-// ground-truth disparity (Middlebury) and the rectified projection matrices of each pair.
+// ground-truth disparity (Middlebury) and the rectified rig of each pair.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -8,8 +8,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "calib/calib.hpp"
-#include "landmarks/landmarks.hpp"
+#include "io/frames/frames.hpp"
+#include "slam/landmarks/calib.hpp"
+#include "slam/landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
 
@@ -29,7 +30,7 @@ cv::Mat read_grey(const fs::path& p) {
 // The 2006 datasets come in full (1110 rows), half (555) and third (370) size; the
 // disparity PNGs of the reduced sizes hold the disparity in the reduced image's pixels
 // multiplied by the reduction factor (2 or 3), i.e. value = d * (1/scale), 0 = unknown.
-// Pinned by tests/landmarks/middlebury_test.cpp on pixels checked against the images.
+// Pinned by tests/landmarks/data_test.cpp on pixels checked against the images.
 float middlebury_disparity(std::uint8_t value, double scale) {
     return value == 0 ? 0.f : static_cast<float>(value * scale);
 }
@@ -93,37 +94,24 @@ Dataset middlebury_dataset(const fs::path& root, bool need_truth) {
 
 // ---- KITTI ----------------------------------------------------------------------------
 
-StereoCalib load_kitti_calib(const fs::path& calib_txt) {
-    // The one reader of KITTI's calib.txt is hc::calib's; its rectified left and right
-    // projections are this rig's P0 and P1.
-    const calib::StereoCalib k = calib::read_kitti_calib(calib_txt);
-    StereoCalib c;
-    c.P0 = cv::Matx34d(k.P1);
-    c.P1 = cv::Matx34d(k.P2);
-    try {
-        c.validate();
-    } catch (const InputError& e) {
-        throw InputError("'" + calib_txt.string() + "': " + e.what());
-    }
-    return c;
-}
-
 Dataset kitti_dataset(const fs::path& kitti_root, const std::string& sequence, int first, int last) {
-    const fs::path seq = kitti_root / "sequences" / sequence;
-    if (!fs::is_directory(seq / "image_0") || !fs::is_directory(seq / "image_1"))
-        throw InputError("'" + seq.string() + "' is not a KITTI odometry sequence (image_0/, image_1/)");
-    const StereoCalib calib = load_kitti_calib(seq / "calib.txt");
+    // the layout (folders, file names, calib.txt) is hc::frames's
+    if (!frames::is_kitti_sequence(kitti_root, sequence))
+        throw InputError("'" + frames::kitti_sequence_dir(kitti_root, sequence).string() +
+                         "' is not a KITTI odometry sequence (image_0/, image_1/)");
+    const frames::KittiSequence seq = frames::open_kitti(kitti_root, sequence);
+    const stereo::RectifiedRig calib = calib::read_kitti_calib(seq.calib_txt()).rectified;
     Dataset ds;
     ds.name = "kitti-" + sequence;
     for (int k = first; k < last; ++k) {
-        char stem[16];
-        std::snprintf(stem, sizeof stem, "%06d.png", k);
-        const fs::path l = seq / "image_0" / stem, r = seq / "image_1" / stem;
-        if (!fs::exists(l) || !fs::exists(r)) {
-            if (k == first) throw InputError("KITTI sequence '" + seq.string() + "' has no stereo pair " + stem);
+        if (k < 0 || k >= seq.pairs()) {
+            if (k == first)
+                throw InputError("KITTI sequence '" + seq.root.string() + "' has no stereo pair " + std::to_string(k) +
+                                 " (it has " + std::to_string(seq.pairs()) + ")");
             break;
         }
-        StereoImages p{read_grey(l), read_grey(r), sequence + "/" + std::string(stem).substr(0, 6)};
+        const fs::path &l = seq.left[static_cast<size_t>(k)], &r = seq.right[static_cast<size_t>(k)];
+        StereoImages p{read_grey(l), read_grey(r), sequence + "/" + l.stem().string()};
         if (p.left.size() != p.right.size())
             throw InputError("KITTI pair '" + l.string() + "': left and right images differ in size");
         ds.pairs.push_back(std::move(p));
@@ -135,41 +123,33 @@ Dataset kitti_dataset(const fs::path& kitti_root, const std::string& sequence, i
 
 // ---- a user's own rig ---------------------------------------------------------------------
 
-calib::StereoCalib read_rig_calibration(const fs::path& file) {
+calib::Calibration read_rig_calibration(const fs::path& file) {
     const std::string ext = file.extension().string();
     if (ext == ".yml" || ext == ".yaml" || ext == ".json") return calib::read_opencv_storage(file);
     return calib::read_kitti_calib(file);
 }
 
-StereoCalib rectified_calib(const calib::StereoCalib& rig) {
-    StereoCalib c;
-    c.P0 = cv::Matx34d(rig.P1);
-    c.P1 = cv::Matx34d(rig.P2);
-    c.validate();
-    return c;
-}
-
-Dataset rig_dataset(const std::vector<fs::path>& left, const std::vector<fs::path>& right, const calib::StereoCalib& rig) {
+Dataset rig_dataset(const std::vector<fs::path>& left, const std::vector<fs::path>& right, const calib::Calibration& rig) {
     if (left.empty()) throw InputError("a rig's stereo pairs: no left image");
     if (left.size() != right.size())
         throw InputError("a rig's stereo pairs: " + std::to_string(left.size()) + " left images but " +
                          std::to_string(right.size()) + " right images");
     Dataset ds;
     ds.name = "rig";
-    ds.rig = std::make_shared<const calib::StereoCalib>(rig);
-    const StereoCalib rect = rectified_calib(rig);
+    ds.rig = std::make_shared<const calib::Calibration>(rig);
+    const cv::Size size = calib::image_size(rig);
     for (size_t k = 0; k < left.size(); ++k) {
         StereoImages p{read_grey(left[k]), read_grey(right[k]), left[k].stem().string() + "+" + right[k].stem().string()};
         for (const auto& [img, file] : {std::pair{&p.left, &left[k]}, std::pair{&p.right, &right[k]}})
-            if (!rig.image_size.empty() && img->size() != rig.image_size)
+            if (!size.empty() && img->size() != size)
                 throw InputError("'" + file->string() + "' is " + std::to_string(img->cols) + "x" + std::to_string(img->rows) +
-                                 ", the calibration's images " + std::to_string(rig.image_size.width) + "x" +
-                                 std::to_string(rig.image_size.height));
+                                 ", the calibration's images " + std::to_string(size.width) + "x" +
+                                 std::to_string(size.height));
         if (p.left.size() != p.right.size())
             throw InputError("'" + left[k].string() + "' and '" + right[k].string() + "' differ in size");
         ds.pairs.push_back(std::move(p));
         ds.disparity.emplace_back();
-        ds.calib.push_back(rect);
+        ds.calib.push_back(rig.rectified);
     }
     return ds;
 }

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "features/features.hpp"
+#include "slam/landmarks/descriptors.hpp"
 
 using namespace hc::features;
 

@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <map>
 
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
 
 using namespace hc::calib;
 namespace fs = std::filesystem;
@@ -45,8 +45,8 @@ const Detection& detection(int subpix_half = 0) {
     return it->second;
 }
 
-const StereoCalib& calibration() {
-    static const StereoCalib c = calibrate(detection(), kBoard);
+const Calibration& calibration() {
+    static const Calibration c = calibrate(detection(), kBoard);
     return c;
 }
 
@@ -74,7 +74,7 @@ TEST_CASE("the board is found in both images of all 13 sample pairs", "[calib][o
 }
 
 TEST_CASE("the sample rig calibrates to a stereo reprojection RMS below 0.25 px", "[calib][opencv-doc]") {
-    const StereoCalib& c = calibration();
+    const Calibration& c = calibration();
     INFO("RMS " << c.rms);
     // Measured 0.196 px (docs/calibration.md); the bound leaves 25 % for other OpenCV
     // versions' corner detection. With the samples' fixed 11 px sub-pixel window the same
@@ -143,13 +143,13 @@ TEST_CASE("rectified board corners of the sample pairs lie on the same row", "[c
 }
 
 TEST_CASE("the sample rig's baseline is about 8 cm and its calib.txt round trip is exact", "[calib][opencv-doc]") {
-    const StereoCalib& c = calibration();
-    INFO("baseline " << baseline(c) << " T " << c.T);
-    CHECK(baseline(c) == Approx(0.0832).margin(0.001));   // measured 0.08317 m with 25 mm squares
-    const StereoCalib r = parse_kitti_calib(to_kitti_calib(c), "round trip");
-    CHECK(cv::norm(r.P1, c.P1, cv::NORM_INF) == 0);
-    CHECK(cv::norm(r.P2, c.P2, cv::NORM_INF) == 0);
-    CHECK(baseline(r) == baseline(c));
+    const Calibration& c = calibration();
+    INFO("baseline " << c.rectified.baseline() << " T " << c.T);
+    CHECK(c.rectified.baseline() == Approx(0.0832).margin(0.001));   // measured 0.08317 m with 25 mm squares
+    const Calibration r = parse_kitti_calib(to_kitti_calib(c), "round trip");
+    for (const Side side : {Side::left, Side::right})
+        CHECK(cv::norm(projection(r.rectified, side), projection(c.rectified, side), cv::NORM_INF) == 0);
+    CHECK(r.rectified.baseline() == c.rectified.baseline());
 }
 
 int main(int argc, char** argv) {

@@ -1,6 +1,6 @@
 // calib.cpp: chessboard detection over stereo pairs, stereo calibration and rectification
 // through OpenCV's calib3d, the calibration files, and the rectification of keypoints.
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
 
 #include <fmt/format.h>
 #include <glob.h>
@@ -171,11 +171,10 @@ std::vector<cv::Point3f> board_points(const Board& b) {
 }
 
 // Each camera alone, then the pair, then the rectification (calibrate without the checks).
-StereoCalib calibrate_views(const Detection& d, const std::vector<std::vector<cv::Point3f>>& obj,
+Calibration calibrate_views(const Detection& d, const std::vector<std::vector<cv::Point3f>>& obj,
                             const std::vector<std::vector<cv::Point2f>>& il,
                             const std::vector<std::vector<cv::Point2f>>& ir, const CalibOptions& opt) {
-    StereoCalib c;
-    c.image_size = d.image_size;
+    Calibration c;
     c.K1 = cv::Mat::eye(3, 3, CV_64F);
     c.K2 = cv::Mat::eye(3, 3, CV_64F);
     c.D1 = cv::Mat::zeros(1, 5, CV_64F);
@@ -196,17 +195,20 @@ StereoCalib calibrate_views(const Detection& d, const std::vector<std::vector<cv
         c.per_view_errors.emplace_back(errs.at<double>(i, 0), errs.at<double>(i, 1));
         c.view_names.push_back(d.views[static_cast<size_t>(i)].name);
     }
-    cv::stereoRectify(c.K1, c.D1, c.K2, c.D2, d.image_size, c.R, c.T, c.R1, c.R2, c.P1, c.P2, c.Q,
+    cv::Mat P1, P2;
+    cv::stereoRectify(c.K1, c.D1, c.K2, c.D2, d.image_size, c.R, c.T, c.R1, c.R2, P1, P2, c.Q,
                       cv::CALIB_ZERO_DISPARITY, opt.alpha);
-    if (std::abs(c.P2.at<double>(1, 3)) > std::abs(c.P2.at<double>(0, 3)))
+    if (std::abs(P2.at<double>(1, 3)) > std::abs(P2.at<double>(0, 3)))
         throw InputError("the cameras are stacked vertically: rectified rows would be columns; "
                          "only side-by-side rigs are supported");
+    c.rectified = stereo::rig_from_projections(P1.ptr<double>(), P2.ptr<double>(), d.image_size.width,
+                                               d.image_size.height);
     return c;
 }
 
 }  // namespace
 
-StereoCalib calibrate(const Detection& d, const Board& board, const CalibOptions& opt) {
+Calibration calibrate(const Detection& d, const Board& board, const CalibOptions& opt) {
     if (d.views.size() < 3)
         throw InputError(fmt::format("{} stereo pairs show the board; the calibration needs at least 3 "
                                      "(Zhang's method solves a general camera's intrinsics from 3 or more "
@@ -225,18 +227,18 @@ StereoCalib calibrate(const Detection& d, const Board& board, const CalibOptions
     }
 }
 
-std::vector<cv::Point2f> rectify_points(const StereoCalib& c, Side side,
+std::vector<cv::Point2f> rectify_points(const Calibration& c, Side side,
                                         const std::vector<cv::Point2f>& pts) {
     if (c.rectified_input || pts.empty()) return pts;
     const bool l = side == Side::left;
     std::vector<cv::Point2f> out;
     cv::undistortPoints(pts, out, l ? c.K1 : c.K2, l ? c.D1 : c.D2, l ? c.R1 : c.R2,
-                        l ? c.P1 : c.P2,
+                        projection(c.rectified, side),
                         cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-10));
     return out;
 }
 
-RectificationCheck check_rectification(const StereoCalib& c, const Detection& d) {
+RectificationCheck check_rectification(const Calibration& c, const Detection& d) {
     RectificationCheck r;
     double sum = 0;
     for (const auto& v : d.views) {
@@ -253,17 +255,18 @@ RectificationCheck check_rectification(const StereoCalib& c, const Detection& d)
     return r;
 }
 
-cv::Mat rectified_pair_figure(const StereoCalib& c, const cv::Mat& left, const cv::Mat& right,
+cv::Mat rectified_pair_figure(const Calibration& c, const cv::Mat& left, const cv::Mat& right,
                               const StereoView& view) {
-    if (left.size() != c.image_size || right.size() != c.image_size)
+    const cv::Size size = image_size(c);
+    if (left.size() != size || right.size() != size)
         throw InputError(fmt::format("images of {}x{} for a calibration of {}x{}", left.cols, left.rows,
-                                     c.image_size.width, c.image_size.height));
-    const int W = c.image_size.width, H = c.image_size.height;
+                                     size.width, size.height));
+    const int W = size.width, H = size.height;
     cv::Mat fig(H, 2 * W, CV_8UC3);
     for (int k = 0; k < 2; ++k) {
         cv::Mat mx, my, rect, bgr;
-        cv::initUndistortRectifyMap(k ? c.K2 : c.K1, k ? c.D2 : c.D1, k ? c.R2 : c.R1, k ? c.P2 : c.P1,
-                                    c.image_size, CV_32FC1, mx, my);
+        cv::initUndistortRectifyMap(k ? c.K2 : c.K1, k ? c.D2 : c.D1, k ? c.R2 : c.R1,
+                                    projection(c.rectified, k ? Side::right : Side::left), size, CV_32FC1, mx, my);
         cv::remap(k ? right : left, rect, mx, my, cv::INTER_LINEAR);
         cv::cvtColor(rect, bgr, cv::COLOR_GRAY2BGR);
         bgr.copyTo(fig(cv::Rect(k * W, 0, W, H)));
@@ -276,14 +279,17 @@ cv::Mat rectified_pair_figure(const StereoCalib& c, const cv::Mat& left, const c
     return fig;
 }
 
-double focal(const StereoCalib& c) { return c.P1.at<double>(0, 0); }
-double baseline(const StereoCalib& c) { return -c.P2.at<double>(0, 3) / c.P2.at<double>(0, 0); }
+cv::Mat projection(const stereo::RectifiedRig& rig, Side side) {
+    double P0[12], P1[12];
+    rig.projections(P0, P1);
+    return cv::Mat(3, 4, CV_64F, side == Side::left ? P0 : P1).clone();
+}
 
-cv::Mat disparity_to_depth(const cv::Mat& P1, const cv::Mat& P2) {
-    // stereoRectify's Q for a horizontal rig: Tx = P2(0,3) / f is the right camera's offset
+cv::Mat disparity_to_depth(const stereo::RectifiedRig& rig) {
+    // stereoRectify's Q for a horizontal rig: Tx = tx1 / f is the right camera's offset
     // (negative); W = (d + cx2 - cx1) / (-Tx), so Z = f / W = f b / d when cx1 = cx2.
-    const double f = P1.at<double>(0, 0), cx1 = P1.at<double>(0, 2), cy = P1.at<double>(1, 2);
-    const double cx2 = P2.at<double>(0, 2), tx = P2.at<double>(0, 3) / P2.at<double>(0, 0);
+    const double f = rig.fx, cx1 = rig.cx0, cy = rig.cy;
+    const double cx2 = rig.cx1, tx = rig.tx1 / rig.fx;
     cv::Mat Q = cv::Mat::zeros(4, 4, CV_64F);
     Q.at<double>(0, 0) = 1;
     Q.at<double>(0, 3) = -cx1;
@@ -305,19 +311,22 @@ std::string shortest(double v) {
     return std::string(buf, r.ptr);
 }
 
-std::string kitti_row(const char* key, const cv::Mat& P) {
+std::string kitti_row(const char* key, const double P[12]) {
     std::string s = key;
     s += ':';
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 4; ++j) s += ' ' + shortest(P.at<double>(i, j));
+    for (int i = 0; i < 12; ++i) s += ' ' + shortest(P[i]);
     return s + '\n';
 }
 
 }  // namespace
 
-std::string to_kitti_calib(const StereoCalib& c) { return kitti_row("P0", c.P1) + kitti_row("P1", c.P2); }
+std::string to_kitti_calib(const Calibration& c) {
+    double P0[12], P1[12];
+    c.rectified.projections(P0, P1);
+    return kitti_row("P0", P0) + kitti_row("P1", P1);
+}
 
-StereoCalib parse_kitti_calib(const std::string& text, const std::string& name) {
+Calibration parse_kitti_calib(const std::string& text, const std::string& name) {
     std::map<std::string, cv::Mat> rows;
     std::istringstream in(text);
     std::string line;
@@ -352,28 +361,31 @@ StereoCalib parse_kitti_calib(const std::string& text, const std::string& name) 
     }
     for (const char* k : {"P0", "P1"})
         if (!rows.count(k)) throw InputError(fmt::format("{}: no row {}", name, k));
-    StereoCalib c;
-    c.P1 = rows["P0"];
-    c.P2 = rows["P1"];
-    if (!(c.P1.at<double>(0, 0) > 0) || !(c.P2.at<double>(0, 0) > 0))
+    const cv::Mat P0 = rows["P0"], P1 = rows["P1"];
+    if (!(P0.at<double>(0, 0) > 0) || !(P1.at<double>(0, 0) > 0))
         throw InputError(fmt::format("{}: P0 and P1 need a positive focal length", name));
-    if (c.P2.at<double>(0, 3) == 0)
+    if (P1.at<double>(0, 3) == 0)
         throw InputError(fmt::format("{}: P1 has no baseline (P1[3] = 0)", name));
-    c.K1 = c.P1(cv::Rect(0, 0, 3, 3)).clone();
-    c.K2 = c.P2(cv::Rect(0, 0, 3, 3)).clone();
+    Calibration c;
+    try {
+        c.rectified = stereo::rig_from_projections(P0.ptr<double>(), P1.ptr<double>());
+    } catch (const hc::InputError& e) {
+        throw InputError(fmt::format("{}: {}", name, e.what()));
+    }
+    c.K1 = P0(cv::Rect(0, 0, 3, 3)).clone();
+    c.K2 = P1(cv::Rect(0, 0, 3, 3)).clone();
     c.D1 = cv::Mat::zeros(1, 5, CV_64F);
     c.D2 = cv::Mat::zeros(1, 5, CV_64F);
     c.R = cv::Mat::eye(3, 3, CV_64F);
     c.R1 = cv::Mat::eye(3, 3, CV_64F);
     c.R2 = cv::Mat::eye(3, 3, CV_64F);
-    c.T = (cv::Mat_<double>(3, 1) << c.P2.at<double>(0, 3) / c.P2.at<double>(0, 0) -
-                                         c.P1.at<double>(0, 3) / c.P1.at<double>(0, 0), 0, 0);
-    c.Q = disparity_to_depth(c.P1, c.P2);
+    c.T = (cv::Mat_<double>(3, 1) << c.rectified.tx1 / c.rectified.fx - c.rectified.tx0 / c.rectified.fx, 0, 0);
+    c.Q = disparity_to_depth(c.rectified);
     c.rectified_input = true;
     return c;
 }
 
-StereoCalib read_kitti_calib(const fs::path& p) {
+Calibration read_kitti_calib(const fs::path& p) {
     std::ifstream f(p, std::ios::binary);
     if (!f) throw InputError(fmt::format("cannot read calibration file '{}'", p.string()));
     std::ostringstream s;
@@ -387,13 +399,13 @@ namespace {
 constexpr const char* kDistortionModel = "opencv k1 k2 p1 p2 k3";
 }
 
-std::string to_opencv_storage(const StereoCalib& c, bool json) {
+std::string to_opencv_storage(const Calibration& c, bool json) {
     cv::FileStorage fs(json ? ".json" : ".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
-    fs << "image_width" << c.image_size.width << "image_height" << c.image_size.height;
+    fs << "image_width" << c.rectified.width << "image_height" << c.rectified.height;
     fs << "distortion_model" << kDistortionModel;
     fs << "K1" << c.K1 << "D1" << c.D1 << "K2" << c.K2 << "D2" << c.D2;
     fs << "R" << c.R << "T" << c.T << "R1" << c.R1 << "R2" << c.R2;
-    fs << "P1" << c.P1 << "P2" << c.P2 << "Q" << c.Q;
+    fs << "P1" << projection(c.rectified, Side::left) << "P2" << projection(c.rectified, Side::right) << "Q" << c.Q;
     fs << "rms" << c.rms;
     cv::Mat errs(static_cast<int>(c.per_view_errors.size()), 2, CV_64F);
     for (int i = 0; i < errs.rows; ++i)
@@ -407,10 +419,10 @@ std::string to_opencv_storage(const StereoCalib& c, bool json) {
     return fs.releaseAndGetString();
 }
 
-StereoCalib read_opencv_storage(const fs::path& p) {
+Calibration read_opencv_storage(const fs::path& p) {
     if (!fs::is_regular_file(p))
         throw InputError(fmt::format("no such calibration file '{}'", p.string()));
-    StereoCalib c;
+    Calibration c;
     try {
         cv::FileStorage f(p.string(), cv::FileStorage::READ);
         if (!f.isOpened()) throw InputError(fmt::format("cannot read calibration file '{}'", p.string()));
@@ -429,7 +441,7 @@ StereoCalib read_opencv_storage(const fs::path& p) {
         };
         if (static_cast<std::string>(node("distortion_model")) != kDistortionModel)
             throw InputError(fmt::format("{}: distortion_model is not '{}'", p.string(), kDistortionModel));
-        c.image_size = cv::Size(static_cast<int>(node("image_width")), static_cast<int>(node("image_height")));
+        const int width = static_cast<int>(node("image_width")), height = static_cast<int>(node("image_height"));
         c.K1 = mat("K1", 3, 3);
         c.D1 = mat("D1", 1, 5);
         c.K2 = mat("K2", 3, 3);
@@ -438,8 +450,12 @@ StereoCalib read_opencv_storage(const fs::path& p) {
         c.T = mat("T", 3, 1);
         c.R1 = mat("R1", 3, 3);
         c.R2 = mat("R2", 3, 3);
-        c.P1 = mat("P1", 3, 4);
-        c.P2 = mat("P2", 3, 4);
+        const cv::Mat P1 = mat("P1", 3, 4), P2 = mat("P2", 3, 4);
+        try {
+            c.rectified = stereo::rig_from_projections(P1.ptr<double>(), P2.ptr<double>(), width, height);
+        } catch (const hc::InputError& e) {
+            throw InputError(fmt::format("{}: {}", p.string(), e.what()));
+        }
         c.Q = mat("Q", 4, 4);
         c.rms = static_cast<double>(node("rms"));
         cv::Mat errs;
@@ -479,17 +495,17 @@ std::string mat_md(const cv::Mat& m) {
 
 }  // namespace
 
-std::string report_markdown(const StereoCalib& c, const Detection& d, const Board& board,
+std::string report_markdown(const Calibration& c, const Detection& d, const Board& board,
                             const RectificationCheck& check, const std::string& figure,
                             const std::string& figure_view) {
     std::string s = "# Stereo calibration\n\n";
     s += fmt::format("Board {}x{} inner corners, square {}; images {}x{}; {} pairs used, {} skipped.\n\n",
-                     board.inner.width, board.inner.height, board.square, c.image_size.width,
-                     c.image_size.height, d.views.size(), d.skipped.size());
+                     board.inner.width, board.inner.height, board.square, c.rectified.width,
+                     c.rectified.height, d.views.size(), d.skipped.size());
     s += fmt::format("- stereo reprojection RMS: **{:.4f} px** (cv::stereoCalibrate, both images of every pair)\n",
                      c.rms);
     s += fmt::format("- rectified focal length: {:.3f} px; baseline: {:.6g} (unit of the square)\n",
-                     focal(c), baseline(c));
+                     c.rectified.fx, c.rectified.baseline());
     s += fmt::format("- rectification check over {} corner pairs: mean |y_l - y_r| = **{:.4f} px**, "
                      "largest {:.4f} px\n\n", check.corners, check.mean_abs_dy, check.max_abs_dy);
     if (check.mean_abs_dy > kUsableMeanDy)
@@ -528,8 +544,9 @@ std::string report_markdown(const StereoCalib& c, const Detection& d, const Boar
         s += " |\n";
     }
     s += "\n## Extrinsics (X_r = R X_l + T)\n\nR:\n\n" + mat_md(c.R) + "\nT:\n\n" + mat_md(c.T.t());
-    s += "\n## Rectification\n\ncalib.txt P0 (left):\n\n" + mat_md(c.P1) + "\ncalib.txt P1 (right):\n\n" +
-         mat_md(c.P2) + "\nQ (x, y, x_l - x_r, 1 -> X, Y, Z, W):\n\n" + mat_md(c.Q);
+    s += "\n## Rectification\n\ncalib.txt P0 (left):\n\n" + mat_md(projection(c.rectified, Side::left)) +
+         "\ncalib.txt P1 (right):\n\n" + mat_md(projection(c.rectified, Side::right)) +
+         "\nQ (x, y, x_l - x_r, 1 -> X, Y, Z, W):\n\n" + mat_md(c.Q);
     return s;
 }
 

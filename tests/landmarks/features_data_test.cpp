@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <set>
 
-#include "features/features.hpp"
-#include "tests/features/stereo_sample.hpp"
+#include "slam/landmarks/descriptors.hpp"
+#include "tests/landmarks/stereo_sample.hpp"
 
 using namespace hc::features;
 

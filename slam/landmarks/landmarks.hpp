@@ -17,9 +17,10 @@
 //                (ground truth)" when besides |x_l - x_r - d(x_l, y_l)| <= 1 px with d the
 //                dataset's disparity at the left keypoint's pixel (0 = unknown: excluded)
 //                and |y_r - y_l| <= 1 px (the x-only count is kept beside it).
-//   geometry     triangulate(): rectified projection matrices P0, P1 (KITTI calib.txt, or
-//                Middlebury's focal length, baseline and offset), covariance by Jacobian
-//                propagation of an isotropic pixel noise.
+//   geometry     stereo::triangulate() through the pair's stereo::RectifiedRig (KITTI
+//                calib.txt's P0, P1, a calibrated rig's rectified pair, or Middlebury's focal
+//                length, baseline and offset), covariance by Jacobian propagation of an
+//                isotropic pixel noise.
 //
 // Errors: bad input (missing files, sizes, impossible combinations, out-of-range parameters)
 // throws landmarks::InputError naming the input; the CLI maps it to exit status 2.
@@ -38,9 +39,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
-#include "calib/calib.hpp"
+#include "slam/landmarks/calib.hpp"
+#include "slam/landmarks/descriptors.hpp"
 #include "model/harris/harris_pkg.hpp"
-#include "stereo/stereo.hpp"
+#include "slam/landmarks/stereo.hpp"
 
 namespace hc::landmarks {
 
@@ -182,7 +184,7 @@ struct PairResult {
 /// raw images; the grid, which reads only positions, on the rectified ones. The epipolar test,
 /// the matches' coordinates (and so triangulation and overlays) use the rectified positions.
 PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descriptor d, const GridParams& gp,
-                      const MatchParams& mp, const cv::Mat& disparity = {}, const calib::StereoCalib* rig = nullptr);
+                      const MatchParams& mp, const cv::Mat& disparity = {}, const calib::Calibration* rig = nullptr);
 
 // ---- datasets -------------------------------------------------------------------------
 
@@ -208,36 +210,20 @@ std::vector<std::filesystem::path> middlebury_scenes(const std::filesystem::path
 
 // ---- geometry ---------------------------------------------------------------------------
 
-/// A rectified stereo rig: the projection matrices of the rectified left and right cameras
-/// (KITTI calib.txt P0, P1). The rig must be rectified: same fx, fy, cy, no skew, P1's
-/// translation along x only (P1[0][3] = -fx * baseline); cx may differ (Middlebury's offset).
-struct StereoCalib {
-    cv::Matx34d P0, P1;
-    double fx() const { return P0(0, 0); }
-    double fy() const { return P0(1, 1); }
-    double baseline() const { return (P0(0, 3) - P1(0, 3)) / P1(0, 0); }   ///< metres (KITTI)
-    /// Throws InputError when P0, P1 are not a rectified pair as above.
-    void validate() const;
-};
-/// Reads P0 and P1 of a KITTI calib.txt; throws InputError naming the file.
-StereoCalib load_kitti_calib(const std::filesystem::path& calib_txt);
+// The rig of a pair is stereo::RectifiedRig and its triangulation stereo::triangulate
+// (stereo.hpp): the rig of KITTI's calib.txt is calib::read_kitti_calib(file).rectified.
+
 /// The Middlebury 2006 rig at image scale s: focal length 3740 px and baseline 160 mm at full
 /// size (the dataset's description), principal point at the image centre, the right
 /// camera's cx at cx + dmin * s so that Z = b f s / (x_l - x_r + dmin s). Units: metres.
-StereoCalib middlebury_calib(double scale, double dmin_full, cv::Size image);
+stereo::RectifiedRig middlebury_calib(double scale, double dmin_full, cv::Size image);
 
 /// The pixel-noise model (sigma_px on each of x_l, y_l, x_r, y_r): hc::stereo's, shared
 /// with the EKF-SLAM side's synthetic measurements.
 using PixelNoise = stereo::PixelNoise;
 
-/// A triangulated point in the left rectified camera's frame (x right, y down, z forward).
-struct Triangulated {
-    cv::Vec3d p;
-    cv::Matx33d cov;
-    cv::Matx<double, 3, 4> J;   ///< d(X,Y,Z)/d(x_l, y_l, x_r, y_r)
-    bool valid = false;         ///< disparity > 0 (point in front of both cameras)
-};
-Triangulated triangulate(const StereoCalib& c, cv::Point2d left, cv::Point2d right, const PixelNoise& n = {});
+/// The four image coordinates of a stereo match (left, right) as stereo::triangulate takes them.
+inline stereo::StereoPixels pixels(cv::Point2f left, cv::Point2f right) { return {left.x, left.y, right.x, right.y}; }
 
 /// A landmark as an EKF-SLAM front end consumes it.
 struct Landmark {
@@ -261,10 +247,10 @@ struct PipelineOptions {
 /// One stereo frame to landmarks: corners, description, matching (all three tests), and
 /// triangulation of each correct match. Throws InputError for images of different sizes or
 /// not 8-bit. (Hardware sources stream the pair with a seed and a flush, see detect_pairs.)
-std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const StereoCalib& calib,
+std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const stereo::RectifiedRig& calib,
                               const PipelineOptions& o);
 /// The same from matches already computed (the command's path, which also scores them).
-std::vector<Landmark> landmarks_from(const PairResult& r, const StereoCalib& calib, const PipelineOptions& o);
+std::vector<Landmark> landmarks_from(const PairResult& r, const stereo::RectifiedRig& calib, const PipelineOptions& o);
 
 /// Landmark files: CSV (one landmark a line, header names the columns) and ASCII PLY.
 std::string landmarks_csv(const std::vector<Landmark>& l);
@@ -276,7 +262,7 @@ struct DepthError {
     long n = 0;
     double median = 0, mean = 0, p90 = 0;   ///< relative errors
 };
-DepthError depth_error(const PairResult& r, const cv::Mat& disparity, const StereoCalib& calib);
+DepthError depth_error(const PairResult& r, const cv::Mat& disparity, const stereo::RectifiedRig& calib);
 struct Dataset;
 struct ComparisonRow;
 /// The same over all pairs of a comparison row (pairs without ground truth skipped).
@@ -308,10 +294,10 @@ struct Dataset {
     std::string name;                    ///< "middlebury-half", "kitti-01", "rig"
     std::vector<StereoImages> pairs;
     std::vector<cv::Mat> disparity;      ///< per pair, empty if unknown
-    std::vector<StereoCalib> calib;      ///< per pair: the rectified projections
+    std::vector<stereo::RectifiedRig> calib;   ///< per pair: the rectified rig
     /// Set when the pairs are a user's rig's unrectified images: every step that matches them
     /// (compare, study, acquire_dataset, score_formats) rectifies keypoints with it (match_pair).
-    std::shared_ptr<const calib::StereoCalib> rig;
+    std::shared_ptr<const calib::Calibration> rig;
 };
 /// All scenes under `root`; InputError for a scene without disp1.png unless `need_truth` is
 /// false (then its ground-truth columns stay empty).
@@ -321,14 +307,12 @@ Dataset kitti_dataset(const std::filesystem::path& kitti_root, const std::string
 /// A calibration file of a user's rig: `harris-cosim calibrate`'s OpenCV storage (.yml, .yaml,
 /// .json: intrinsics, distortion, rectifying rotations and projections) or a KITTI-style
 /// calib.txt (any other name: images already rectified). Throws calib::InputError naming it.
-calib::StereoCalib read_rig_calibration(const std::filesystem::path& file);
-/// The rectified rig of a calibration (its P1, P2 as P0, P1); InputError when not rectified.
-StereoCalib rectified_calib(const calib::StereoCalib& rig);
+calib::Calibration read_rig_calibration(const std::filesystem::path& file);
 /// Stereo pairs left[i], right[i] of a user's rig (unrectified images, read as grey), with
 /// `rig` to rectify their keypoints. InputError naming an image that is missing, unreadable or
 /// of another size than the calibration's, or when the lists differ in length or are empty.
 Dataset rig_dataset(const std::vector<std::filesystem::path>& left, const std::vector<std::filesystem::path>& right,
-                    const calib::StereoCalib& rig);
+                    const calib::Calibration& rig);
 
 /// Landmarks of every pair of a dataset, pair by pair: the corners of all pairs first (a
 /// hardware source streams them once, carrying its state from frame to frame as the

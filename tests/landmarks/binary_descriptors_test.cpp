@@ -10,7 +10,7 @@
 #include <set>
 #include <vector>
 
-#include "features/features.hpp"
+#include "slam/landmarks/descriptors.hpp"
 
 using namespace hc::features;
 

@@ -11,8 +11,8 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/video/tracking.hpp>
 
-#include "features/features.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/descriptors.hpp"
+#include "slam/landmarks/landmarks.hpp"
 
 namespace hc::landmarks {
 

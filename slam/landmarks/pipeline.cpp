@@ -10,8 +10,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "features/features.hpp"
-#include "landmarks/landmarks.hpp"
+#include "slam/landmarks/descriptors.hpp"
+#include "slam/landmarks/landmarks.hpp"
 
 namespace hc::landmarks {
 
@@ -180,7 +180,7 @@ std::vector<cv::DMatch> run_matcher(const cv::Mat& dl, const std::vector<cv::Key
 namespace {
 
 /// Keypoints moved to their rectified positions (calib::rectify_points), the rest kept.
-void rectify(std::vector<cv::KeyPoint>& kp, const calib::StereoCalib& rig, calib::Side side) {
+void rectify(std::vector<cv::KeyPoint>& kp, const calib::Calibration& rig, calib::Side side) {
     std::vector<cv::Point2f> pts;
     pts.reserve(kp.size());
     for (const auto& k : kp) pts.push_back(k.pt);
@@ -191,7 +191,7 @@ void rectify(std::vector<cv::KeyPoint>& kp, const calib::StereoCalib& rig, calib
 }  // namespace
 
 PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descriptor d, const GridParams& gp,
-                      const MatchParams& mp, const cv::Mat& disparity, const calib::StereoCalib* rig) {
+                      const MatchParams& mp, const cv::Mat& disparity, const calib::Calibration* rig) {
     check_combination(d, kp.left.source, mp.norm);
     if (img.left.size() != img.right.size()) throw InputError("pair '" + img.name + "': images differ in size");
     if (!disparity.empty() && disparity.size() != img.left.size())
@@ -233,17 +233,17 @@ PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descript
 
 // ---- landmarks ----------------------------------------------------------------------------
 
-std::vector<Landmark> landmarks_from(const PairResult& r, const StereoCalib& calib, const PipelineOptions& o) {
+std::vector<Landmark> landmarks_from(const PairResult& r, const stereo::RectifiedRig& calib, const PipelineOptions& o) {
     std::vector<Landmark> out;
     const size_t row_bytes = r.desc_left.empty() ? 0 : r.desc_left.cols * r.desc_left.elemSize();
     for (const auto& m : r.matches) {
         if (!m.epipolar) continue;
-        const Triangulated t = triangulate(calib, m.left, m.right, o.noise);
-        const double D = m.left.x - m.right.x - (calib.P0(0, 2) - calib.P1(0, 2));
+        const stereo::Point3 t = stereo::triangulate(calib, pixels(m.left, m.right), o.noise);
+        const double D = m.left.x - m.right.x - (calib.cx0 - calib.cx1);
         if (!t.valid || D < o.min_disparity) continue;
         Landmark l;
-        l.p_cam = t.p;
-        l.cov = t.cov;
+        l.p_cam = cv::Vec3d(t.p[0], t.p[1], t.p[2]);
+        l.cov = cv::Matx33d(&t.cov[0][0]);
         l.left = m.left;
         l.right = m.right;
         l.match_distance = m.distance;
@@ -254,7 +254,7 @@ std::vector<Landmark> landmarks_from(const PairResult& r, const StereoCalib& cal
     return out;
 }
 
-std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const StereoCalib& calib,
+std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const stereo::RectifiedRig& calib,
                               const PipelineOptions& o) {
     calib.validate();
     const StereoImages img{left, right, "frame"};

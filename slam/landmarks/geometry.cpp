@@ -1,6 +1,5 @@
-// geometry.cpp: triangulation through a rectified pair's projection matrices (thesis 4.3;
-// the formulas are hc::stereo's, stereo/stereo.hpp), covariance by first-order propagation of
-// pixel noise, landmark files and the depth error against ground-truth disparity.
+// geometry.cpp: the Middlebury rig, landmark files and the depth error against ground-truth
+// disparity (triangulation and covariance: stereo::triangulate, slam/landmarks/stereo.hpp).
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -8,64 +7,26 @@
 
 #include <fmt/format.h>
 
-#include "landmarks/landmarks.hpp"
-#include "stereo/stereo.hpp"
+#include "slam/landmarks/landmarks.hpp"
+#include "slam/landmarks/stereo.hpp"
 
 namespace hc::landmarks {
 
-void StereoCalib::validate() const {
-    const auto bad = [](const std::string& why) { throw InputError("stereo calibration: " + why); };
-    for (const auto* P : {&P0, &P1}) {
-        if ((*P)(0, 1) != 0 || (*P)(1, 0) != 0 || (*P)(2, 0) != 0 || (*P)(2, 1) != 0 || (*P)(2, 2) != 1 || (*P)(2, 3) != 0)
-            bad("P0 and P1 must be rectified projection matrices [fx 0 cx tx; 0 fy cy ty; 0 0 1 0]");
-        if ((*P)(0, 0) <= 0 || (*P)(1, 1) <= 0) bad("focal lengths must be positive");
-    }
-    if (P0(0, 0) != P1(0, 0) || P0(1, 1) != P1(1, 1) || P0(1, 2) != P1(1, 2) || P0(1, 3) != P1(1, 3))
-        bad("P0 and P1 differ in fx, fy, cy or ty: the pair is not rectified");
-    if (!(P0(0, 3) - P1(0, 3) > 0)) bad("P1's x translation must put the right camera to the right (P0[0][3] > P1[0][3])");
-}
-
-StereoCalib middlebury_calib(double scale, double dmin_full, cv::Size image) {
+stereo::RectifiedRig middlebury_calib(double scale, double dmin_full, cv::Size image) {
     // Middlebury 2006: focal length 3740 px, baseline 160 mm at full size; Z = b f / (d + dmin)
     // with d in full-size pixels. At scale s: f s, and the offset dmin s enters as cx1 - cx0.
     const double f = 3740.0 * scale, b = 0.160;
     const double cx = (image.width - 1) / 2.0, cy = (image.height - 1) / 2.0;
-    StereoCalib c;
-    c.P0 = cv::Matx34d(f, 0, cx, 0, 0, f, cy, 0, 0, 0, 1, 0);
-    c.P1 = cv::Matx34d(f, 0, cx + dmin_full * scale, -f * b, 0, f, cy, 0, 0, 0, 1, 0);
+    stereo::RectifiedRig c;
+    c.fx = c.fy = f;
+    c.cx0 = cx;
+    c.cx1 = cx + dmin_full * scale;
+    c.cy = cy;
+    c.tx1 = -f * b;
+    c.width = image.width;
+    c.height = image.height;
     c.validate();
     return c;
-}
-
-namespace {
-
-stereo::RectifiedRig rig(const StereoCalib& c) {
-    stereo::RectifiedRig r;
-    r.fx = c.P0(0, 0);
-    r.fy = c.P0(1, 1);
-    r.cx0 = c.P0(0, 2);
-    r.cx1 = c.P1(0, 2);
-    r.cy = c.P0(1, 2);
-    r.tx0 = c.P0(0, 3);
-    r.tx1 = c.P1(0, 3);
-    r.ty = c.P0(1, 3);
-    return r;
-}
-
-}  // namespace
-
-Triangulated triangulate(const StereoCalib& c, cv::Point2d l, cv::Point2d r, const PixelNoise& n) {
-    const stereo::Point3 s = stereo::triangulate(rig(c), l.x, l.y, r.x, r.y);
-    Triangulated t;
-    if (!s.valid) return t;
-    t.p = cv::Vec3d(s.p[0], s.p[1], s.p[2]);
-    for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 4; ++k) t.J(i, k) = s.J[i][k];
-    double cov[3][3];
-    n.covariance(s, cov);
-    t.cov = cv::Matx33d(&cov[0][0]);
-    t.valid = true;
-    return t;
 }
 
 std::string landmarks_csv(const std::vector<Landmark>& ls) {
@@ -95,7 +56,8 @@ std::string landmarks_ply(const std::vector<Landmark>& ls) {
 
 namespace {
 
-void collect_depth_errors(const PairResult& r, const cv::Mat& disparity, const StereoCalib& calib, std::vector<double>& e) {
+void collect_depth_errors(const PairResult& r, const cv::Mat& disparity, const stereo::RectifiedRig& calib,
+                          std::vector<double>& e) {
     if (disparity.empty()) return;
     for (const auto& m : r.matches) {
         if (!m.epipolar) continue;
@@ -103,8 +65,8 @@ void collect_depth_errors(const PairResult& r, const cv::Mat& disparity, const S
         if (x < 0 || y < 0 || x >= disparity.cols || y >= disparity.rows) continue;
         const float d = disparity.at<float>(y, x);
         if (d <= 0) continue;
-        const Triangulated est = triangulate(calib, m.left, m.right);
-        const Triangulated gt = triangulate(calib, m.left, cv::Point2d(m.left.x - d, m.left.y));
+        const stereo::Point3 est = stereo::triangulate(calib, pixels(m.left, m.right));
+        const stereo::Point3 gt = stereo::triangulate(calib, pixels(m.left, cv::Point2f(m.left.x - d, m.left.y)));
         if (!est.valid || !gt.valid) continue;
         e.push_back(std::abs(est.p[2] - gt.p[2]) / gt.p[2]);
     }
@@ -125,7 +87,7 @@ DepthError summarise(std::vector<double>& e) {
 
 }  // namespace
 
-DepthError depth_error(const PairResult& r, const cv::Mat& disparity, const StereoCalib& calib) {
+DepthError depth_error(const PairResult& r, const cv::Mat& disparity, const stereo::RectifiedRig& calib) {
     std::vector<double> e;
     collect_depth_errors(r, disparity, calib, e);
     return summarise(e);
