@@ -29,7 +29,7 @@ namespace hc::sweep {
 namespace {
 
 // Bump when the analysis (bounds, search, verdicts) changes: cached reports then miss.
-constexpr const char* kRangesVersion = "hc-ranges-3 interval + witness search + z3 (rlimit) on the model and on GHDL's netlist";
+constexpr const char* kRangesVersion = "hc-ranges-4 interval + witness search + z3 (rlimit) on the model and on GHDL's netlist";
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -312,7 +312,7 @@ std::string ranges_markdown(const std::string& config, const RangeReport& r) {
         s += fmt::format("| {} | {} | [{}, {}] | [{}, {}] | {} | {} | {} | {} | {} | {} | {} |\n", kRegNames[idx(x.reg)], x.width,
                          x.held.lo, x.held.hi, x.bound.lo, x.bound.hi,
                          x.verdict == Verdict::wraps ? "**wraps**" : verdict_name(x.verdict), x.decided_by.empty() ? "-" : x.decided_by,
-                         x.searched ? fmt::format("[{}, {}]", x.reached.lo, x.reached.hi) : "-",
+                         x.searched ? fmt::format("[{}, {}] ({} windows)", x.reached.lo, x.reached.hi, x.search_windows) : "-",
                          x.solver_asked ? fmt::format("{} ({:.1f} s, {} units)", x.solver, x.solver_seconds, x.solver_rlimit) : "-",
                          extreme,
                          x.netlist_asked ? fmt::format("{}: {} ({} units)", verdict_name(x.netlist_verdict), x.netlist, x.netlist_rlimit)
@@ -346,12 +346,16 @@ std::vector<WitnessFile> write_witnesses(const std::string& config, const RangeR
 namespace {
 
 /// Coordinate ascent on one register's exact value from structured and random seeds, until
-/// a window wraps it, the seeds are spent or the time is up.
+/// a window wraps it, the seeds are spent or o.search_windows windows have been scored
+/// (a count, not a time: two runs score the same windows and reach the same verdict).
 void search_witness(RegisterRange& rr, const Formats& f, const RangeOptions& o, bool maximise) {
-    const auto t0 = Clock::now();
     const int pm = o.pixel_max;
+    std::int64_t scored = 0;
+    const auto spent = [&] { return scored >= o.search_windows; };
     const auto score = [&](const Window5& w, bool& wraps) {
         const WindowValue x = window_values(w, f, maximise)[idx(rr.reg)];
+        ++scored;
+        ++rr.search_windows;
         wraps = x.exact != x.narrowed;
         rr.reached = rr.searched ? hull(rr.reached, {x.exact, x.exact}) : Interval{x.exact, x.exact};
         rr.searched = true;
@@ -374,7 +378,7 @@ void search_witness(RegisterRange& rr, const Formats& f, const RangeOptions& o, 
     }
     // the best structured seeds first, then random vertices
     std::vector<std::pair<std::int64_t, size_t>> ranked;
-    for (size_t k = 0; k < seeds.size(); ++k) {
+    for (size_t k = 0; k < seeds.size() && !spent(); ++k) {
         bool wraps = false;
         const std::int64_t s = score(seeds[k], wraps);
         if (wraps) {
@@ -396,14 +400,15 @@ void search_witness(RegisterRange& rr, const Formats& f, const RangeOptions& o, 
     }
     const std::array<int, 5> levels{0, pm / 4, pm / 2, pm - pm / 4, pm};
     for (Window5 w : starts) {
+        if (spent()) return;
         bool wraps = false;
         std::int64_t best = score(w, wraps);
-        for (bool improved = true; improved && !wraps;) {
+        for (bool improved = true; improved && !wraps && !spent();) {
             improved = false;
             for (int i = 0; i < 5 && !wraps; ++i)
                 for (int j = 0; j < 5 && !wraps; ++j)
                     for (int lv : levels) {
-                        if (lv == w[i][j]) continue;
+                        if (lv == w[i][j] || spent()) continue;
                         const int was = w[i][j];
                         w[i][j] = lv;
                         const std::int64_t s = score(w, wraps);
@@ -421,7 +426,6 @@ void search_witness(RegisterRange& rr, const Formats& f, const RangeOptions& o, 
             rr.witness = w;
             return;
         }
-        if (since(t0) > o.search_seconds) return;
     }
 }
 
@@ -750,9 +754,9 @@ void solve_extreme(RegisterRange& rr, const Formats& f, const RangeOptions& o, B
 /// the solver, from the values the witness search reaches): solver_range holds what is proven.
 void solve_range(RegisterRange& rr, const Formats& f, const RangeOptions& o, std::int64_t limit) {
     const auto t0 = Clock::now();
-    // start from what the witness search reaches on each side (at most a second each)
+    // start from what the witness search reaches on each side (a fifth of its windows each)
     RangeOptions quick = o;
-    quick.search_seconds = std::min(1.0, o.search_seconds);
+    quick.search_windows = std::max<std::int64_t>(1, o.search_windows / 5);
     RegisterRange up = rr, down = rr;
     search_witness(up, f, quick, true);
     search_witness(down, f, quick, false);
@@ -854,7 +858,10 @@ json range_report_to_json(const RangeReport& r) {
         json e = {{"register", kRegNames[idx(x.reg)]}, {"bound", interval_json(x.bound)}, {"held", interval_json(x.held)},
                   {"width", x.width}, {"bound_fits", x.bound_fits}, {"verdict", verdict_name(x.verdict)},
                   {"searched", x.searched}};
-        if (x.searched) e["reached"] = interval_json(x.reached);
+        if (x.searched) {
+            e["reached"] = interval_json(x.reached);
+            e["search_windows"] = x.search_windows;
+        }
         if (x.verdict == Verdict::wraps) e["witness"] = x.witness;
         e["solver_asked"] = x.solver_asked;
         if (x.solver_asked) {
@@ -912,7 +919,10 @@ RangeReport range_report_from_json(const json& j) {
         x.bound_fits = e.at("bound_fits");
         x.verdict = verdict_from(e.at("verdict"));
         x.searched = e.at("searched");
-        if (x.searched) x.reached = interval_from(e.at("reached"));
+        if (x.searched) {
+            x.reached = interval_from(e.at("reached"));
+            x.search_windows = e.at("search_windows");
+        }
         if (x.verdict == Verdict::wraps) x.witness = e.at("witness").get<Window5>();
         x.solver_asked = e.at("solver_asked");
         if (x.solver_asked) {
@@ -943,9 +953,9 @@ namespace {
 /// The options a cached report must have been made with to be read back: every one that can
 /// change a verdict or a bracket (the pixel range, the search, the budgets, the netlist route).
 std::string cache_options(const RangeOptions& o) {
-    return fmt::format("pixel_max={} search_seconds={} seeds={} solver_rlimit={} query_rlimit={} netlist={} "
+    return fmt::format("pixel_max={} search_windows={} seeds={} solver_rlimit={} query_rlimit={} netlist={} "
                        "netlist_budget={} netlist_query_rlimit={}",
-                       o.pixel_max, o.search_seconds, o.seeds, o.solver_rlimit, o.query_rlimit, o.netlist,
+                       o.pixel_max, o.search_windows, o.seeds, o.solver_rlimit, o.query_rlimit, o.netlist,
                        o.netlist_budget, o.netlist_query_rlimit);
 }
 

@@ -79,6 +79,7 @@ struct RegisterRange {
     Verdict verdict = Verdict::open;
     bool searched = false;     ///< the witness search ran (only where the bound does not fit)
     Interval reached;          ///< the exact values the search reached (searched only)
+    std::int64_t search_windows = 0;   ///< the windows the search scored (both sides)
     Window5 witness{};         ///< verdict wraps: a window that wraps the register
     // the solver (only where the search found no witness)
     bool solver_asked = false;
@@ -128,7 +129,10 @@ struct RangeReport {
 
 struct RangeOptions {
     int pixel_max = 255;          ///< pixels anywhere in [0, pixel_max] (8-bit: 255)
-    double search_seconds = 5;    ///< per register and side, at most
+    /// windows the witness search scores per register and side, at most (a count, so that
+    /// two runs score the same windows and give the same verdicts on any machine). No
+    /// configuration of configs/bit-widths.json, nor resp_w=29, needs more than 90,000.
+    std::int64_t search_windows = 1'000'000;
     int seeds = 64;               ///< random 0/255 windows per register and side
     /// The model route's budget for the configuration, in z3 resource units (0: no solver);
     /// on this project's machine z3 spends about 5 million units per second of CPU.

@@ -424,8 +424,10 @@ struct Route {
 
 }  // namespace
 
-StageNetlists stage_netlists(const Formats& f, const fs::path& dir) {
+StageNetlists stage_netlists(const Formats& f, const fs::path& where) {
     f.validate();
+    // absolute: yosys runs in the directory, and its log is named from here
+    const fs::path dir = fs::absolute(where);
     fs::create_directories(dir);
     StageNetlists n;
     const std::vector<std::string> entities = {"sobel_x", "sobel_y", "m_products", "block_filter", "harris_response"};

@@ -20,7 +20,6 @@ void add_ranges_command(CLI::App& app) {
     struct Opts {
         std::string config, spec, witnesses, set_dir, json, out;
         int pixel_max = 255;
-        double search_seconds = 5;
         sweep::RangeOptions ro;
         bool no_netlist = false;
         std::string netlist_dir;
@@ -39,7 +38,8 @@ void add_ranges_command(CLI::App& app) {
     cmd->add_option("--json", o->json, "the reports as JSON");
     cmd->add_option("--out", o->out, "the reports as Markdown (default: stdout)");
     cmd->add_option("--pixel-max", o->pixel_max, "pixels in [0, N]")->capture_default_str()->check(whole_number(1));
-    cmd->add_option("--search-seconds", o->search_seconds, "witness search time per register and side")->capture_default_str();
+    cmd->add_option("--search-windows", o->ro.search_windows, "windows the witness search scores per register and side, at most")
+        ->capture_default_str()->check(CLI::PositiveNumber);
     cmd->add_option("--solver-rlimit", o->ro.solver_rlimit, "z3 resource units for the model route, per configuration (0: none)")
         ->capture_default_str()->check(CLI::NonNegativeNumber);
     cmd->add_option("--query-rlimit", o->ro.query_rlimit, "z3 resource units per query of the model route")
@@ -60,7 +60,6 @@ void add_ranges_command(CLI::App& app) {
                                 o->config.empty() ? Formats{} : formats_from_file(o->config)});
         sweep::RangeOptions ro = o->ro;
         ro.pixel_max = o->pixel_max;
-        ro.search_seconds = o->search_seconds;
         ro.netlist = !o->no_netlist;
         std::string md;
         nlohmann::json all = nlohmann::json::array();

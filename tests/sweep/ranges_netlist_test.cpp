@@ -193,3 +193,14 @@ TEST_CASE("without GHDL the netlist route proves nothing and says why", "[netlis
     }
     CHECK(r.at(Reg::response).verdict == Verdict::open);
 }
+
+TEST_CASE("the netlists are made in a directory given relative to the working directory", "[netlist][sweep][ranges]") {
+    const util::ScratchDir d;
+    const std::filesystem::path rel = std::filesystem::relative(d.path() / "nets", std::filesystem::current_path());
+    REQUIRE(rel.is_relative());
+    const StageNetlists n = stage_netlists(Formats{}, rel);
+    CHECK_THAT(n.chain, Catch::Contains("chain_n"));
+    CHECK_THAT(n.response, Catch::Contains("stage_response_n"));
+    CHECK(std::filesystem::exists(d.path() / "nets" / "chain.log"));
+    CHECK(std::filesystem::exists(d.path() / "nets" / "commands.txt"));
+}

@@ -317,3 +317,38 @@ TEST_CASE("bf_sum_w=19: the solver settles the registers the search left open, w
     CHECK(back.at(Reg::block_b).verdict == Verdict::proven);
     CHECK(back.summary() == r.summary());
 }
+
+TEST_CASE("the witness search stops after a count of windows: two runs give the same verdicts, and a small count binds exactly",
+          "[model][sweep][ranges]") {
+    Formats f;
+    f.resp_w = 29;   // det and the response: the search finds no witness and spends its seeds
+    RangeOptions o = no_solver();
+    const RangeReport one = analyse_ranges(f, o), two = analyse_ranges(f, o);
+    for (int k = 0; k < kRegCount; ++k) {
+        INFO(kRegNames[k]);
+        CHECK(one.regs[k].verdict == two.regs[k].verdict);
+        CHECK(one.regs[k].search_windows == two.regs[k].search_windows);
+        CHECK(one.regs[k].reached == two.regs[k].reached);
+    }
+    const RegisterRange& r = one.at(Reg::response);
+    REQUIRE(r.searched);
+    // the default count does not bind here: the search ends with its seeds, below the bound on each side
+    CHECK(r.search_windows < 2 * o.search_windows);
+    CHECK(r.search_windows > 1000);
+    // a count of 300 per side: the response's bound leaves the register on both sides, so exactly 600
+    o.search_windows = 300;
+    const RangeReport small = analyse_ranges(f, o);
+    CHECK(small.at(Reg::response).search_windows == 600);
+    CHECK(small.at(Reg::response).verdict == Verdict::open);
+    CHECK(analyse_ranges(f, o).at(Reg::response).reached == small.at(Reg::response).reached);
+    // m_prod_w=20: the witness of m_b is found after 72 windows; a count of 10 leaves it open, the same on every run
+    Formats narrow;
+    narrow.m_prod_w = 20;
+    narrow.m_drop = 4;
+    CHECK(analyse_ranges(narrow, no_solver()).at(Reg::m_b).verdict == Verdict::wraps);
+    o.search_windows = 10;
+    const RangeReport cut = analyse_ranges(narrow, o);
+    CHECK(cut.at(Reg::m_b).verdict == Verdict::open);
+    CHECK(cut.at(Reg::m_b).search_windows <= 20);
+    CHECK(analyse_ranges(narrow, o).at(Reg::m_b).reached == cut.at(Reg::m_b).reached);
+}
