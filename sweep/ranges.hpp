@@ -131,7 +131,7 @@ struct RangeOptions {
     int pixel_max = 255;          ///< pixels anywhere in [0, pixel_max] (8-bit: 255)
     /// windows the witness search scores per register and side, at most (a count, so that
     /// two runs score the same windows and give the same verdicts on any machine). No
-    /// configuration of configs/bit-widths.json, nor resp_w=29, needs more than 90,000.
+    /// configuration of sweep/configs/bit-widths.json, nor resp_w=29, needs more than 90,000.
     std::int64_t search_windows = 1'000'000;
     int seeds = 64;               ///< random 0/255 windows per register and side
     /// The model route's budget for the configuration, in z3 resource units (0: no solver);
