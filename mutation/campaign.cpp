@@ -446,6 +446,26 @@ Result run_mutant(const Mutant& m, const Options& o) {
     return r;
 }
 
+void check_unmutated(const Options& o) {
+    util::ScratchDir scratch("harris-mutant-control");
+    const frames::LoadedFrames& lf = frames_of(o.quick);
+    cosim::GhdlRun g;
+    g.frames = lf.frames;
+    g.frame_names = lf.names;
+    g.idle_every = o.quick.idle_every;
+    const MutatedRun run = run_mutated(nullptr, scratch.path(), g);
+    std::string why;
+    if (!run.analysed) why = "does not analyse: " + first_error(run.analyse_log);
+    else if (!run.streams.back().result && failed_in_elaboration(run.streams.back().log))
+        why = "does not elaborate: " + first_error(run.streams.back().log);
+    else why = kill_reason(run.streams.back());
+    if (!why.empty())
+        throw SimulatorError("the unmutated rtl/ fails the campaign's own run on " + o.quick.name + " (" +
+                             replace_path(why, scratch.path().string(), "<scratch>") +
+                             "): no mutant's verdict would mean anything, so none is judged");
+    say(o, "control: the unmutated rtl/ passes " + o.quick.name);
+}
+
 Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<Mutant>& sel, int jobs, int timeout_s,
                      const std::function<void(const std::string&)>& progress) {
     Reuse u;

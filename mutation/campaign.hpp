@@ -133,6 +133,11 @@ struct Options {
 
 /// Judges one mutant in a scratch directory of its own.
 Result run_mutant(const Mutant& m, const Options& o);
+/// The control of a campaign: the unmutated rtl/ through the same mutated-copy run, on the
+/// quick stimulus. A verdict means something only when this passes, so SimulatorError (status
+/// 3) when the copy does not analyse or elaborate, or the co-simulation fails or disagrees
+/// (a missing testbench, a stale build, a broken tool): the message names the failure.
+void check_unmutated(const Options& o);
 /// The proof of a mutant alone (`work`: a directory for the netlists and scripts).
 Proof prove(const Mutant& m, const fs::path& work, int timeout_s);
 

@@ -208,6 +208,12 @@ void run_generated(const GeneratedFlags& f) {
     job.per_shard = f.per_shard;
     job.shards = f.runner.shards;
     const cluster::Manifest m = jobs::mutants_manifest(job);
+    {
+        mutation::Options control;
+        control.quick = job.quick;
+        control.progress = [](const std::string& s) { std::fprintf(stderr, "[mutate] %s\n", s.c_str()); };
+        mutation::check_unmutated(control);
+    }
 
     std::optional<util::ScratchDir> scratch;
     fs::path dir = f.runner.run_dir;

@@ -28,6 +28,9 @@ json run_shard_mutants(const json& common, const json& shard, std::size_t index)
     o.prove = common.at("prove").get<bool>();
     o.proof_timeout_s = common.at("proof_timeout_s").get<int>();
     o.progress = [](const std::string& s) { std::fprintf(stderr, "[mutants] %s\n", s.c_str()); };
+    // each shard first runs the unmutated rtl/ the same way (on whatever node it runs), so
+    // that a broken environment fails the shard instead of judging every mutant stillborn
+    mutation::check_unmutated(o);
     const auto all = mutation::generate_all();
     json out = json::array();
     for (const auto& n : shard.at("names")) {
