@@ -343,7 +343,7 @@ void save_trajectories(const fs::path& dir, const SequenceRun& r) {
     save(dir / "dead_reckoning_kitti.txt", kitti_trajectory(r.dead_reckoning));
     save(dir / "truth_kitti.txt", kitti_trajectory(r.truth));
     std::vector<double> ts;
-    for (size_t k = 0; k < r.estimate.size(); ++k) ts.push_back(0.1 * k);   // KITTI: 10 frames/s
+    for (size_t k = 0; k < r.estimate.size(); ++k) ts.push_back(0.1 * k);   // KITTI: 10 io/frames/s
     save(dir / "estimate_tum.txt", tum_trajectory(r.estimate, ts));
 }
 
