@@ -277,7 +277,7 @@ TEST_CASE("a result written again with other whitespace is intact: the digest is
     CHECK(merge(squares_registry(), d) == run_in_process(squares_registry(), m));
 }
 
-TEST_CASE("a result without a digest is damaged; an intact result of another run still stops the run", "[cluster]") {
+TEST_CASE("a result without a digest is damaged, an intact result of another run still stops the run", "[cluster]") {
     const fs::path d = scratch("no-digest");
     const Manifest m = squares_manifest(20, 2);
     const std::string damaged = run_then_damage(d, m, 0, [](const std::string& s) {

@@ -309,7 +309,7 @@ cv::Mat chessboard_image(cv::Size size, int square) {
 
 }  // namespace
 
-TEST_CASE("a skipped pair sets no image size; a used pair of another size is refused naming both", "[calib]") {
+TEST_CASE("a skipped pair sets no image size, a used pair of another size is refused naming both", "[calib]") {
     const fs::path dir = fs::temp_directory_path() / "hc_calib_size_test";
     fs::create_directories(dir);
     // sorted as a glob would: the board-less pair of another size comes first (opencv-doc's

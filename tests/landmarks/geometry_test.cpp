@@ -103,7 +103,7 @@ TEST_CASE("a rig that is not rectified is refused with a message", "[landmarks]"
     CHECK_THROWS_WITH(c.validate(), Catch::Contains("right camera to the right"));
 }
 
-TEST_CASE("a KITTI calib.txt gives the rig of its P0 and P1; a file without P1 is refused", "[landmarks]") {
+TEST_CASE("a KITTI calib.txt gives the rig of its P0 and P1, a file without P1 is refused", "[landmarks]") {
     const auto dir = std::filesystem::temp_directory_path() / "hc_landmarks_calib_test";
     std::filesystem::create_directories(dir);
     {

@@ -106,7 +106,7 @@ TEST_CASE("grid on OpenCV corners of a shifted pair: its correct matches agree w
     CHECK(r.has_truth);
 }
 
-TEST_CASE("a ground-truth-correct match has |x_l - x_r - d| <= 1 and |y_r - y_l| <= 1; x-only and wrong ones are told apart",
+TEST_CASE("a ground-truth-correct match has |x_l - x_r - d| <= 1 and |y_r - y_l| <= 1, x-only and wrong ones are told apart",
           "[landmarks]") {
     const StereoImages p = shifted_pair();
     const auto kp = detect_pairs(Detector::opencv, {p});

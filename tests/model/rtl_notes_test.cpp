@@ -144,7 +144,7 @@ TEST_CASE("rtl-notes (refined): the host driver refuses to chain frames with one
     }
 }
 
-TEST_CASE("rtl-notes: load is high after writes 1..48 and low after writes 49..R-1 of every row; "
+TEST_CASE("rtl-notes: load is high after writes 1..48 and low after writes 49..R-1 of every row, "
           "after a frame's last write it stays low for one write",
           "[model][rtl_notes][load_control]") {
     const Image a = make_pattern(Pattern::random, 40, 30, 0), b = make_pattern(Pattern::random, 40, 30, 1);
@@ -295,7 +295,7 @@ TEST_CASE("rtl-notes: the window completed by a row's last column is never proce
 }
 
 TEST_CASE("rtl-notes (refuted): at a frame boundary the next frame's first row is NOT processed from its "
-          "first column; its ready pattern equals every other row's",
+          "first column, its ready pattern equals every other row's",
           "[model][rtl_notes][load_control]") {
     std::vector<Image> ims;
     for (int f = 0; f < 3; ++f) ims.push_back(make_pattern(Pattern::random, 40, 30, f));

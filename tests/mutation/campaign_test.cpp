@@ -118,7 +118,7 @@ TEST_CASE("each verdict has one name, in the JSON and the CSV, read back as the 
     CHECK_THROWS_AS(mutation::result_from_json(bad), InputError);
 }
 
-TEST_CASE("a verdict's proof has one key a field; only its assumptions may be absent", "[mutants]") {
+TEST_CASE("a verdict's proof has one key a field, only its assumptions may be absent", "[mutants]") {
     mutation::Result r;
     r.proof.assumptions = {"one: [0, 1]"};
     r.proof.method = "assume-guarantee";

@@ -82,7 +82,7 @@ TEST_CASE("interval bounds of Sobel equal the exact extremes over every 3x3 wind
     CHECK(r.at(Reg::sobel_y).bound == Interval{ey.lo, ey.hi});
 }
 
-TEST_CASE("interval bounds of M contain the exact extremes over every 3x3 window of 3-bit pixels; a and c are exact",
+TEST_CASE("interval bounds of M contain the exact extremes over every 3x3 window of 3-bit pixels, a and c are exact",
           "[model][sweep][ranges]") {
     Formats f;
     f.m_drop = 0;   // the products themselves
@@ -222,7 +222,7 @@ TEST_CASE("each witness stream of the regression set wraps its configuration in 
     CHECK(witnesses >= 4);
 }
 
-TEST_CASE("the range analysis is cached under the key it is given; an unreadable entry or one of other options is analysed again",
+TEST_CASE("the range analysis is cached under the key it is given, an unreadable entry or one of other options is analysed again",
           "[model][sweep][ranges]") {
     const util::ScratchDir d;
     Formats f;

@@ -75,7 +75,7 @@ TEST_CASE("the sweep's stereo-match column is score_formats of each configuratio
     CHECK(md.find("middlebury-half Aloe") != std::string::npos);
 }
 
-TEST_CASE("the landmark column's spec: scenes, g and h, or false; a missing scene is an input error", "[landmarks][sweep]") {
+TEST_CASE("the landmark column's spec: scenes, g and h, or false, a missing scene is an input error", "[landmarks][sweep]") {
     const SweepSpec s = parse_sweep_spec(R"({"configs": [{"name": "a"}], "landmarks": {"scenes": ["Rocks1"], "g": 12, "h": 2}})", "t");
     CHECK(s.landmarks.enabled);
     CHECK(s.landmarks.scenes == std::vector<std::string>{"Rocks1"});
