@@ -4,18 +4,13 @@
 
 #include <string>
 
-#include "cosim/cosim.hpp"
 #include "io/util/util.hpp"
 
 namespace hc::jobs {
 
 namespace {
 
-std::string rtl_hash() {
-    std::string all;
-    for (const auto& f : cosim::rtl_sources()) all += f.filename().string() + '\n' + util::read_file(f) + '\n';
-    return util::hex64(util::fnv1a(all));
-}
+using mutation::rtl_hash;
 
 std::string file_hash(const fs::path& p) { return util::hex64(util::fnv1a(util::read_file(p, "mutation list"))); }
 
