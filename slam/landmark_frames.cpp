@@ -1,5 +1,10 @@
-// landmark_frames.cpp: landmarks::Landmark -> slam::StereoLandmarkObs.
+// landmark_frames.cpp: landmarks::Landmark -> slam::StereoLandmarkObs, and a KITTI sequence
+// through the filter on the pipeline's or synthetic landmarks.
 #include "slam/landmark_frames.hpp"
+
+#include <algorithm>
+
+#include "io/frames/frames.hpp"
 
 namespace hc::slam {
 
@@ -21,6 +26,51 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const lan
         frames.push_back(std::move(f));
     }
     return frames;
+}
+
+namespace {
+
+/// The landmark pipeline on the sequence's first `poses` stereo pairs (fewer when it has fewer).
+std::vector<StereoFrame> stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, size_t poses,
+                                       const KittiRunOptions& o) {
+    const landmarks::PipelineOptions& po = o.pipeline;
+    landmarks::validate(po.grid);
+    landmarks::check_combination(po.descriptor, po.detector, landmarks::Norm::automatic);
+    if (landmarks::make_descriptor(po.descriptor, po.grid)->descriptorType() != CV_8U)
+        throw InputError("--descriptor " + landmarks::descriptor_name(po.descriptor) +
+                         " is not binary: visual odometry and the association compare Hamming distances");
+    const int pairs = std::min(static_cast<int>(poses), frames::open_kitti(kitti, sequence).pairs());
+    const auto ds = landmarks::kitti_dataset(kitti, sequence, {0, pairs});
+    if (ds.pairs.size() < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
+    if (o.progress)
+        o.progress("landmarks of " + std::to_string(ds.pairs.size()) + " stereo pairs of " + sequence + " (" +
+                   landmarks::detector_name(po.detector) + " corners, " + landmarks::descriptor_name(po.descriptor) +
+                   " descriptor)");
+    return landmark_frames(ds, po);
+}
+
+}  // namespace
+
+KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::string& sequence, const KittiRunOptions& o) {
+    auto poses = read_kitti_poses(frames::kitti_poses_file(kitti, sequence));
+    if (poses.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
+    o.association.validate();
+    o.vo.validate();
+    if (!o.visual_odometry) o.synthetic.validate();
+    std::vector<StereoFrame> frames;
+    if (o.stereo_landmarks) {
+        frames = stereo_frames(kitti, sequence, poses.size(), o);
+        poses.resize(frames.size());
+    } else {
+        if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
+        frames = synthesize_stereo_frames(poses, synthetic_rig(), {}, o.synthetic_count, o.flip_bits, o.seed);
+    }
+    std::vector<Pose> truth;
+    for (const auto& T : poses) truth.push_back(planar_pose(T));
+    KittiRun r;
+    r.run = o.visual_odometry ? run_visual_sequence(frames, truth, o.vo, o.association, &r.vo)
+                              : run_sequence(poses, frames, o.synthetic, o.association, o.seed);
+    return r;
 }
 
 }  // namespace hc::slam

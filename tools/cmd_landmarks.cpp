@@ -49,25 +49,6 @@ std::vector<std::string> split(const std::string& s) {
     return v;
 }
 
-std::pair<int, int> pair_range(const std::string& s) {
-    const auto c = s.find(':');
-    try {
-        if (c == std::string::npos) throw std::invalid_argument(s);
-        const int a = std::stoi(s.substr(0, c)), b = std::stoi(s.substr(c + 1));
-        if (a < 0 || b <= a) throw std::invalid_argument(s);
-        return {a, b};
-    } catch (const std::exception&) {
-        throw InputError("--pairs '" + s + "' is not a stereo pair range a:b with 0 <= a < b");
-    }
-}
-
-std::string safe(const std::string& s) {
-    std::string r = s;
-    for (char& c : r)
-        if (c == '/' || c == ' ') c = '_';
-    return r;
-}
-
 /// The dataset of the flags; `root` receives its folder.
 landmarks::Dataset load_dataset(const LandmarksOptions& o, fs::path& root) {
     if (!o.calib.empty()) {
@@ -87,8 +68,7 @@ landmarks::Dataset load_dataset(const LandmarksOptions& o, fs::path& root) {
     }
     if (o.dataset == "kitti") {
         root = frames::require_kitti_root(o.kitti, o.data, "--dataset kitti needs KITTI data");
-        const auto [a, b] = pair_range(o.frames);
-        return landmarks::kitti_dataset(root, o.sequence, a, b);
+        return landmarks::kitti_dataset(root, o.sequence, util::parse_range(o.frames, "--pairs"), "--pairs " + o.frames);
     }
     throw InputError("--dataset '" + o.dataset + "' (middlebury or kitti)");
 }
@@ -111,34 +91,11 @@ void run_reobservation(const LandmarksOptions& o) {
     std::fprintf(stderr, "landmarks: re-observations over %zu consecutive left images of %s...\n", ds.pairs.size(),
                  ds.name.c_str());
     const auto rows = landmarks::reobservation_study(ds, ro);
-    std::ostringstream md, csv;
-    md << fmt::format("# Re-observations between consecutive frames: {} ({} left images, {} corners)\n\n", ds.name,
-                      ds.pairs.size(), landmarks::detector_name(ro.detector))
-       << fmt::format("Corners of frame k tracked into frame k+1 by Lucas-Kanade optical flow (forward-backward error <= "
-                      "{} px, a corner of frame k+1 within {} px of the tracked point); Hamming distances as a fraction of "
-                      "the descriptor's bits; a random pair is the same corner against a random other corner of frame "
-                      "k+1. Grid g = {}, h = {}.\n\n",
-                      ro.max_fb_px, ro.max_corner_px, ro.grid.g, ro.grid.h)
-       << "| descriptor | bits | re-observations | median, re-observed | median, random | mean, re-observed | mean, "
-          "random | re-observed below the random median | own descriptor nearest |\n"
-          "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    csv << "dataset,detector,descriptor,bits,frames,reobservations,same_median,random_median,same_mean,random_mean,"
-           "below_random_median,nearest\n";
-    for (const auto& r : rows) {
-        const double n = r.reobservations ? double(r.reobservations) : 1.0;
-        md << fmt::format("| {} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} |\n",
-                          landmarks::descriptor_name(r.descriptor), r.bits, r.reobservations, r.same_median,
-                          r.random_median, r.same_mean, r.random_mean, double(r.below_random_median) / n,
-                          double(r.nearest) / n);
-        csv << fmt::format("{},{},{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{},{}\n", ds.name,
-                           landmarks::detector_name(ro.detector), landmarks::descriptor_name(r.descriptor), r.bits,
-                           r.frames, r.reobservations, r.same_median, r.random_median, r.same_mean, r.random_mean,
-                           r.below_random_median, r.nearest);
-    }
+    const landmarks::ReobservationReport rep = landmarks::reobservation_report(ds, ro, rows);
     fs::create_directories(o.out);
-    landmarks::write_atomic(fs::path(o.out) / "reobservation.md", md.str());
-    landmarks::write_atomic(fs::path(o.out) / "reobservation.csv", csv.str());
-    std::printf("%s", md.str().c_str());
+    landmarks::write_atomic(fs::path(o.out) / "reobservation.md", rep.markdown);
+    landmarks::write_atomic(fs::path(o.out) / "reobservation.csv", rep.csv);
+    std::printf("%s", rep.markdown.c_str());
 }
 
 /// The comparison's detectors, descriptors, grid, matcher and corner options from the flags.
@@ -180,7 +137,11 @@ std::optional<std::vector<landmarks::ComparisonRow>> sharded_rows(const Landmark
     p.root = root;
     p.need_truth = !o.no_truth;
     p.sequence = o.sequence;
-    std::tie(p.first, p.last) = o.dataset == "kitti" ? pair_range(o.frames) : std::pair<int, int>{0, 0};
+    if (o.dataset == "kitti") {
+        const util::Range r = util::parse_range(o.frames, "--pairs");
+        p.first = r.first;
+        p.last = r.first + static_cast<int>(ds.pairs.size());
+    }
     p.options = co;
     p.pairs = ds.pairs.size();
     p.shards = o.runner.shards;
@@ -189,142 +150,6 @@ std::optional<std::vector<landmarks::ComparisonRow>> sharded_rows(const Landmark
     const auto merged = run_sharded(dir, m, o.runner);
     if (!merged) return std::nullopt;
     return jobs::landmarks_rows(*merged);
-}
-
-/// The landmark files and match overlays of every row under <out>; the depth error table's
-/// rows (empty when no pair has a known disparity).
-std::string write_row_files(const LandmarksOptions& o, const landmarks::Dataset& ds,
-                            const std::vector<landmarks::ComparisonRow>& rows) {
-    landmarks::PipelineOptions po;
-    po.noise.sigma_px = o.sigma;
-    std::ostringstream depth;
-    for (const auto& row : rows) {
-        const std::string dir = landmarks::detector_name(row.detector) + "-" + landmarks::descriptor_name(row.descriptor);
-        for (size_t k = 0; k < row.pairs.size(); ++k) {
-            const auto& pr = row.pairs[k];
-            if (o.landmark_files) {
-                const auto lm = landmarks::landmarks_from(pr, ds.calib[k], po);
-                landmarks::write_atomic(fs::path(o.out) / dir / "landmarks" / (safe(pr.name) + ".csv"), landmarks::landmarks_csv(lm));
-                landmarks::write_atomic(fs::path(o.out) / dir / "landmarks" / (safe(pr.name) + ".ply"), landmarks::landmarks_ply(lm));
-            }
-            if (static_cast<int>(k) < o.overlays)
-                landmarks::write_png(fs::path(o.out) / dir / (safe(pr.name) + "-matches.png"),
-                                     landmarks::match_overlay(ds.pairs[k], pr));
-        }
-        const auto de = landmarks::depth_error(row, ds);
-        if (de.n) {
-            depth << fmt::format("| {} | {} | {} | {:.4f} | {:.4f} | {:.4f} |\n", landmarks::descriptor_name(row.descriptor),
-                                 landmarks::detector_name(row.detector), de.n, de.median, de.mean, de.p90);
-        }
-    }
-    return depth.str();
-}
-
-/// The g x h study of every detector: its Markdown section (with the held-out choice), its
-/// plots and <out>/study.csv. `secs` is the run's clock.
-std::string study_markdown(const LandmarksOptions& o, const landmarks::Dataset& ds, const landmarks::ComparisonOptions& co,
-                           const std::vector<std::vector<landmarks::PairKeypoints>>& kps,
-                           const std::vector<landmarks::ComparisonRow>& rows, const std::function<double()>& secs) {
-    std::ostringstream study_md, study_plots, held_out_md;
-    bool held_out_by_truth = true;
-    std::string study_csv;
-    landmarks::StudyOptions so;
-    so.corrected = o.corrected;
-    so.match = co.match;
-    so.threads = o.threads;
-    study_md << fmt::format("Grid descriptor ({}), g {}..{}, h {}..{}, summed over the dataset's pairs.\n\n",
-                            o.corrected ? "corrected g x g" : "thesis", so.g_min, so.g_max, so.h_min, so.h_max)
-             << "| detector | best (g, h), thesis-correct | correct | best (g, h), ground truth | correct (truth) | seconds |\n"
-                "|---|---|---:|---|---:|---:|\n";
-    for (size_t i = 0; i < co.detectors.size(); ++i) {
-        const auto det = co.detectors[i];
-        const std::string dn = landmarks::detector_name(det);
-        const double ts = secs();
-        const auto st = landmarks::study(ds, det, kps[i], so);
-        const double t_study = secs() - ts;
-        std::fprintf(stderr, "landmarks: study on %s corners: %zu cells in %.1f s\n", dn.c_str(), st.cells.size(), t_study);
-        double ref = -1, ref_truth = -1;   // the SIFT descriptor on the same corners, as the thesis's dashed line
-        for (const auto& r : rows)
-            if (r.detector == det && r.descriptor == landmarks::Descriptor::sift) {
-                ref = static_cast<double>(r.totals.correct);
-                ref_truth = r.totals.truth_known ? static_cast<double>(r.totals.truth_correct) : -1;
-            }
-        const std::string csv = landmarks::study_csv(ds.name, st);
-        study_csv += study_csv.empty() ? csv : csv.substr(csv.find('\n') + 1);
-        if (landmarks::plot_study(st, false, ref, ds.name + ": grid on " + dn + " corners, thesis-correct matches",
-                                  fs::path(o.out) / ("study-" + dn + ".png")))
-            study_plots << "![" << dn << "](study-" << dn << ".png)\n";
-        if (st.best_truth().truth_correct > 0 &&
-            landmarks::plot_study(st, true, ref_truth, ds.name + ": grid on " + dn + " corners, ground-truth-correct matches",
-                                  fs::path(o.out) / ("study-" + dn + "-truth.png")))
-            study_plots << "![" << dn << " ground truth](study-" << dn << "-truth.png)\n";
-        const auto bc = st.best_correct(), bt = st.best_truth();
-        study_md << fmt::format("| {} | ({}, {}) | {} | {} | {} | {:.1f} |\n", dn, bc.g, bc.h, bc.correct,
-                                bt.truth_correct ? fmt::format("({}, {})", bt.g, bt.h) : "n/a", bt.truth_correct, t_study);
-        // (g, h) chosen on half of the pairs, scored on the other half, both ways
-        if (ds.pairs.size() >= 2) {
-            const bool by_truth = bt.truth_correct > 0;
-            std::vector<size_t> even, odd;
-            for (size_t k = 0; k < ds.pairs.size(); ++k) (k % 2 ? odd : even).push_back(k);
-            const auto names = [&](const std::vector<size_t>& v) {
-                std::string out;
-                for (size_t k : v) out += (out.empty() ? "" : ", ") + ds.pairs[k].name;
-                return out;
-            };
-            const auto count = [&](const landmarks::StudyCell& c) { return by_truth ? c.truth_correct : c.correct; };
-            for (const auto& [choose, report] : {std::pair{even, odd}, std::pair{odd, even}}) {
-                const auto ho = landmarks::held_out_choice(st, choose, report, by_truth);
-                held_out_md << fmt::format("| {} | {} | {} | ({}, {}) | {} | {} | ({}, {}) | {} |\n", dn, names(choose),
-                                           names(report), ho.chosen.g, ho.chosen.h, count(ho.chosen),
-                                           count(ho.on_report), ho.report_best.g, ho.report_best.h,
-                                           count(ho.report_best));
-            }
-            held_out_by_truth = held_out_by_truth && by_truth;
-        }
-    }
-    if (!held_out_md.str().empty())
-        study_md << "\n(g, h) chosen on the pairs of one half and scored on the other ("
-                 << (held_out_by_truth ? "ground-truth-correct" : "thesis-correct")
-                 << " matches; 'best on scored' is what choosing on the scored pairs themselves would claim):\n\n"
-                    "| detector | chosen on | scored on | chosen (g, h) | count on chosen | count on scored | best on scored "
-                    "| its count |\n|---|---|---|---|---:|---:|---|---:|\n"
-                 << held_out_md.str();
-    study_md << "\n" << study_plots.str();
-    landmarks::write_atomic(fs::path(o.out) / "study.csv", study_csv);
-    return study_md.str();
-}
-
-/// The report's Markdown: the matching rules, the comparison table, the depth error and the study.
-std::string report_markdown(const LandmarksOptions& o, const landmarks::Dataset& ds,
-                            const std::vector<landmarks::ComparisonRow>& rows, const std::string& depth,
-                            const std::string& study, double t_compare, double t_total) {
-    std::ostringstream md;
-    md << "# Landmark acquisition: " << ds.name << "\n\n";
-    md << fmt::format("{} stereo pairs. Matches pass the cross-check and the 2-NN ratio test ({}{}); *correct (thesis)* "
-                      "adds the epipolar test |y_r - y_l| < 5; *correct (ground truth)* counts, of those with a known "
-                      "disparity, the ones with |x_l - x_r - d| <= 1 px and |y_r - y_l| <= 1 px; *x only* the ones with "
-                      "|x_l - x_r - d| <= 1 px whatever their rows. Time: extraction of both images + matching, one thread.\n\n",
-                      ds.pairs.size(),
-                      o.ratio > 0 ? fmt::format("ratio {} for every descriptor", o.ratio)
-                                  : std::string("ratio 1, the thesis's test of the grid, for every descriptor but "
-                                                "sift, which uses 0.8 as the thesis's SIFT reference (after Lowe); "
-                                                "sift-ratio1 is SIFT at ratio 1"),
-                      o.drop_ties ? "; ties dropped" : "; the test as printed");
-    if (ds.rig)
-        md << "A rig's unrectified pairs (`--calib " << o.calib
-           << "`): keypoints undistorted and rectified by cv::undistortPoints with the calibration's intrinsics, "
-              "distortion, rectifying rotations and projections (no image warped); the epipolar test, the triangulation "
-              "(its rectified projections) and the overlays use the rectified positions.\n\n";
-    md << fmt::format("Co-processor formats (spec, cycle, rtl corners): {}.\n\n",
-                      o.config.empty() ? "the thesis's" : "--config " + o.config);
-    md << landmarks::comparison_markdown(rows) << "\n";
-    if (!depth.empty())
-        md << "## Depth error against the ground truth\n\nRelative |Z - Z_gt| / Z_gt of correct (thesis) matches with a "
-              "known disparity.\n\n| descriptor | detector | n | median | mean | 90th percentile |\n|---|---|---:|---:|---:|---:|\n"
-           << depth << "\n";
-    if (o.study) md << "## Grid parameter study (g x h)\n\n" << study << "\n";
-    md << fmt::format("Wall time: comparison {:.1f} s, total {:.1f} s.\n", t_compare, t_total);
-    return md.str();
 }
 
 void run_landmarks(const LandmarksOptions& o) {
@@ -354,17 +179,19 @@ void run_landmarks(const LandmarksOptions& o) {
         } else {
             rows = landmarks::compare(ds, co, &kps);
         }
-        const double t_compare = secs();
-        const std::string depth = write_row_files(o, ds, rows);   // landmarks and overlays of every row
-        const std::string study = o.study ? study_markdown(o, ds, co, kps, rows, secs) : std::string();
-        const double t_total = secs();
-
-        const std::string md = report_markdown(o, ds, rows, depth, study, t_compare, t_total);
-        landmarks::write_atomic(fs::path(o.out) / "report.md", md);
-        landmarks::write_atomic(fs::path(o.out) / "results.csv", landmarks::comparison_csv(ds.name, rows));
-        landmarks::write_atomic(fs::path(o.out) / "results.json", landmarks::comparison_json(ds.name, rows));
+        landmarks::ReportOptions ro;
+        ro.out = o.out;
+        ro.sigma_px = o.sigma;
+        ro.landmark_files = o.landmark_files;
+        ro.overlays = o.overlays;
+        ro.study = o.study;
+        ro.corrected = o.corrected;
+        ro.threads = o.threads;
+        ro.calib = o.calib;
+        ro.config = o.config;
+        const auto rep = landmarks::write_comparison_report(ds, co, rows, kps, ro, secs);
         std::printf("%s", landmarks::comparison_markdown(rows).c_str());
-        std::printf("landmarks: comparison %.1f s, total %.1f s; report %s\n", t_compare, t_total,
+        std::printf("landmarks: comparison %.1f s, total %.1f s; report %s\n", rep.compare_seconds, rep.total_seconds,
                     (fs::path(o.out) / "report.md").c_str());
     } catch (const landmarks::InputError& e) {
         throw InputError(e.what());

@@ -3,12 +3,15 @@
 // stereo landmarks and visual odometry (or synthetic odometry on the real trajectory),
 // scored against the ground-truth poses. Parses flags, calls hc::slam, prints;
 // hc::slam::InputError becomes exit status 2. Docs: docs/slam.md.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numbers>
 #include <optional>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
@@ -30,15 +33,23 @@ struct SlamOptions {
     bool simulate = false;
     std::string sequences, kitti, data, out = "slam-report", world = "cloister", landmarks_from = "synthetic",
                 odometry = "visual", association = "jcbb";
-    int landmarks = 40, steps = 236, runs = 50, synthetic_count = 1000, flip_bits = 8, forget_after = 10,
-        max_observations = 60, vo_min_inliers = 8;
+    // every model default is its struct's (slam::SimConfig, SensorModel, AssociationConfig,
+    // VisualOdometryConfig, SyntheticOdometry); the angles are the command's, in degrees
+    int landmarks = slam::SimConfig{}.landmarks, steps = slam::SimConfig{}.steps, runs = 50,
+        synthetic_count = slam::KittiRunOptions{}.synthetic_count, flip_bits = slam::KittiRunOptions{}.flip_bits,
+        forget_after = slam::AssociationConfig{}.forget_after,
+        max_observations = slam::AssociationConfig{}.max_observations, vo_min_inliers = slam::VisualOdometryConfig{}.min_inliers;
     uint64_t seed = 1;
     bool seed_given = false;
-    double half_size = 5, radius = 3.75, step = 0.1, sigma_range = 0.05, sigma_bearing_deg = 1, fov_deg = 180,
-           max_range = 6, gate = 0.99, joint_gate = 0.99, max_hamming_fraction = 0.25, vo_hamming_fraction = 0.25,
+    double half_size = slam::SimConfig{}.half_size, radius = slam::SimConfig{}.radius, step = slam::SimConfig{}.step,
+           sigma_range = slam::SensorModel{}.sigma_range, sigma_bearing_deg = 1, fov_deg = 180,
+           max_range = slam::SensorModel{}.max_range, gate = slam::AssociationConfig{}.gate_probability,
+           joint_gate = slam::AssociationConfig{}.joint_probability,
+           max_hamming_fraction = slam::AssociationConfig{}.max_hamming_fraction,
+           vo_hamming_fraction = slam::VisualOdometryConfig{}.max_hamming_fraction,
            vo_max_range = slam::VisualOdometryConfig{}.max_range;
     std::optional<double> sigma_dx, sigma_dtheta_deg;
-    double sigma_dy = 0.02;
+    double sigma_dy = slam::SyntheticOdometry{}.sigma_dy;
     bool descriptor = true;
     // --landmarks-from stereo: the landmark pipeline's options
     std::string corners = "opencv", descriptor_name = "grid", config;
@@ -54,6 +65,12 @@ std::string num(double v) {
     return o.str();
 }
 
+/// The help of an odometry noise flag, naming its two defaults (the simulator's and the KITTI
+/// synthetic odometry's, each its struct's).
+std::string noise_help(const std::string& what, const std::string& simulated, const std::string& kitti) {
+    return what + "; default " + simulated + " simulated, " + kitti + " KITTI --odometry synthetic)";
+}
+
 void run_simulate(const SlamOptions& o) {
     slam::SimConfig c;
     c.layout = o.world == "random" ? slam::Layout::Random : slam::Layout::Cloister;
@@ -66,8 +83,8 @@ void run_simulate(const SlamOptions& o) {
     c.sensor.sigma_bearing = o.sigma_bearing_deg * deg;
     c.sensor.fov = o.fov_deg * deg;
     c.sensor.max_range = o.max_range;
-    c.odometry.sigma_dx = o.sigma_dx.value_or(0.01);
-    c.odometry.sigma_dtheta = o.sigma_dtheta_deg.value_or(0.005 / deg) * deg;
+    if (o.sigma_dx) c.odometry.sigma_dx = *o.sigma_dx;
+    if (o.sigma_dtheta_deg) c.odometry.sigma_dtheta = *o.sigma_dtheta_deg * deg;
     c.validate();
     const std::string command =
         "harris-cosim slam --simulate --world " + o.world + " --landmarks " + std::to_string(o.landmarks) +
@@ -103,28 +120,6 @@ void run_simulate(const SlamOptions& o) {
     std::printf("report: %s/report.md\n", o.out.c_str());
 }
 
-/// The landmark pipeline on the sequence's stereo pairs, one frame per pose (a sequence with
-/// fewer pairs than poses is cut to its pairs).
-std::vector<slam::StereoFrame> stereo_landmark_frames(const SlamOptions& o, const std::filesystem::path& kitti,
-                                                      const std::string& sequence, size_t poses) {
-    landmarks::PipelineOptions po;
-    po.detector = landmarks::parse_detector(o.corners);
-    po.descriptor = landmarks::parse_descriptor(o.descriptor_name);
-    po.grid = {o.g, o.h};
-    landmarks::validate(po.grid);
-    landmarks::check_combination(po.descriptor, po.detector, landmarks::Norm::automatic);
-    if (landmarks::make_descriptor(po.descriptor, po.grid)->descriptorType() != CV_8U)
-        throw InputError("--descriptor " + o.descriptor_name +
-                         " is not binary: visual odometry and the association compare Hamming distances");
-    po.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
-    po.corners.progress = true;
-    const auto ds = landmarks::kitti_dataset(kitti, sequence, 0, static_cast<int>(poses));
-    if (ds.pairs.size() < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
-    std::fprintf(stderr, "slam: landmarks of %zu stereo pairs of %s (%s corners, %s descriptor)\n", ds.pairs.size(),
-                 sequence.c_str(), o.corners.c_str(), o.descriptor_name.c_str());
-    return slam::landmark_frames(ds, po);
-}
-
 std::vector<std::string> split_sequences(const std::string& list) {
     std::vector<std::string> out;
     std::stringstream ss(list);
@@ -141,9 +136,8 @@ std::string odometry_label(const SlamOptions& o) {
 
 slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::path& kitti, const std::string& sequence,
                                    const std::filesystem::path& out) {
-    auto poses = slam::read_kitti_poses(frames::kitti_poses_file(kitti, sequence));
-    if (poses.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
-    slam::AssociationConfig ac;
+    slam::KittiRunOptions k;
+    slam::AssociationConfig& ac = k.association;
     ac.method = o.association == "nearest" ? slam::AssociationMethod::Nearest : slam::AssociationMethod::Jcbb;
     ac.gate_probability = o.gate;
     ac.joint_probability = o.joint_gate;
@@ -151,46 +145,42 @@ slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::
     ac.check_descriptor = o.descriptor;
     ac.forget_after = o.forget_after;
     ac.max_observations = o.max_observations;
-    ac.validate();
-    slam::VisualOdometryConfig vc;
+    slam::VisualOdometryConfig& vc = k.vo;
     vc.max_hamming_fraction = o.vo_hamming_fraction;
     vc.min_inliers = o.vo_min_inliers;
     vc.max_range = o.vo_max_range;
-    vc.validate();
-    slam::SyntheticOdometry so;
-    so.sigma_dx = o.sigma_dx.value_or(0.1);
+    slam::SyntheticOdometry& so = k.synthetic;
+    if (o.sigma_dx) so.sigma_dx = *o.sigma_dx;
     so.sigma_dy = o.sigma_dy;
-    so.sigma_dtheta = o.sigma_dtheta_deg.value_or(0.002 / deg) * deg;
-    if (o.odometry == "synthetic") so.validate();
-    std::vector<slam::StereoFrame> frames;
+    if (o.sigma_dtheta_deg) so.sigma_dtheta = *o.sigma_dtheta_deg * deg;
+    k.visual_odometry = o.odometry == "visual";
+    k.stereo_landmarks = o.landmarks_from == "stereo";
+    k.seed = o.seed;
+    k.synthetic_count = o.synthetic_count;
+    k.flip_bits = o.flip_bits;
     std::string source_args, title;
-    if (o.landmarks_from == "stereo") {
-        frames = stereo_landmark_frames(o, kitti, sequence, poses.size());
-        poses.resize(frames.size());
+    if (k.stereo_landmarks) {
+        k.pipeline.detector = landmarks::parse_detector(o.corners);
+        k.pipeline.descriptor = landmarks::parse_descriptor(o.descriptor_name);
+        k.pipeline.grid = {o.g, o.h};
+        k.pipeline.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
+        k.pipeline.corners.progress = true;
         source_args = " --corners " + o.corners + " --descriptor " + o.descriptor_name + " --g " + std::to_string(o.g) +
                       " --h " + std::to_string(o.h) + (o.config.empty() ? "" : " --config " + o.config);
         title = "KITTI " + sequence + " (stereo landmarks: " + o.descriptor_name + " on " + o.corners + " corners, " +
                 o.odometry + " odometry)";
     } else {
-        if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
-        frames = slam::synthesize_stereo_frames(poses, slam::synthetic_rig(), {}, o.synthetic_count, o.flip_bits, o.seed);
         source_args = " --synthetic-count " + std::to_string(o.synthetic_count) + " --flip-bits " + std::to_string(o.flip_bits);
         title = "KITTI " + sequence + " (synthetic landmarks on the real trajectory, " + o.odometry + " odometry)";
     }
-    std::vector<slam::Pose> truth;
-    for (const auto& T : poses) truth.push_back(slam::planar_pose(T));
-    slam::SequenceRun run;
-    slam::VisualOdometry vo;
-    std::string odo_args;
-    if (o.odometry == "visual") {
-        run = slam::run_visual_sequence(frames, truth, vc, ac, &vo);
-        odo_args = " --vo-hamming-fraction " + num(vc.max_hamming_fraction) + " --vo-min-inliers " +
-                   std::to_string(vc.min_inliers) + " --vo-max-range " + num(vc.max_range);
-    } else {
-        run = slam::run_sequence(poses, frames, so, ac, o.seed);
-        odo_args = " --sigma-dx " + num(so.sigma_dx) + " --sigma-dy " + num(so.sigma_dy) + " --sigma-dtheta " +
-                   num(so.sigma_dtheta / deg);
-    }
+    k.progress = [](const std::string& line) { std::fprintf(stderr, "slam: %s\n", line.c_str()); };
+    const slam::KittiRun kr = slam::run_kitti_sequence(kitti, sequence, k);
+    const slam::SequenceRun& run = kr.run;
+    const std::string odo_args = k.visual_odometry
+        ? " --vo-hamming-fraction " + num(vc.max_hamming_fraction) + " --vo-min-inliers " + std::to_string(vc.min_inliers) +
+              " --vo-max-range " + num(vc.max_range)
+        : " --sigma-dx " + num(so.sigma_dx) + " --sigma-dy " + num(so.sigma_dy) + " --sigma-dtheta " +
+              num(so.sigma_dtheta / deg);
     const bool seeded = o.odometry == "synthetic" || o.landmarks_from == "synthetic";
     const std::string command = "harris-cosim slam --sequences " + sequence + " --landmarks-from " + o.landmarks_from +
                                 source_args + " --odometry " + o.odometry + odo_args + " --association " +
@@ -204,7 +194,7 @@ slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::
     std::printf("%s: %zu frames, path %.1f m; APE: EKF-SLAM %.3f m (%.2f %%), %s %.3f m (%.2f %%)", sequence.c_str(),
                 run.truth.size(), run.slam_metrics.path_length, run.slam_metrics.ape, run.slam_metrics.ape_percent(),
                 odometry_label(o).c_str(), run.odometry_metrics.ape, run.odometry_metrics.ape_percent());
-    if (o.odometry == "visual") std::printf("; odometry failed in %d of %zu steps", vo.failures, vo.motions.size());
+    if (k.visual_odometry) std::printf("; odometry failed in %d of %zu steps", kr.vo.failures, kr.vo.motions.size());
     std::printf("\nreport: %s/report.md\n", out.c_str());
     return run;
 }
@@ -274,12 +264,13 @@ void add_slam_command(CLI::App& app) {
     cmd->add_option("--sigma-bearing", o->sigma_bearing_deg, "bearing noise (deg)")->capture_default_str();
     cmd->add_option("--fov", o->fov_deg, "sensor field of view, full angle (deg)")->capture_default_str();
     cmd->add_option("--max-range", o->max_range, "sensor range limit (m)")->capture_default_str();
-    cmd->add_option("--sigma-dx", o->sigma_dx,
-                    "odometry noise on dx (m per step; default 0.01 simulated, 0.1 KITTI --odometry synthetic)");
+    cmd->add_option("--sigma-dx", o->sigma_dx, noise_help("odometry noise on dx (m per step", num(slam::OdometryModel{}.sigma_dx),
+                                                          num(slam::SyntheticOdometry{}.sigma_dx)));
     cmd->add_option("--sigma-dy", o->sigma_dy, "KITTI --odometry synthetic: noise on dy (m per frame)")
         ->capture_default_str();
     cmd->add_option("--sigma-dtheta", o->sigma_dtheta_deg,
-                    "odometry noise on dθ (deg per step; default 0.286 simulated, 0.115 KITTI --odometry synthetic)");
+                    noise_help("odometry noise on dθ (deg per step", fmt::format("{:.3f}", slam::OdometryModel{}.sigma_dtheta / deg),
+                               fmt::format("{:.3f}", slam::SyntheticOdometry{}.sigma_dtheta / deg)));
     cmd->add_option("--odometry", o->odometry,
                     "KITTI: visual (stereo visual odometry from the landmarks; no ground truth) or synthetic "
                     "(the ground-truth relative poses plus noise of --sigma-dx/dy/dtheta)")

@@ -13,7 +13,7 @@
 #include "model/driver/host_driver.hpp"
 #include "model/harris/harris_top.hpp"
 #include "cosim/verilator/gate.hpp"
-#include "slam/landmarks/landmarks.hpp"
+#include "slam/landmarks/corners.hpp"
 #include "cosim/verilator/netlist.hpp"
 #include "model/spec/opencv_reference.hpp"
 #include "model/spec/spec_model.hpp"

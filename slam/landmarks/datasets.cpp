@@ -10,7 +10,8 @@
 
 #include "io/frames/frames.hpp"
 #include "slam/landmarks/calib.hpp"
-#include "slam/landmarks/landmarks.hpp"
+#include "slam/landmarks/datasets.hpp"
+#include "slam/landmarks/geometry.hpp"
 
 namespace fs = std::filesystem;
 
@@ -94,23 +95,18 @@ Dataset middlebury_dataset(const fs::path& root, bool need_truth) {
 
 // ---- KITTI ----------------------------------------------------------------------------
 
-Dataset kitti_dataset(const fs::path& kitti_root, const std::string& sequence, int first, int last) {
-    // the layout (folders, file names, calib.txt) is hc::frames's
+Dataset kitti_dataset(const fs::path& kitti_root, const std::string& sequence, util::Range pairs, const std::string& what) {
+    // the layout (folders, file names, calib.txt) and the rule for a pair range are hc::frames's
     if (!frames::is_kitti_sequence(kitti_root, sequence))
         throw InputError("'" + frames::kitti_sequence_dir(kitti_root, sequence).string() +
                          "' is not a KITTI odometry sequence (image_0/, image_1/)");
     const frames::KittiSequence seq = frames::open_kitti(kitti_root, sequence);
+    const std::vector<fs::path> paths = frames::stereo_stream(seq, pairs, what);
     const stereo::RectifiedRig calib = calib::read_kitti_calib(seq.calib_txt()).rectified;
     Dataset ds;
     ds.name = "kitti-" + sequence;
-    for (int k = first; k < last; ++k) {
-        if (k < 0 || k >= seq.pairs()) {
-            if (k == first)
-                throw InputError("KITTI sequence '" + seq.root.string() + "' has no stereo pair " + std::to_string(k) +
-                                 " (it has " + std::to_string(seq.pairs()) + ")");
-            break;
-        }
-        const fs::path &l = seq.left[static_cast<size_t>(k)], &r = seq.right[static_cast<size_t>(k)];
+    for (std::size_t i = 0; i + 1 < paths.size(); i += 2) {
+        const fs::path &l = paths[i], &r = paths[i + 1];
         StereoImages p{read_grey(l), read_grey(r), sequence + "/" + l.stem().string()};
         if (p.left.size() != p.right.size())
             throw InputError("KITTI pair '" + l.string() + "': left and right images differ in size");

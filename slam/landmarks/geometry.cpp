@@ -7,7 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "slam/landmarks/landmarks.hpp"
+#include "slam/landmarks/geometry.hpp"
+#include "slam/landmarks/pipeline.hpp"
 #include "slam/landmarks/stereo.hpp"
 
 namespace hc::landmarks {

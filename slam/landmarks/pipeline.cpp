@@ -11,7 +11,7 @@
 #include <tbb/task_arena.h>
 
 #include "slam/landmarks/descriptors.hpp"
-#include "slam/landmarks/landmarks.hpp"
+#include "slam/landmarks/pipeline.hpp"
 
 namespace hc::landmarks {
 

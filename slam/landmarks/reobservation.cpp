@@ -12,7 +12,8 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "slam/landmarks/descriptors.hpp"
-#include "slam/landmarks/landmarks.hpp"
+#include "slam/landmarks/pipeline.hpp"
+#include "slam/landmarks/reobservation.hpp"
 
 namespace hc::landmarks {
 

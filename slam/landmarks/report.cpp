@@ -9,7 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "slam/landmarks/landmarks.hpp"
+#include "slam/landmarks/report.hpp"
 #include "io/util/util.hpp"
 
 namespace fs = std::filesystem;

@@ -36,7 +36,7 @@ const Kitti* kitti() {
         const auto d = frames::data_dir("");
         if (d && std::filesystem::exists(*d / "kitti/sequences/01/image_1")) {
             Kitti x;
-            x.ds = landmarks::kitti_dataset(*d / "kitti", "01", 0, 51);
+            x.ds = landmarks::kitti_dataset(*d / "kitti", "01", {0, 51});
             x.kp = landmarks::detect_dataset(x.ds, landmarks::Detector::opencv);
             k = std::move(x);
         }

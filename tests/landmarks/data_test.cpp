@@ -106,7 +106,7 @@ TEST_CASE("grid and SIFT on OpenCV corners of the six half-size scenes: ground t
 }
 
 TEST_CASE("KITTI 01 pairs load with the sequence's P0 and P1", "[landmarks][data]") {
-    const Dataset ds = kitti_dataset(g_data / "kitti", "01", 0, 2);
+    const Dataset ds = kitti_dataset(g_data / "kitti", "01", {0, 2});
     REQUIRE(ds.pairs.size() == 2);
     CHECK(ds.pairs[0].left.size() == cv::Size(1241, 376));
     CHECK(ds.calib[0].fx == 718.856);

@@ -66,7 +66,7 @@ const SequenceRun& stereo_run_01(int* failures) {
         hc::landmarks::PipelineOptions po;
         po.detector = hc::landmarks::Detector::opencv;
         po.descriptor = hc::landmarks::Descriptor::orb;
-        const auto ds = hc::landmarks::kitti_dataset(g_kitti, "01", 0, static_cast<int>(poses.size()));
+        const auto ds = hc::landmarks::kitti_dataset(g_kitti, "01", {0, static_cast<int>(poses.size())});
         const auto frames = landmark_frames(ds, po);
         truth.resize(frames.size());
         VisualOdometry vo;

@@ -22,7 +22,7 @@ lm::Dataset load_pairs(const json& common, long first, long last) {
     const fs::path root = common.at("root").get<std::string>();
     if (common.at("dataset") == "kitti") {
         const int f = common.at("first");
-        return lm::kitti_dataset(root, common.at("sequence"), f + static_cast<int>(first), f + static_cast<int>(last));
+        return lm::kitti_dataset(root, common.at("sequence"), {f + static_cast<int>(first), f + static_cast<int>(last)});
     }
     // the shard's scenes only, each loaded as middlebury_dataset loads it
     const auto scenes = lm::middlebury_scenes(root);

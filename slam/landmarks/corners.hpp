@@ -1,0 +1,73 @@
+// corners.hpp: the corner sources of the landmark chain (part of slam/landmarks/landmarks.hpp):
+// OpenCV's Harris reference, SIFT, ORB, BRISK and the co-processor (spec, cycle, rtl) for any
+// Formats, and the library's InputError.
+#pragma once
+
+#include "io/util/errors.hpp"
+#include "model/harris/harris_pkg.hpp"
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+
+namespace hc::landmarks {
+
+/// Bad user input (files, sizes, parameter ranges, impossible combinations).
+struct InputError : hc::InputError {
+    using hc::InputError::InputError;
+};
+
+// ---- corner sources -------------------------------------------------------------------
+
+enum class Detector {
+    opencv,    ///< OpenCV Harris reference: hc::spec::opencv_corners (docs/metrics.md)
+    sift,      ///< cv::SIFT detector, all points
+    sift512,   ///< cv::SIFT detector, the 512 strongest points by response (thesis 6.4.1)
+    orb,       ///< cv::ORB detector (nfeatures = CornerOptions::orb_features)
+    brisk,     ///< cv::BRISK detector
+    spec,      ///< co-processor, frame-level spec model (hc::spec::SpecModel)
+    cycle,     ///< co-processor, cycle model hc::HarrisTop through the host driver
+    rtl,       ///< co-processor, Verilator netlist of rtl/ (GHDL synthesis), after its gate
+};
+Detector parse_detector(const std::string& s);   ///< "opencv", "sift", "sift512", ...; InputError
+std::string detector_name(Detector d);
+bool is_hardware(Detector d);                    ///< spec, cycle, rtl
+std::vector<Detector> all_detectors();
+
+struct CornerOptions {
+    Formats formats{};          ///< bit widths of spec/cycle/rtl (thesis defaults)
+    float keypoint_size = 7.f;  ///< cv::KeyPoint::size given to Harris and hardware corners
+                                ///< (the 7x7 window a co-processor corner is decided on)
+    int orb_features = 2000;    ///< cv::ORB nfeatures
+    bool progress = false;      ///< progress lines on stderr for cycle/rtl
+};
+
+/// The corners of one image, with where they come from. Each point's `pt` is the pixel
+/// (x = column, y = row; integer for Harris and hardware sources), `class_id` the frame.
+struct FrameKeypoints {
+    Detector source = Detector::opencv;
+    int frame = 0;                       ///< index of the image in the caller's stream
+    std::string name;                    ///< e.g. "Aloe/L" or "01/L000003"
+    std::vector<cv::KeyPoint> points;
+};
+
+struct StereoImages {
+    cv::Mat left, right;   ///< 8-bit grey, same size
+    std::string name;
+};
+
+struct PairKeypoints {
+    FrameKeypoints left, right;
+};
+
+/// Corners of each stereo pair. All pairs must have one size for the hardware sources, whose
+/// threshold comes from the previous frame's maximum: they stream the first pair once more
+/// in front as a seed (not returned), and cycle/rtl append the last pair once more as a
+/// flush (its windows come back only while later pixels are written), as docs/metrics.md's
+/// protocol does. Frame numbers are 2k (left) and 2k+1 (right) of pair k.
+std::vector<PairKeypoints> detect_pairs(Detector d, const std::vector<StereoImages>& pairs,
+                                        const CornerOptions& o = {});
+
+}  // namespace hc::landmarks
