@@ -65,7 +65,7 @@ void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
     if (j.source == "rtl") jobs::prepare_rtl(m);
     json merged;
     if (o.sharded) {
-        const fs::path dir = o.runner.run_dir.empty() ? fs::path(o.out) / "run" : fs::path(o.runner.run_dir);
+        const fs::path dir = run_dir(o.runner, o.out);
         std::fprintf(stderr, "eval: %zu shard(s) in %s\n", m.shards.size(), dir.c_str());
         auto got = run_sharded(dir, m, o.runner, /*fork=*/true);
         if (!got) return;
@@ -135,8 +135,7 @@ void add_eval_command(CLI::App& app) {
     cmd->add_flag("!--no-ablation", o->ablation, "skip the ablation table");
     add_runner_flags(cmd, o->runner);
     cmd->callback([o, cmd] {
-        for (const char* f : {"--runner", "--shards", "--run-dir", "--resume", "--jobs"})
-            if (cmd->count(f)) o->sharded = true;
+        o->sharded = sharded(cmd);
         o->threads_given = cmd->count("--threads") > 0;
         run_eval(*o);
     });

@@ -36,7 +36,7 @@ struct LandmarksOptions {
     double ratio = 0, sigma = 0.5;
     bool drop_ties = false, compare = false, study = false, corrected = false, landmark_files = true, no_truth = false;
     bool reobservation = false, descriptor_given = false;
-    RunnerFlags runner;   ///< the comparison in shards (--runner, --shards)
+    RunnerFlags runner;   ///< the comparison in shards (runner_flags.hpp: sharded())
     bool sharded = false;
 };
 
@@ -130,8 +130,8 @@ landmarks::ComparisonOptions comparison_options(const LandmarksOptions& o) {
 /// the shards are not all done.
 std::optional<std::vector<landmarks::ComparisonRow>> sharded_rows(const LandmarksOptions& o, const landmarks::Dataset& ds,
                                                                   const fs::path& root, const landmarks::ComparisonOptions& co) {
-    if (o.study) throw InputError("--study runs in one process: leave out --runner and --shards");
-    if (!o.calib.empty()) throw InputError("--calib (a rig's pairs) runs in one process: leave out --runner and --shards");
+    if (o.study) throw InputError("--study runs in one process: leave out the sharding flags (--runner, --shards, --run-dir, --resume)");
+    if (!o.calib.empty()) throw InputError("--calib (a rig's pairs) runs in one process: leave out the sharding flags (--runner, --shards, --run-dir, --resume)");
     jobs::LandmarksShards p;
     p.dataset = o.dataset;
     p.root = root;
@@ -146,7 +146,7 @@ std::optional<std::vector<landmarks::ComparisonRow>> sharded_rows(const Landmark
     p.pairs = ds.pairs.size();
     p.shards = o.runner.shards;
     const cluster::Manifest m = jobs::landmarks_manifest(p);
-    const fs::path dir = o.runner.run_dir.empty() ? fs::path(o.out) / "run" : fs::path(o.runner.run_dir);
+    const fs::path dir = run_dir(o.runner, o.out);
     const auto merged = run_sharded(dir, m, o.runner);
     if (!merged) return std::nullopt;
     return jobs::landmarks_rows(*merged);
@@ -158,7 +158,7 @@ void run_landmarks(const LandmarksOptions& o) {
     try {
         if (o.reobservation) {
             if (o.compare || o.study || o.sharded || !o.calib.empty())
-                throw InputError("--reobservation runs alone: leave out --compare, --study, --calib, --runner and --shards");
+                throw InputError("--reobservation runs alone: leave out --compare, --study, --calib and the sharding flags (--runner, --shards, --run-dir, --resume)");
             run_reobservation(o);
             return;
         }
@@ -244,7 +244,7 @@ void add_landmarks_command(CLI::App& app) {
     cmd->add_option("--out", o->out, "output directory")->capture_default_str();
     add_runner_flags(cmd, o->runner);
     cmd->callback([o, cmd] {
-        o->sharded = cmd->count("--runner") + cmd->count("--shards") > 0;
+        o->sharded = sharded(cmd);
         o->descriptor_given = cmd->count("--descriptor") > 0;
         run_landmarks(*o);
     });

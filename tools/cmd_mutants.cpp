@@ -33,8 +33,8 @@ void add_generated_flags(CLI::App* cmd, GeneratedFlags& f) {
         ->check(CLI::Range(1, 86400))->capture_default_str()->group(g);
     cmd->add_option("--per-shard", f.per_shard, "mutants per shard (when --shards is not given)")
         ->check(CLI::Range(1, 100000))->capture_default_str()->group(g);
-    cmd->add_flag("--render", f.render, "with --generate and --run-dir: render the report from the shards of that run "
-                                        "that have finished, without running any (marked partial when shards are missing)")->group(g);
+    cmd->add_flag("--render", f.render, "with --generate: render the report from the finished shards of the run in --run-dir "
+                                        "(default <report folder>/run) without running any (marked partial when shards are missing)")->group(g);
     cmd->add_option("--reuse-verdicts", f.reuse,
                     "with --generate: a verdict CSV of an earlier run on the same rtl/ (checked by its rtl_hash):\n"
                     "its killed, stillborn and unconditionally proven verdicts stand; its surviving mutants and those\n"
@@ -182,12 +182,11 @@ void run_generated(const GeneratedFlags& f) {
         return;
     }
     if (f.render) {
-        if (f.runner.run_dir.empty()) throw InputError("--render needs --run-dir (the run to render)");
         mutation::Stimulus quick;
         std::vector<mutation::Stimulus> longer;
         std::size_t shards = 0;
         double wall = 0;
-        const auto rs = finished_results(f.runner.run_dir, quick, longer, shards, wall);
+        const auto rs = finished_results(run_dir(f.runner, folder_of(f.report)), quick, longer, shards, wall);
         write_report(f, rs, quick, longer, static_cast<int>(all.size()), shards, wall);
         const mutation::Tally t = mutation::tally(rs);
         std::printf("harris-cosim mutate --generate --render: %d of %zu mutants have a verdict: %d stillborn, %d killed, "
@@ -215,13 +214,7 @@ void run_generated(const GeneratedFlags& f) {
         mutation::check_unmutated(control);
     }
 
-    std::optional<util::ScratchDir> scratch;
-    fs::path dir = f.runner.run_dir;
-    if (dir.empty()) {
-        if (f.runner.runner == "slurm") throw InputError("--runner slurm needs --run-dir (a directory every node sees)");
-        scratch.emplace("harris-mutants");
-        dir = scratch->path() / "run";
-    }
+    const fs::path dir = run_dir(f.runner, folder_of(f.report));
     std::fprintf(stderr, "[mutate] %zu generated mutants in %zu shards, run directory %s\n", sel.size(),
                  m.shards.size(), dir.c_str());
     const auto t0 = std::chrono::steady_clock::now();

@@ -21,7 +21,7 @@ void add_mutate_command(CLI::App& app) {
         "Mutation campaign: apply each single-point RTL mutation to a scratch copy, co-simulate it (GHDL mcode)\n"
         "against the cycle model, and check the co-simulation catches it and names the mutated stage first.\n"
         "Exit status 0 when every mutant is caught and localised (equivalent ones pass), 1 otherwise.\n"
-        "With --runner or --shards the mutants run in shards (run directory --run-dir, default ./mutate-run).\n"
+        "With --runner, --shards, --run-dir or --resume the mutants run in shards (run directory --run-dir, default <folder of --report>/run).\n"
         "With --generate: every generated mutant of rtl/ is killed by co-simulation or proven equivalent\n"
         "with yosys; exit status 1 when one survives.");
     cmd->add_option("--mutations", o->list, "mutation list (JSON)")->capture_default_str();
@@ -42,9 +42,9 @@ void add_mutate_command(CLI::App& app) {
         const mutation::SmokeList c = mutation::load_smoke_list(o->list);
         mutation::SmokeResult r;
         const RunnerFlags& rf = o->gen.runner;
-        if (cmd->count("--runner") + cmd->count("--shards") > 0) {
+        if (sharded(cmd)) {
             const cluster::Manifest m = jobs::mutate_manifest({o->list, only, rf.shards});
-            const std::filesystem::path dir = rf.run_dir.empty() ? std::filesystem::path("mutate-run") : std::filesystem::path(rf.run_dir);
+            const std::filesystem::path dir = run_dir(rf, folder_of(o->report));
             const auto merged = run_sharded(dir, m, rf);
             if (!merged) return;
             r = jobs::mutate_result(m, *merged);

@@ -54,7 +54,7 @@ struct SlamOptions {
     // --landmarks-from stereo: the landmark pipeline's options
     std::string corners = "opencv", descriptor_name = "grid", config;
     int g = 16, h = 3;
-    // --simulate: Monte-Carlo seeds in shards (--runner, --shards)
+    // --simulate: Monte-Carlo seeds in shards (runner_flags.hpp: sharded())
     RunnerFlags runner;
     bool sharded = false;
 };
@@ -101,7 +101,7 @@ void run_simulate(const SlamOptions& o) {
         p.first_seed = o.seed;
         p.shards = o.runner.shards;
         const cluster::Manifest m = jobs::slam_manifest(p);
-        const std::filesystem::path dir = o.runner.run_dir.empty() ? std::filesystem::path(o.out) / "run" : std::filesystem::path(o.runner.run_dir);
+        const std::filesystem::path dir = run_dir(o.runner, o.out);
         const auto merged = run_sharded(dir, m, o.runner);
         if (!merged) return;
         mc = jobs::slam_result(m, *merged);
@@ -312,9 +312,9 @@ void add_slam_command(CLI::App& app) {
                     "observations used per frame, the most precise first (0: all)")->capture_default_str();
     add_runner_flags(cmd, o->runner);
     cmd->callback([o, cmd] {
-        o->sharded = cmd->count("--runner") + cmd->count("--shards") > 0;
+        o->sharded = sharded(cmd);
         o->seed_given = cmd->count("--seed") > 0;
-        if (o->sharded && !o->simulate) throw InputError("--runner and --shards shard the Monte-Carlo seeds of --simulate only");
+        if (o->sharded && !o->simulate) throw InputError("the sharding flags (--runner, --shards, --run-dir, --resume) shard the Monte-Carlo seeds of --simulate only");
         run_slam(*o);
     });
 }

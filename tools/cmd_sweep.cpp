@@ -73,7 +73,7 @@ void run(const SweepCli& c) {
         p.jobs = 1;
         p.shards = c.runner.shards;
         const cluster::Manifest m = jobs::sweep_manifest(p);
-        const fs::path dir = c.runner.run_dir.empty() ? o.out / "run" : fs::path(c.runner.run_dir);
+        const fs::path dir = run_dir(c.runner, o.out);
         const auto merged = run_sharded(dir, m, c.runner);
         if (!merged) return;
         r = jobs::sweep_result(m, *merged);
@@ -115,7 +115,7 @@ void add_sweep_command(CLI::App& app) {
         "synth_xilinx cost (cached); Pareto front, each Pareto point verified on the RTL (GHDL co-simulation +\n"
         "Verilator). Exit status: 0 done, 1 an RTL check failed, 2 bad input, 3 tool failure.\n"
         "--jobs: shards at once; in a single-process run, the synthesis / GHDL processes at once.\n"
-        "With --runner or --shards the configurations run in shards (run directory --run-dir, default <out>/run), then the RTL\n"
+        "With --runner, --shards, --run-dir or --resume the configurations run in shards (run directory --run-dir, default <out>/run), then the RTL\n"
         "checks of the merged Pareto front, one shard per check (run directory <run-dir>/checks); --shards counts the\n"
         "configurations' shards only.");
     s->add_option("--config", c->config, "JSON sweep spec (sweep/configs/*.json; see sweep/sweep_config.hpp)")->required();
@@ -134,7 +134,7 @@ void add_sweep_command(CLI::App& app) {
     c->runner.jobs = 2;
     add_runner_flags(s, c->runner);
     s->callback([c, s] {
-        c->sharded = s->count("--runner") + s->count("--shards") > 0;
+        c->sharded = sharded(s, /*single_jobs=*/true);
         run(*c);
     });
 }

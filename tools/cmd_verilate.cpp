@@ -65,8 +65,7 @@ void run_verilate_job(const VerilateArgs& a) {
     jobs::prepare_rtl(m);
     json merged;
     if (a.sharded) {
-        if (a.runner.run_dir.empty()) throw InputError("a sharded verilate needs --run-dir");
-        auto got = run_sharded(a.runner.run_dir, m, a.runner);
+        auto got = run_sharded(run_dir(a.runner, folder_of(a.json_path)), m, a.runner);
         if (!got) return;
         merged = std::move(*got);
     } else {
@@ -223,8 +222,7 @@ void add_verilate_command(CLI::App& app) {
                   "sequence; --pairs applies to each; --json gets per-sequence rows and totals)");
     add_runner_flags(c, a->runner);
     c->callback([a, c] {
-        for (const char* f : {"--runner", "--shards", "--run-dir", "--resume", "--jobs"})
-            if (c->count(f)) a->sharded = true;
+        a->sharded = sharded(c);
         run_verilate(*a);
     });
 }

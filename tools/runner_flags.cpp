@@ -28,6 +28,22 @@ void add_runner_flags(CLI::App* cmd, RunnerFlags& f) {
     cmd->add_flag("--no-wait", f.no_wait, "slurm: submit the array and the merge job and return")->group(g);
 }
 
+bool sharded(const CLI::App* cmd, bool single_jobs) {
+    bool any = false;
+    for (const char* f : {"--runner", "--shards", "--run-dir", "--resume"}) any = any || cmd->count(f) > 0;
+    if (!any && !single_jobs && cmd->count("--jobs") > 0)
+        throw InputError("--jobs counts the shards run at once: give --runner, --shards, --run-dir or --resume to run " +
+                         cmd->get_name() + " in shards");
+    return any;
+}
+
+fs::path run_dir(const RunnerFlags& f, const fs::path& out) {
+    if (!f.run_dir.empty()) return f.run_dir;
+    return (out.empty() ? fs::path(".") : out) / "run";
+}
+
+fs::path folder_of(const std::string& file) { return file.empty() ? fs::path() : fs::path(file).parent_path(); }
+
 namespace {
 fs::path& program() {
     static fs::path p;

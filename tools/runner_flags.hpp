@@ -28,6 +28,22 @@ struct RunnerFlags {
 /// Adds the flags to `cmd` (in an option group "Sharding").
 void add_runner_flags(CLI::App* cmd, RunnerFlags& f);
 
+/// The one sharding rule of every command: it runs in shards when --runner, --shards,
+/// --run-dir or --resume is given on `cmd`, in one process otherwise. --jobs is how many
+/// processes run at once: a sharded run's shards, or those a command's single run starts
+/// itself (`single_jobs`: the sweep's syntheses and GHDL runs, the generated campaign's
+/// pool). A command whose single run starts none refuses --jobs without a sharding flag
+/// (InputError), so that no flag is silently ignored.
+bool sharded(const CLI::App* cmd, bool single_jobs = false);
+
+/// The one default run directory: --run-dir, else `<out>/run`, where `out` is the directory
+/// the command writes to (its --out, the folder of its --report or --json file; the working
+/// directory when it only prints).
+std::filesystem::path run_dir(const RunnerFlags& f, const std::filesystem::path& out);
+/// The folder of an output file as run_dir takes it ("" for a file in the working directory
+/// or no file: the working directory).
+std::filesystem::path folder_of(const std::string& file);
+
 /// Sets the path of this executable (main's argv[0], resolved) for the workers it starts.
 void set_program_path(const char* argv0);
 /// The path set above.
