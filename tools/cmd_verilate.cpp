@@ -38,12 +38,6 @@ struct VerilateArgs {
     bool sharded = false;      ///< a sharding flag was given
 };
 
-json mismatch_json(const vl::Mismatch& m) {
-    return {{"kind", m.kind},         {"write", m.write},     {"frame", m.frame},   {"x", m.x},
-            {"y", m.y},               {"quadrant", m.quadrant}, {"signal", m.signal}, {"stage", m.stage},
-            {"expected", m.expected}, {"actual", m.actual}};
-}
-
 /// Several sequences, or a run through the runner: one shard per sequence, the summary
 /// (per-sequence rows and totals) from the merged data only.
 void run_verilate_job(const VerilateArgs& a) {
@@ -88,55 +82,18 @@ void run_verilate_job(const VerilateArgs& a) {
         throw MismatchError(std::to_string(t.at("mismatches").get<long>()) + " mismatch(es) between the netlist and the model");
 }
 
-/// The gate's part of the summary (its verdict printed on stderr).
-json gate_summary(const vl::VerilateResult& res) {
-    if (res.gate) {
-        const vl::GateResult& gate = *res.gate;
-        json j = {{"verdict", vl::verdict_name(gate.verdict)},
-                  {"cached", res.gate_cached},
-                  {"writes", gate.writes},
-                  {"reads", gate.reads},
-                  {"cases", gate.per_case}};
-        if (!gate.first.empty()) j["first"] = gate.first;
-        std::fprintf(stderr, "verilate: gate %s%s\n", vl::verdict_name(gate.verdict),
-                     res.gate_cached ? " (recorded earlier for these sources)" : "");
-        if (gate.verdict != vl::GateVerdict::pass) std::fprintf(stderr, "verilate: %s\n", gate.first.c_str());
-        return j;
-    }
-    return {{"verdict", "skipped"}};
+/// The gate's verdict on stderr.
+void print_gate(const vl::VerilateResult& res) {
+    if (!res.gate) return;
+    const vl::GateResult& gate = *res.gate;
+    std::fprintf(stderr, "verilate: gate %s%s\n", vl::verdict_name(gate.verdict),
+                 res.gate_cached ? " (recorded earlier for these sources)" : "");
+    if (gate.verdict != vl::GateVerdict::pass) std::fprintf(stderr, "verilate: %s\n", gate.first.c_str());
 }
 
-/// The lock-step run's part of the summary, which mirrors `harris-cosim rtl --json`
-/// (cosim/run_config.hpp Summary) where fields apply; its counts on stderr, its reads in
-/// --reads.
-void add_run_summary(json& out, const vl::RunResult& r, const vl::VerilateResult& res, const vl::VerilateRun& run,
-                     const VerilateArgs& a, const std::vector<std::string>& read_rows) {
-    const int nframes = static_cast<int>(run.frames.size());
-    const Geometry g{run.frames[0].width, run.frames[0].height};
+/// The lock-step run's counts on stderr, its reads in --reads.
+void print_run(const vl::RunResult& r, const VerilateArgs& a, const std::vector<std::string>& read_rows, int nframes) {
     if (!r.reported.empty()) std::fprintf(stderr, "verilate: first %s\n", r.reported.front().describe().c_str());
-    json jf = json::array();
-    for (const auto& s : r.frames)
-        jf.push_back({{"index", s.index}, {"name", s.source}, {"writes", s.writes}, {"reads", s.reads},
-                      {"corners_read", s.corners}, {"mismatches", s.mismatches}, {"wall_seconds", s.seconds}});
-    json jm = json::array();
-    for (const auto& m : r.reported) jm.push_back(mismatch_json(m));
-    out["geometry"] = {{"width", g.width}, {"height", g.height}};
-    out["frames"] = jf;
-    out.update(vl::run_counts_json(r));
-    out["writes_in_stream"] = res.writes_in_stream;
-    out["obs_compared"] = a.obs;
-    out["mismatches"] = {{"writes", r.mismatches}, {"reported", jm}};
-    out["wall_seconds"] = r.seconds;
-    out["writes_per_second"] = r.seconds > 0 ? r.writes / r.seconds : 0.0;
-    out["verilator_seconds"] = r.verilator_seconds;
-    out["verilator_writes_per_second"] = r.verilator_seconds > 0 ? r.writes / r.verilator_seconds : 0.0;
-    out["verilator_seconds_per_frame"] = r.verilator_seconds / nframes;
-    out["model_seconds"] = r.model_seconds;
-    if (!r.reported.empty()) {
-        json fm = mismatch_json(r.reported.front());
-        fm["report"] = r.reported.front().describe();
-        out["first_mismatch"] = fm;
-    }
     std::fprintf(stderr,
                  "verilate: %d frames, %ld writes, %ld reads, %ld corners, %ld mismatches; Verilator %.3f s "
                  "(%.0f writes/s), model %.3f s, total %.3f s\n",
@@ -180,15 +137,10 @@ void run_verilate(const VerilateArgs& a) {
 
     const vl::VerilateResult res = vl::run_verilate(run, std::cerr);
 
-    json out = {{"command", "verilate"}, {"simulator", "verilator"},
-                {"formats", fields_to_json(run.formats, format_fields())}};
-    out["gate"] = gate_summary(res);
-    if (!res.netlist_key.empty())
-        out["netlist"] = {{"key", res.netlist_key}, {"library", res.netlist.string()}, {"observe", a.obs}};
-    if (res.run) add_run_summary(out, *res.run, res, run, a, read_rows);
-    out["wall_seconds_including_build"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    print_gate(res);
+    if (res.run) print_run(*res.run, a, read_rows, nframes);
+    const json out = vl::summary_json(run, res, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     const std::string status = res.status();
-    out["status"] = status;
     if (!a.json_path.empty()) util::write_file_atomic(a.json_path, out.dump(2) + "\n");
     if (status == "translation_fault")
         throw TranslationFault("GHDL's netlist and GHDL's simulation of the VHDL disagree: " + res.gate->first);

@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "model/driver/host_driver.hpp"
+#include "model/harris/formats_json.hpp"
 #include "io/util/errors.hpp"
 
 namespace fs = std::filesystem;
@@ -57,6 +58,69 @@ nlohmann::json run_counts_json(const RunResult& r) {
             {"reads", r.reads},
             {"corners", r.corners},
             {"read_mismatches", r.read_mismatches}};
+}
+
+using nlohmann::json;
+
+json mismatch_json(const Mismatch& m) {
+    return {{"kind", m.kind},         {"write", m.write},     {"frame", m.frame},   {"x", m.x},
+            {"y", m.y},               {"quadrant", m.quadrant}, {"signal", m.signal}, {"stage", m.stage},
+            {"expected", m.expected}, {"actual", m.actual}};
+}
+
+namespace {
+
+json gate_json(const VerilateResult& res) {
+    if (!res.gate) return {{"verdict", "skipped"}};
+    const GateResult& gate = *res.gate;
+    json j = {{"verdict", verdict_name(gate.verdict)},
+              {"cached", res.gate_cached},
+              {"writes", gate.writes},
+              {"reads", gate.reads},
+              {"cases", gate.per_case}};
+    if (!gate.first.empty()) j["first"] = gate.first;
+    return j;
+}
+
+void add_run_json(json& out, const RunResult& r, const VerilateResult& res, const VerilateRun& run) {
+    const int nframes = static_cast<int>(run.frames.size());
+    json jf = json::array();
+    for (const auto& s : r.frames)
+        jf.push_back({{"index", s.index}, {"name", s.source}, {"writes", s.writes}, {"reads", s.reads},
+                      {"corners_read", s.corners}, {"mismatches", s.mismatches}, {"wall_seconds", s.seconds}});
+    json jm = json::array();
+    for (const auto& m : r.reported) jm.push_back(mismatch_json(m));
+    out["geometry"] = {{"width", run.frames[0].width}, {"height", run.frames[0].height}};
+    out["frames"] = jf;
+    out.update(run_counts_json(r));
+    out["writes_in_stream"] = res.writes_in_stream;
+    out["obs_compared"] = run.observe;
+    out["mismatches"] = {{"writes", r.mismatches}, {"reported", jm}};
+    out["wall_seconds"] = r.seconds;
+    out["writes_per_second"] = r.seconds > 0 ? r.writes / r.seconds : 0.0;
+    out["verilator_seconds"] = r.verilator_seconds;
+    out["verilator_writes_per_second"] = r.verilator_seconds > 0 ? r.writes / r.verilator_seconds : 0.0;
+    out["verilator_seconds_per_frame"] = r.verilator_seconds / nframes;
+    out["model_seconds"] = r.model_seconds;
+    if (!r.reported.empty()) {
+        json fm = mismatch_json(r.reported.front());
+        fm["report"] = r.reported.front().describe();
+        out["first_mismatch"] = fm;
+    }
+}
+
+}  // namespace
+
+json summary_json(const VerilateRun& run, const VerilateResult& res, double wall_seconds_including_build) {
+    json out = {{"command", "verilate"}, {"simulator", "verilator"},
+                {"formats", fields_to_json(run.formats, format_fields())}};
+    out["gate"] = gate_json(res);
+    if (!res.netlist_key.empty())
+        out["netlist"] = {{"key", res.netlist_key}, {"library", res.netlist.string()}, {"observe", run.observe}};
+    if (res.run) add_run_json(out, *res.run, res, run);
+    out["wall_seconds_including_build"] = wall_seconds_including_build;
+    out["status"] = res.status();
+    return out;
 }
 
 }  // namespace hc::vl

@@ -58,4 +58,16 @@ VerilateResult run_verilate(const VerilateRun& r, std::ostream& log);
 /// corners, read_mismatches.
 nlohmann::json run_counts_json(const RunResult& r);
 
+/// A mismatch as the summaries give it: kind, write, frame, x, y, quadrant, signal, stage,
+/// expected, actual.
+nlohmann::json mismatch_json(const Mismatch& m);
+
+/// The summary of one flow (`harris-cosim verilate --json`): command, simulator, formats; the
+/// gate (verdict, whether recorded earlier, writes, reads, cases, the first fault) or
+/// "skipped"; the netlist (key, library, observe); the lock-step run (geometry, per-frame
+/// rows, counts, mismatches with the first one described, timings; the fields of
+/// `harris-cosim rtl --json` where they apply); status. `wall_seconds_including_build` is
+/// the caller's clock over the whole flow.
+nlohmann::json summary_json(const VerilateRun& run, const VerilateResult& res, double wall_seconds_including_build);
+
 }  // namespace hc::vl
