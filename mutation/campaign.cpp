@@ -832,4 +832,52 @@ std::vector<Result> results_from_csv(const std::string& text, const std::string&
     return rs;
 }
 
+namespace {
+
+/// The proven mutants' scripts, runnable from a folder holding the gold.v and gate.v the
+/// commands in their first lines write.
+void write_proofs(const std::vector<Result>& rs, const fs::path& dir) {
+    for (const auto& r : rs) {
+        // a reused verdict has no script here: its file from the run that proved it stays
+        if ((r.fate != Fate::equivalent && r.fate != Fate::equivalent_assuming) || r.proof.script.empty()) continue;
+        std::string s = "# " + r.name + ": proven equivalent by yosys (" + r.proof.method + ")\n";
+        for (const auto& a : r.proof.assumptions) s += "# assuming (proven first): " + a + "\n";
+        s += "# gold.v and gate.v (mutant-rtl/: rtl/ with the mutant applied):\n";
+        std::string line;
+        for (char c : r.proof.synth) {
+            if (c == '\n') {
+                s += "#   " + line + "\n";
+                line.clear();
+            } else {
+                line += c;
+            }
+        }
+        util::write_file_atomic(dir / proof_file_name(r), s + r.proof.script);
+    }
+    // the guarantees the proofs under assumptions assume, each a script of its own
+    if (std::any_of(rs.begin(), rs.end(), [](const Result& r) { return r.fate == Fate::equivalent_assuming; }))
+        for (const auto& [name, text] : guarantee_files()) util::write_file_atomic(dir / name, text);
+}
+
+}  // namespace
+
+void write_report_files(const std::filesystem::path& md, const std::vector<Result>& rs, ReportInfo info) {
+    info.proofs_dir = (md.parent_path().filename() / "mutation-proofs").string();
+    write_proofs(rs, md.parent_path() / "mutation-proofs");
+    util::write_file_atomic(std::filesystem::path(md).replace_extension(".csv"), csv(rs, rtl_hash()));
+    util::write_file_atomic(md, markdown(rs, info));
+}
+
+std::string reuse_note(const Reuse& u, const std::string& csv_file, int jobs) {
+    const auto& rs = u.results;
+    return fmt::format(
+        "**Verdicts reused.** {} of these {} verdicts (every killed, stillborn and unconditionally proven one) are read "
+        "from `{}`, the verdict list of an earlier complete run of this campaign, reused because its rtl_hash equals "
+        "that of rtl/ as it is (a hash over every rtl/ file's name and text): the same mutants of the same RTL, "
+        "co-simulated against the same cycle model. The other {} (surviving or proven under assumptions there: they "
+        "passed every stimulus and their unconditional proofs failed on this RTL) were proven again under proven "
+        "assumptions by this command, {} at a time, in {:.0f} s of wall time.",
+        u.reused, rs.size(), csv_file, rs.size() - u.reused, jobs, u.wall_seconds);
+}
+
 }  // namespace hc::mutation

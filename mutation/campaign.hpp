@@ -246,4 +246,14 @@ std::vector<Result> results_from_csv(const std::string& text, const std::string&
 /// The file name of a proven mutant's script in ReportInfo::proofs_dir.
 std::string proof_file_name(const Result& r);
 
+/// Writes a campaign's files: the Markdown report at `md`, its verdict CSV beside it (`md`
+/// with the extension .csv, csv() over rtl_hash()), and in the folder mutation-proofs/
+/// beside it the script of every mutant proven here (a reused verdict keeps the file of the
+/// run that proved it) and, when a proof assumed them, the guarantees' scripts. The report
+/// names that folder relative to its parent (`info.proofs_dir` is set so).
+void write_report_files(const std::filesystem::path& md, const std::vector<Result>& rs, ReportInfo info);
+/// The report's paragraph on the verdicts reuse_verdicts reused from `csv_file` and those it
+/// proved again, `jobs` at a time.
+std::string reuse_note(const Reuse& u, const std::string& csv_file, int jobs);
+
 }  // namespace hc::mutation

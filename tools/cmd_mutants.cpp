@@ -67,31 +67,6 @@ std::string command_line(const GeneratedFlags& f) {
     return c;
 }
 
-/// The proven mutants' scripts, runnable from a folder holding the gold.v and gate.v the
-/// commands in their first lines write.
-void write_proofs(const std::vector<mutation::Result>& rs, const fs::path& dir) {
-    for (const auto& r : rs) {
-        // a reused verdict has no script here: its file from the run that proved it stays
-        if ((r.fate != mutation::Fate::equivalent && r.fate != mutation::Fate::equivalent_assuming) || r.proof.script.empty()) continue;
-        std::string s = "# " + r.name + ": proven equivalent by yosys (" + r.proof.method + ")\n";
-        for (const auto& a : r.proof.assumptions) s += "# assuming (proven first): " + a + "\n";
-        s += "# gold.v and gate.v (mutant-rtl/: rtl/ with the mutant applied):\n";
-        std::string line;
-        for (char c : r.proof.synth) {
-            if (c == '\n') {
-                s += "#   " + line + "\n";
-                line.clear();
-            } else {
-                line += c;
-            }
-        }
-        util::write_file_atomic(dir / mutation::proof_file_name(r), s + r.proof.script);
-    }
-    // the guarantees the proofs under assumptions assume, each a script of its own
-    if (std::any_of(rs.begin(), rs.end(), [](const mutation::Result& r) { return r.fate == mutation::Fate::equivalent_assuming; }))
-        for (const auto& [name, text] : mutation::guarantee_files()) util::write_file_atomic(dir / name, text);
-}
-
 /// Writes (or prints) the report, its CSV and the proven mutants' scripts.
 void write_report(const GeneratedFlags& f, const std::vector<mutation::Result>& rs, const mutation::Stimulus& quick,
                   const std::vector<mutation::Stimulus>& longer, int generated, std::size_t shards, double wall,
@@ -108,38 +83,8 @@ void write_report(const GeneratedFlags& f, const std::vector<mutation::Result>& 
     info.reused = reused;
     if (!reused.empty()) info.runner.clear();   // the reuse text says what ran
     info.proofs_dir = "mutation-proofs";
-    if (!f.report.empty()) {
-        const fs::path md = f.report;
-        info.proofs_dir = (md.parent_path().filename() / "mutation-proofs").string();
-        write_proofs(rs, md.parent_path() / "mutation-proofs");
-        util::write_file_atomic(fs::path(md).replace_extension(".csv"), mutation::csv(rs, mutation::rtl_hash()));
-        util::write_file_atomic(md, mutation::markdown(rs, info));
-    } else {
-        std::printf("%s", mutation::markdown(rs, info).c_str());
-    }
-}
-
-/// The results of the finished shards of the run in `dir`, in order, and the stimuli of its manifest.
-/// `wall`: seconds from the manifest's writing to the last finished shard's result.
-std::vector<mutation::Result> finished_results(const fs::path& dir, mutation::Stimulus& quick,
-                                             std::vector<mutation::Stimulus>& longer, std::size_t& shards,
-                                             double& wall) {
-    const cluster::Manifest m = cluster::read_manifest(dir);
-    if (m.job != "mutants") throw InputError("run directory " + dir.string() + " holds a '" + m.job + "' run, not 'mutants'");
-    quick = mutation::stimulus_from_json(m.common.at("quick"));
-    longer.clear();
-    for (const auto& s : m.common.at("longer")) longer.push_back(mutation::stimulus_from_json(s));
-    shards = m.shards.size();
-    std::vector<nlohmann::json> data;
-    const auto start = fs::last_write_time(cluster::manifest_path(dir));
-    auto last = start;
-    for (std::size_t i = 0; i < m.shards.size(); ++i)
-        if (const auto r = cluster::read_result(dir, m, i)) {
-            data.push_back(r->data);
-            last = std::max(last, fs::last_write_time(cluster::result_path(dir, i)));
-        }
-    wall = std::chrono::duration<double>(last - start).count();
-    return jobs::mutants_results(jobs::registry().at("mutants").merge(m.common, data));
+    if (!f.report.empty()) mutation::write_report_files(f.report, rs, info);
+    else std::printf("%s", mutation::markdown(rs, info).c_str());
 }
 
 /// --reuse-verdicts: the verdicts of `f.reuse` for the selection, the surviving ones and those
@@ -149,14 +94,7 @@ void run_reusing(const GeneratedFlags& f, const std::vector<mutation::Mutant>& s
     const mutation::Reuse u = mutation::reuse_verdicts(old, sel, std::max(1, f.runner.jobs), f.proof_timeout,
                                                      [](const std::string& l) { std::fprintf(stderr, "[mutate] %s\n", l.c_str()); });
     const auto& rs = u.results;
-    const std::string how = fmt::format(
-        "**Verdicts reused.** {} of these {} verdicts (every killed, stillborn and unconditionally proven one) are read "
-        "from `{}`, the verdict list of an earlier complete run of this campaign, reused because its rtl_hash equals "
-        "that of rtl/ as it is (a hash over every rtl/ file's name and text): the same mutants of the same RTL, "
-        "co-simulated against the same cycle model. The other {} (surviving or proven under assumptions there: they "
-        "passed every stimulus and their unconditional proofs failed on this RTL) were proven again under proven "
-        "assumptions by this command, {} at a time, in {:.0f} s of wall time.",
-        u.reused, rs.size(), f.reuse, rs.size() - u.reused, std::max(1, f.runner.jobs), u.wall_seconds);
+    const std::string how = mutation::reuse_note(u, f.reuse, std::max(1, f.runner.jobs));
     write_report(f, rs, mutation::quick_stimulus(), mutation::long_stimuli(frames::data_dir(f.data).value_or(fs::path{})),
                  generated, 0, 0, how);
     const mutation::Tally t = mutation::tally(rs);
@@ -182,12 +120,9 @@ void run_generated(const GeneratedFlags& f) {
         return;
     }
     if (f.render) {
-        mutation::Stimulus quick;
-        std::vector<mutation::Stimulus> longer;
-        std::size_t shards = 0;
-        double wall = 0;
-        const auto rs = finished_results(run_dir(f.runner, folder_of(f.report)), quick, longer, shards, wall);
-        write_report(f, rs, quick, longer, static_cast<int>(all.size()), shards, wall);
+        const jobs::MutantsProgress p = jobs::mutants_finished(run_dir(f.runner, folder_of(f.report)));
+        const auto& rs = p.results;
+        write_report(f, rs, p.quick, p.longer, static_cast<int>(all.size()), p.shards, p.wall_seconds);
         const mutation::Tally t = mutation::tally(rs);
         std::printf("harris-cosim mutate --generate --render: %d of %zu mutants have a verdict: %d stillborn, %d killed, "
                     "%d proven equivalent, %d proven equivalent under assumptions, %d surviving; score %.1f %%\n",

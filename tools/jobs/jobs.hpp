@@ -46,6 +46,18 @@ cluster::Manifest mutants_manifest(const MutantsJob& p);
 /// The merged data's results, in order.
 std::vector<mutation::Result> mutants_results(const json& merged);
 void add_mutants_job(cluster::JobRegistry& r);
+/// The finished shards of the mutants run in `dir` (`mutate --generate --render`): their
+/// results in the generator's order, the manifest's stimuli and shard count, and the seconds
+/// from the manifest's writing to the last finished result. InputError when `dir` holds a
+/// run of another kind.
+struct MutantsProgress {
+    std::vector<mutation::Result> results;
+    mutation::Stimulus quick;
+    std::vector<mutation::Stimulus> longer;
+    std::size_t shards = 0;
+    double wall_seconds = 0;
+};
+MutantsProgress mutants_finished(const fs::path& dir);
 
 /// The file a merge writes its folded data to: DIR/merged.json.
 fs::path merged_path(const fs::path& dir);

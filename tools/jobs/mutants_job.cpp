@@ -4,6 +4,9 @@
 
 #include "cosim/cosim.hpp"
 #include "tools/jobs/jobs.hpp"
+
+#include <algorithm>
+#include <chrono>
 #include "io/util/util.hpp"
 
 namespace hc::jobs {
@@ -87,5 +90,26 @@ std::vector<mutation::Result> mutants_results(const json& merged) {
 }
 
 void add_mutants_job(cluster::JobRegistry& r) { r.add({"mutants", run_shard_mutants, merge_mutants}); }
+
+MutantsProgress mutants_finished(const fs::path& dir) {
+    const cluster::Manifest m = cluster::read_manifest(dir);
+    if (m.job != "mutants")
+        throw cluster::ClusterInputError("run directory " + dir.string() + " holds a '" + m.job + "' run, not 'mutants'");
+    MutantsProgress p;
+    p.quick = mutation::stimulus_from_json(m.common.at("quick"));
+    for (const auto& s : m.common.at("longer")) p.longer.push_back(mutation::stimulus_from_json(s));
+    p.shards = m.shards.size();
+    std::vector<json> data;
+    const auto start = fs::last_write_time(cluster::manifest_path(dir));
+    auto last = start;
+    for (std::size_t i = 0; i < m.shards.size(); ++i)
+        if (const auto r = cluster::read_result(dir, m, i)) {
+            data.push_back(r->data);
+            last = std::max(last, fs::last_write_time(cluster::result_path(dir, i)));
+        }
+    p.wall_seconds = std::chrono::duration<double>(last - start).count();
+    p.results = mutants_results(registry().at("mutants").merge(m.common, data));
+    return p;
+}
 
 }  // namespace hc::jobs
