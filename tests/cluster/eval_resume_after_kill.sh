@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # eval_resume_after_kill.sh HARRIS_COSIM EVAL_JOBS_TESTS: a sharded `eval --source cycle`
-# (4 shards within one stand-in sequence, one at a time, no retries) whose shard 1 is
+# (4 shards of 16 stereo pairs within one stand-in sequence, one at a time, no retries), whose shard 1 is
 # killed with SIGKILL while it computes. The run fails (status 3) leaving no result for
 # that shard; `--resume` runs only that shard (the others' results stay untouched) and the
 # report data equal the single-process run's byte for byte: nothing lost, nothing twice.
@@ -8,7 +8,7 @@ set -uo pipefail
 hc=$1; gen=$2
 d=$(mktemp -d); trap 'rm -rf "$d"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
-"$gen" --make-standin "$d/kitti" 04 640x360 24 || fail "cannot write the stand-in sequence"
+"$gen" --make-standin "$d/kitti" 04 640x360 64 || fail "cannot write the stand-in sequence"
 flags=(eval --source cycle --kitti "$d/kitti" --sequences 04 --out "$d/out")
 
 "$hc" "${flags[@]}" --runner local --jobs 1 --retries 0 --shards 4 --run-dir "$d/run" > "$d/first.log" 2>&1 &
@@ -22,8 +22,8 @@ for _ in $(seq 1 1200); do
   sleep 0.1
 done
 [ -n "$pid" ] || { kill "$coord" 2>/dev/null; fail "shard 1 never started"; }
-sleep 0.5
-[ -e "$d/run/shards/00001.json" ] && fail "shard 1 finished within 0.5 s: nothing left to kill"
+sleep 0.2
+[ -e "$d/run/shards/00001.json" ] && fail "shard 1 finished within 0.2 s of its start: nothing left to kill"
 kill -KILL "$pid"
 echo "killed shard 1 (pid $pid) mid-run"
 wait "$coord"; rc=$?
