@@ -130,8 +130,8 @@ landmarks::ComparisonOptions comparison_options(const LandmarksOptions& o) {
 /// the shards are not all done.
 std::optional<std::vector<landmarks::ComparisonRow>> sharded_rows(const LandmarksOptions& o, const landmarks::Dataset& ds,
                                                                   const fs::path& root, const landmarks::ComparisonOptions& co) {
-    if (o.study) throw InputError("--study runs in one process: leave out the sharding flags (--runner, --shards, --run-dir, --resume)");
-    if (!o.calib.empty()) throw InputError("--calib (a rig's pairs) runs in one process: leave out the sharding flags (--runner, --shards, --run-dir, --resume)");
+    if (o.study) throw InputError("--study runs in one process: leave out " + sharding_flags_named());
+    if (!o.calib.empty()) throw InputError("--calib (a rig's pairs) runs in one process: leave out " + sharding_flags_named());
     jobs::LandmarksShards p;
     p.dataset = o.dataset;
     p.root = root;
@@ -158,7 +158,7 @@ void run_landmarks(const LandmarksOptions& o) {
     try {
         if (o.reobservation) {
             if (o.compare || o.study || o.sharded || !o.calib.empty())
-                throw InputError("--reobservation runs alone: leave out --compare, --study, --calib and the sharding flags (--runner, --shards, --run-dir, --resume)");
+                throw InputError("--reobservation runs alone: leave out --compare, --study, --calib and " + sharding_flags_named());
             run_reobservation(o);
             return;
         }

@@ -21,7 +21,7 @@ void add_mutate_command(CLI::App& app) {
         "Mutation campaign: apply each single-point RTL mutation to a scratch copy, co-simulate it (GHDL mcode)\n"
         "against the cycle model, and check the co-simulation catches it and names the mutated stage first.\n"
         "Exit status 0 when every mutant is caught and localised (equivalent ones pass), 1 otherwise.\n"
-        "With --runner, --shards, --run-dir or --resume the mutants run in shards (run directory --run-dir, default <folder of --report>/run).\n"
+        "With " + sharding_flags_named() + " the mutants run in shards (run directory --run-dir, default <folder of --report>/run).\n"
         "With --generate: every generated mutant of rtl/ is killed by co-simulation or proven equivalent\n"
         "with yosys; exit status 1 when one survives.");
     cmd->add_option("--mutations", o->list, "mutation list (JSON)")->capture_default_str();

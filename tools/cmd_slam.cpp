@@ -314,7 +314,7 @@ void add_slam_command(CLI::App& app) {
     cmd->callback([o, cmd] {
         o->sharded = sharded(cmd);
         o->seed_given = cmd->count("--seed") > 0;
-        if (o->sharded && !o->simulate) throw InputError("the sharding flags (--runner, --shards, --run-dir, --resume) shard the Monte-Carlo seeds of --simulate only");
+        if (o->sharded && !o->simulate) throw InputError(sharding_flags_named() + " shard the Monte-Carlo seeds of --simulate only");
         run_slam(*o);
     });
 }

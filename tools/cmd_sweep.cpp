@@ -115,7 +115,7 @@ void add_sweep_command(CLI::App& app) {
         "synth_xilinx cost (cached); Pareto front, each Pareto point verified on the RTL (GHDL co-simulation +\n"
         "Verilator). Exit status: 0 done, 1 an RTL check failed, 2 bad input, 3 tool failure.\n"
         "--jobs: shards at once; in a single-process run, the synthesis / GHDL processes at once.\n"
-        "With --runner, --shards, --run-dir or --resume the configurations run in shards (run directory --run-dir, default <out>/run), then the RTL\n"
+        "With " + sharding_flags_named() + " the configurations run in shards (run directory --run-dir, default <out>/run), then the RTL\n"
         "checks of the merged Pareto front, one shard per check (run directory <run-dir>/checks); --shards counts the\n"
         "configurations' shards only.");
     s->add_option("--config", c->config, "JSON sweep spec (sweep/configs/*.json; see sweep/sweep_config.hpp)")->required();

@@ -28,11 +28,17 @@ void add_runner_flags(CLI::App* cmd, RunnerFlags& f) {
     cmd->add_flag("--no-wait", f.no_wait, "slurm: submit the array and the merge job and return")->group(g);
 }
 
+std::string sharding_flags_named() {
+    std::string s;
+    for (const char* f : kShardingFlags) s += (s.empty() ? "" : ", ") + std::string(f);
+    return "the sharding flags (" + s + ")";
+}
+
 bool sharded(const CLI::App* cmd, bool single_jobs) {
     bool any = false;
-    for (const char* f : {"--runner", "--shards", "--run-dir", "--resume"}) any = any || cmd->count(f) > 0;
+    for (const char* f : kShardingFlags) any = any || cmd->count(f) > 0;
     if (!any && !single_jobs && cmd->count("--jobs") > 0)
-        throw InputError("--jobs counts the shards run at once: give --runner, --shards, --run-dir or --resume to run " +
+        throw InputError("--jobs counts the shards run at once: give one of " + sharding_flags_named() + " to run " +
                          cmd->get_name() + " in shards");
     return any;
 }

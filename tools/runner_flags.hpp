@@ -2,6 +2,7 @@
 // --run-dir, --resume, Slurm pass-through) and their translation into cluster::RunOptions.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -27,6 +28,11 @@ struct RunnerFlags {
 
 /// Adds the flags to `cmd` (in an option group "Sharding").
 void add_runner_flags(CLI::App* cmd, RunnerFlags& f);
+
+/// The flags that make a command run in shards (sharded()).
+inline constexpr std::array<const char*, 4> kShardingFlags{"--runner", "--shards", "--run-dir", "--resume"};
+/// "the sharding flags (--runner, --shards, --run-dir, --resume)", as messages and help name them.
+std::string sharding_flags_named();
 
 /// The one sharding rule of every command: it runs in shards when --runner, --shards,
 /// --run-dir or --resume is given on `cmd`, in one process otherwise. --jobs is how many
