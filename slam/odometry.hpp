@@ -1,24 +1,37 @@
-// odometry.hpp: stereo visual odometry on the top view. The landmarks of two consecutive
-// stereo frames are matched by descriptor (mutual nearest neighbours under a Hamming
-// threshold that is a fraction of the descriptor's length); RANSAC over pairs of matches
-// with the closed-form 2-D rigid alignment finds the inliers; weighted Gauss-Newton on the
-// inliers gives the motion (dx, dy, dθ) and its covariance (the inverse of the Fisher
-// information of the top-view residuals, each weighted by both points' covariances).
+// odometry.hpp: stereo visual odometry. The landmarks of two consecutive stereo frames are
+// matched by descriptor (mutual nearest neighbours under a Hamming threshold that is a
+// fraction of the descriptor's length); RANSAC finds the inliers and weighted Gauss-Newton on
+// them gives the motion (dx, dy, dθ) and its covariance (the inverse of the Fisher information
+// of the residuals, each weighted by both points' covariances), by one of two residuals:
+//  - pixels (OdometryResidual::pixels): 6-DoF. A previous point moved into the current camera
+//    and projected through the rig, against where the current frame saw it, (u_l, v, u_r) in
+//    pixels; its covariance is both points' covariances carried into those pixels. RANSAC
+//    over triples of matches (the closed-form 3-D rigid alignment of the triple, Umeyama);
+//    the motion is the top view of the 6-DoF estimate, its covariance carried there.
+//  - top view (OdometryResidual::top_view): 3-DoF. The top-view points of the two frames
+//    aligned in the plane; RANSAC over pairs of matches (the closed-form 2-D alignment).
 // Deterministic: RANSAC draws from a generator of fixed seed.
 #pragma once
 
 #include "slam/slam.hpp"
 
+#include <optional>
 #include <utility>
 #include <vector>
 
 namespace hc::slam {
 
+/// What visual odometry's residuals measure (header comment).
+enum class OdometryResidual { pixels, top_view };
+
 struct VisualOdometryConfig {
+    OdometryResidual residual = OdometryResidual::pixels;
+    /// The rig the frames were triangulated through; required by OdometryResidual::pixels.
+    std::optional<stereo::RectifiedRig> rig;
     double max_hamming_fraction = 0.25;   ///< temporal matches: Hamming ≤ this fraction of the bits
     double min_range = 1.0, max_range = 60.0;   ///< m: top-view range of the points used
     int ransac_iterations = 300;
-    double inlier_probability = 0.99;     ///< inlier gate: χ²(2) quantile of the Mahalanobis residual
+    double inlier_probability = 0.99;     ///< inlier gate: χ² quantile (2 dof top view, 3 pixels) of the Mahalanobis residual
     int min_inliers = 8;                  ///< fewer: the estimate is marked failed
     double max_step = 5.0;                ///< m: hypotheses moving farther in one frame are rejected
     /// The motion used when the estimate fails: the previous motion with this covariance

@@ -70,7 +70,9 @@ const SequenceRun& stereo_run_01(int* failures) {
         const auto frames = landmark_frames(ds, po);
         truth.resize(frames.size());
         VisualOdometry vo;
-        run = run_visual_sequence(frames, truth, VisualOdometryConfig{}, AssociationConfig{}, &vo);
+        VisualOdometryConfig vc;
+        vc.rig = ds.calib.front();
+        run = run_visual_sequence(frames, truth, vc, AssociationConfig{}, &vo);
         fails = vo.failures;
     }
     *failures = fails;
