@@ -156,6 +156,22 @@ struct Solved {
     bool ok = false;
 };
 
+/// A hypothesis's support: the matches within `gate` of it (`distance2(m)`, a Mahalanobis
+/// distance²) and the sum of their distances².
+template <class Distance2>
+std::pair<int, double> support(const std::vector<Match>& matches, double gate, Distance2 distance2) {
+    int n = 0;
+    double cost = 0;
+    for (const auto& m : matches) {
+        const double d2 = distance2(m);
+        if (d2 <= gate) {
+            ++n;
+            cost += d2;
+        }
+    }
+    return {n, cost};
+}
+
 /// The matches within `gate` of the hypothesis `within(m)` (a Mahalanobis distance²).
 template <class Distance2>
 std::vector<const Match*> select_inliers(const std::vector<Match>& matches, double gate, Distance2 within) {
@@ -184,15 +200,7 @@ Solved top_view_motion(const std::vector<Match>& matches, const VisualOdometryCo
         const Mat2 R = rotation(th);
         const Vec2 t = (matches[a].p->q + matches[b].p->q) / 2 - R * (matches[a].c->q + matches[b].c->q) / 2;
         if (t.norm() > cfg.max_step) continue;
-        int n = 0;
-        double cost = 0;
-        for (const auto& m : matches) {
-            const double d2 = residual2(m, R, t);
-            if (d2 <= gate) {
-                ++n;
-                cost += d2;
-            }
-        }
+        const auto [n, cost] = support(matches, gate, [&](const Match& m) { return residual2(m, R, t); });
         if (n > best_n || (n == best_n && cost < best_cost)) {
             best_n = n;
             best_cost = cost;
@@ -297,21 +305,6 @@ Mat6 refine_pixels(const std::vector<const Match*>& in, const stereo::RectifiedR
     return H;
 }
 
-/// Matches inside `gate` of T and the sum of their squared Mahalanobis distances.
-std::pair<int, double> pixel_support(const std::vector<Match>& matches, const Rigid& T, const stereo::RectifiedRig& g,
-                                     double gate) {
-    int n = 0;
-    double cost = 0;
-    for (const auto& m : matches) {
-        const double d2 = pixel_distance2(m, T, g);
-        if (d2 <= gate) {
-            ++n;
-            cost += d2;
-        }
-    }
-    return {n, cost};
-}
-
 /// RANSAC over triples of matches: the closed-form rigid alignment of their 3-D points; each
 /// hypothesis that beats the best unrefined one is also refined on its inliers (locally
 /// optimised RANSAC), since a triple's depth errors put its alignment off by more than the
@@ -338,7 +331,7 @@ Rigid pixel_hypothesis(const std::vector<Match>& matches, const VisualOdometryCo
         if (T.t.norm() > cfg.max_step) continue;
         refine_pixels({&matches[a], &matches[b], &matches[c]}, g, T);
         if (!(T.t.norm() <= cfg.max_step)) continue;
-        const auto raw = pixel_support(matches, T, g, gate);
+        const auto raw = support(matches, gate, [&](const Match& m) { return pixel_distance2(m, T, g); });
         if (!better(raw, best_raw)) continue;
         best_raw = raw;
         if (better(raw, best)) best = raw, best_T = T;
@@ -347,7 +340,7 @@ Rigid pixel_hypothesis(const std::vector<Match>& matches, const VisualOdometryCo
         if (in.size() < 3) continue;
         refine_pixels(in, g, T);
         if (T.t.norm() > cfg.max_step) continue;
-        const auto refined = pixel_support(matches, T, g, gate);
+        const auto refined = support(matches, gate, [&](const Match& m) { return pixel_distance2(m, T, g); });
         if (better(refined, best)) best = refined, best_T = T;
     }
     best_n = best.first;
