@@ -24,6 +24,8 @@ void VisualOdometryConfig::validate() const {
     if (!(max_step > 0)) throw InputError("the odometry's largest step must be positive");
     if (!(fail_sigma_xy > 0) || !(fail_sigma_theta > 0))
         throw InputError("the odometry's failure standard deviations must be positive");
+    if (!(disparity_offset_significance >= 0))
+        throw InputError("the odometry's disparity-correction significance must not be negative");
     if (residual == OdometryResidual::pixels) {
         if (!rig) throw InputError("visual odometry on pixel residuals needs the rig the frames were triangulated through");
         rig->validate();
@@ -154,6 +156,7 @@ struct Solved {
     Motion u = Motion::Zero();
     Mat3 cov = Mat3::Identity();
     bool ok = false;
+    double disparity_offset = 0, disparity_offset_sigma = 0;   // pixels with the offset estimated
 };
 
 /// A hypothesis's support: the matches within `gate` of it (`distance2(m)`, a Mahalanobis
@@ -226,25 +229,35 @@ Solved top_view_motion(const std::vector<Match>& matches, const VisualOdometryCo
     return out;
 }
 
-// ---- pixel residuals, 6-DoF -----------------------------------------------------------------
+// ---- pixel residuals, 6-DoF and the disparity correction -------------------------------------
 
-using Mat6 = Eigen::Matrix<double, 6, 6>;
-using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat7 = Eigen::Matrix<double, 7, 7>;
+using Vec7 = Eigen::Matrix<double, 7, 1>;
 
-/// The current camera in the previous one's frame: X_prev = R X_cur + t.
+/// The current camera in the previous one's frame, X_prev = R X_cur + t, and the disparity
+/// correction c (px) of both frames' measurements: a point seen at (u_l, v, u_r) is taken at
+/// (u_l, v, u_r − c), its disparity c larger.
 struct Rigid {
     Mat3 R = Mat3::Identity();
     Vec3 t = Vec3::Zero();
+    double c = 0;
 };
 
-/// T moved by d = (ω, δt): R Exp(ω), t + δt.
-Rigid perturbed(const Rigid& T, const Vec6& d) {
+/// T moved by d = (ω, δt, δc): R Exp(ω), t + δt, c + δc.
+Rigid perturbed(const Rigid& T, const Vec7& d) {
     const Vec3 w = d.head<3>();
     const double a = w.norm();
     Rigid out = T;
     if (a > 0) out.R = T.R * Eigen::AngleAxisd(a, w / a).toRotationMatrix();
-    out.t = T.t + d.tail<3>();
+    out.t = T.t + d.segment<3>(3);
+    out.c = T.c + d(6);
     return out;
+}
+
+/// The point the rig sees at m = (u_l, v, u_r): rig_pixels' inverse (stereo.hpp's model).
+Vec3 rig_point(const stereo::RectifiedRig& g, const Vec3& m) {
+    const double D = m(0) - m(2) - (g.cx0 - g.cx1), Z = (g.tx0 - g.tx1) / D;
+    return Vec3(((m(0) - g.cx0) * Z - g.tx0) / g.fx, ((m(1) - g.cy) * Z - g.ty) / g.fy, Z);
 }
 
 Motion planar_motion(const Rigid& T) {
@@ -254,13 +267,17 @@ Motion planar_motion(const Rigid& T) {
 }
 
 /// Where the current frame saw match m's point, minus where the previous frame's point lands in
-/// the current camera under T, in pixels (u_l, v, u_r); S, its covariance: both points'
-/// covariances carried into those pixels. false when the moved point is not in front.
+/// the current camera under T, in pixels (u_l, v, u_r), both frames' measurements corrected by
+/// T.c; S, its covariance: both points' covariances carried into those pixels. false when the
+/// moved point is not in front.
 bool pixel_residual(const Match& m, const Rigid& T, const stereo::RectifiedRig& g, Vec3& r, Mat3* S = nullptr) {
-    const Vec3 X = T.R.transpose() * (m.p->X - T.t);
+    const Vec3 corr(0, 0, T.c);
+    const Vec3 Xp = T.c == 0 ? m.p->X : rig_point(g, m.p->m - corr);
+    if (!(Xp.z() > 0)) return false;
+    const Vec3 X = T.R.transpose() * (Xp - T.t);
     if (!(X.z() > 0.1)) return false;
     Mat3 J;
-    r = m.c->m - rig_pixels(g, X, S ? &J : nullptr);
+    r = (m.c->m - corr) - rig_pixels(g, X, S ? &J : nullptr);
     if (S) {
         const Mat3 A = J * T.R.transpose();
         *S = m.c->M + A * m.p->C3 * A.transpose();
@@ -275,21 +292,25 @@ double pixel_distance2(const Match& m, const Rigid& T, const stereo::RectifiedRi
     return r.dot(S.ldlt().solve(r));
 }
 
-/// Weighted Gauss-Newton in (ω, δt) from T (each match's weight at the current T; Jacobians
-/// by central differences); returns the information matrix at the end.
-Mat6 refine_pixels(const std::vector<const Match*>& in, const stereo::RectifiedRig& g, Rigid& T) {
-    Mat6 H = Mat6::Zero();
+/// Weighted Gauss-Newton in (ω, δt), and δc when `offset`, from T (each match's weight at
+/// the current T; Jacobians by central differences); returns the information matrix at the
+/// end (7 × 7; without `offset` its c row and column are those of a fixed c: H(6, 6) = 1).
+/// With `offset` and prior.sigma > 0, the prior on c enters as one more residual, c − mean.
+Mat7 refine_pixels(const std::vector<const Match*>& in, const stereo::RectifiedRig& g, Rigid& T, bool offset,
+                   const DisparityPrior& prior = {}) {
+    Mat7 H = Mat7::Zero();
     constexpr double h = 1e-6;
+    const int dof = offset ? 7 : 6;
     for (int it = 0; it < 10; ++it) {
         H.setZero();
-        Vec6 grad = Vec6::Zero();
+        Vec7 grad = Vec7::Zero();
         for (const Match* m : in) {
             Vec3 r, rp, rm;
             Mat3 S;
             if (!pixel_residual(*m, T, g, r, &S)) continue;
-            Eigen::Matrix<double, 3, 6> J;
-            for (int k = 0; k < 6; ++k) {
-                const Vec6 d = Vec6::Unit(k) * h;
+            Eigen::Matrix<double, 3, 7> J = Eigen::Matrix<double, 3, 7>::Zero();
+            for (int k = 0; k < dof; ++k) {
+                const Vec7 d = Vec7::Unit(k) * h;
                 pixel_residual(*m, perturbed(T, d), g, rp);
                 pixel_residual(*m, perturbed(T, -d), g, rm);
                 J.col(k) = (rp - rm) / (2 * h);
@@ -298,7 +319,14 @@ Mat6 refine_pixels(const std::vector<const Match*>& in, const stereo::RectifiedR
             H += J.transpose() * W * J;
             grad += J.transpose() * W * r;
         }
-        const Vec6 d = -H.ldlt().solve(grad);
+        if (!offset) {
+            H(6, 6) = 1;
+        } else if (prior.sigma > 0) {
+            const double w = 1 / (prior.sigma * prior.sigma);
+            H(6, 6) += w;
+            grad(6) += w * (T.c - prior.mean);
+        }
+        const Vec7 d = -H.ldlt().solve(grad);
         T = perturbed(T, d);
         if (d.norm() < 1e-12) break;
     }
@@ -309,7 +337,14 @@ Mat6 refine_pixels(const std::vector<const Match*>& in, const stereo::RectifiedR
 /// hypothesis that beats the best unrefined one is also refined on its inliers (locally
 /// optimised RANSAC), since a triple's depth errors put its alignment off by more than the
 /// pixel gate allows. `best_n`: the support of the hypothesis returned.
-Rigid pixel_hypothesis(const std::vector<Match>& matches, const VisualOdometryConfig& cfg, int& best_n) {
+/// The correction the motion is computed at: the prior's mean once it differs from 0 by more
+/// than disparity_offset_significance of its standard deviations, else 0.
+double applied_offset(const DisparityPrior& prior, const VisualOdometryConfig& cfg) {
+    return prior.sigma > 0 && std::abs(prior.mean) > cfg.disparity_offset_significance * prior.sigma ? prior.mean : 0;
+}
+
+/// Hypotheses keep the disparity correction c0.
+Rigid pixel_hypothesis(const std::vector<Match>& matches, const VisualOdometryConfig& cfg, double c0, int& best_n) {
     const stereo::RectifiedRig& g = *cfg.rig;
     const double gate = chi2_quantile(cfg.inlier_probability, 3);
     std::mt19937_64 rng(0x5eed);
@@ -327,9 +362,9 @@ Rigid pixel_hypothesis(const std::vector<Match>& matches, const VisualOdometryCo
         prev << matches[a].p->X, matches[b].p->X, matches[c].p->X;
         if ((cur.col(1) - cur.col(0)).cross(cur.col(2) - cur.col(0)).norm() < 0.25) continue;
         const Eigen::Matrix4d M = Eigen::umeyama(cur, prev, false);
-        Rigid T{M.topLeftCorner<3, 3>(), M.topRightCorner<3, 1>()};
+        Rigid T{M.topLeftCorner<3, 3>(), M.topRightCorner<3, 1>(), c0};
         if (T.t.norm() > cfg.max_step) continue;
-        refine_pixels({&matches[a], &matches[b], &matches[c]}, g, T);
+        refine_pixels({&matches[a], &matches[b], &matches[c]}, g, T, false);
         if (!(T.t.norm() <= cfg.max_step)) continue;
         const auto raw = support(matches, gate, [&](const Match& m) { return pixel_distance2(m, T, g); });
         if (!better(raw, best_raw)) continue;
@@ -338,7 +373,7 @@ Rigid pixel_hypothesis(const std::vector<Match>& matches, const VisualOdometryCo
         const std::vector<const Match*> in =
             select_inliers(matches, gate, [&](const Match& m) { return pixel_distance2(m, T, g); });
         if (in.size() < 3) continue;
-        refine_pixels(in, g, T);
+        refine_pixels(in, g, T, false);
         if (T.t.norm() > cfg.max_step) continue;
         const auto refined = support(matches, gate, [&](const Match& m) { return pixel_distance2(m, T, g); });
         if (better(refined, best)) best = refined, best_T = T;
@@ -347,34 +382,41 @@ Rigid pixel_hypothesis(const std::vector<Match>& matches, const VisualOdometryCo
     return best_T;
 }
 
-Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfig& cfg) {
+Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfig& cfg, const DisparityPrior& prior) {
     Solved out;
     if (matches.size() < 3) return out;
     const stereo::RectifiedRig& g = *cfg.rig;
     const double gate = chi2_quantile(cfg.inlier_probability, 3);
     int best_n = 0;
-    Rigid T = pixel_hypothesis(matches, cfg, best_n);
+    // the motion at the correction the earlier steps established
+    Rigid T = pixel_hypothesis(matches, cfg, cfg.estimate_disparity_offset ? applied_offset(prior, cfg) : 0, best_n);
     if (best_n < 3) return out;
-    Mat6 H = Mat6::Zero();
+    Mat7 H = Mat7::Zero();
     for (int round = 0; round < 3; ++round) {
         std::vector<const Match*> next =
             select_inliers(matches, gate, [&](const Match& m) { return pixel_distance2(m, T, g); });
         if (next.size() < 3) return out;
         const bool same = next == out.inliers;
         out.inliers.swap(next);
-        H = refine_pixels(out.inliers, g, T);
+        H = refine_pixels(out.inliers, g, T, false);
         if (same) break;
     }
     // the top view of T and its covariance: Jacobian of planar_motion in (ω, δt), central differences
     out.u = planar_motion(T);
-    Eigen::Matrix<double, 3, 6> J;
+    Eigen::Matrix<double, 3, 7> J = Eigen::Matrix<double, 3, 7>::Zero();
     constexpr double h = 1e-7;
     for (int k = 0; k < 6; ++k) {
-        Motion d = planar_motion(perturbed(T, Vec6::Unit(k) * h)) - planar_motion(perturbed(T, -Vec6::Unit(k) * h));
+        Motion d = planar_motion(perturbed(T, Vec7::Unit(k) * h)) - planar_motion(perturbed(T, -Vec7::Unit(k) * h));
         d(2) = wrap_angle(d(2));
         J.col(k) = d / (2 * h);
     }
     out.cov = J * H.inverse() * J.transpose();
+    if (cfg.estimate_disparity_offset) {   // the correction's estimate with this step's inliers
+        Rigid T7 = T;
+        const Mat7 H7 = refine_pixels(out.inliers, g, T7, true, prior);
+        out.disparity_offset = T7.c;
+        out.disparity_offset_sigma = std::sqrt(H7.inverse()(6, 6));
+    }
     out.ok = true;
     return out;
 }
@@ -382,18 +424,20 @@ Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfi
 }  // namespace
 
 MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& current,
-                               const VisualOdometryConfig& cfg) {
+                               const VisualOdometryConfig& cfg, const DisparityPrior& prior) {
     cfg.validate();
     MotionEstimate est;
     const std::vector<Point> P = usable(previous, cfg), C = usable(current, cfg);
     const std::vector<Match> matches = descriptor_matches(P, C, cfg);
     est.candidates = static_cast<int>(matches.size());
-    const Solved s = cfg.residual == OdometryResidual::pixels ? pixel_motion(matches, cfg) : top_view_motion(matches, cfg);
+    const Solved s = cfg.residual == OdometryResidual::pixels ? pixel_motion(matches, cfg, prior) : top_view_motion(matches, cfg);
     if (!s.ok) return est;
     est.inliers = static_cast<int>(s.inliers.size());
     if (est.inliers < cfg.min_inliers || s.u.head<2>().norm() > cfg.max_step) return est;
     est.u = s.u;
     est.cov = (s.cov + s.cov.transpose()) / 2;
+    est.disparity_offset = s.disparity_offset;
+    est.disparity_offset_sigma = s.disparity_offset_sigma;
     est.ok = true;
     for (const Match* m : s.inliers) est.matches.emplace_back(m->p->index, m->c->index);
     return est;
@@ -406,20 +450,45 @@ VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const Vis
     const Mat3 fail = Eigen::Vector3d(cfg.fail_sigma_xy * cfg.fail_sigma_xy, cfg.fail_sigma_xy * cfg.fail_sigma_xy,
                                       cfg.fail_sigma_theta * cfg.fail_sigma_theta)
                           .asDiagonal();
+    DisparityPrior offset;   // the posterior of the last step that estimated c
     for (size_t k = 1; k < frames.size(); ++k) {
-        MotionEstimate e = estimate_motion(frames[k - 1], frames[k], cfg);
+        MotionEstimate e = estimate_motion(frames[k - 1], frames[k], cfg, offset);
         if (e.ok) {
             last = e.u;
             vo.motions.push_back(e.u);
             vo.covariances.push_back(e.cov);
+            if (e.disparity_offset_sigma > 0) offset = {e.disparity_offset, e.disparity_offset_sigma};
         } else {
             ++vo.failures;
             vo.motions.push_back(last);
             vo.covariances.push_back(fail);
         }
+        vo.disparity_offset.push_back(applied_offset(offset, cfg));
         vo.estimates.push_back(std::move(e));
     }
+    // frame 0 takes step 1's correction, frame k step k's
+    vo.disparity_offset.insert(vo.disparity_offset.begin(), vo.disparity_offset.empty() ? 0 : vo.disparity_offset[0]);
     return vo;
+}
+
+StereoFrame with_disparity_offset(const StereoFrame& frame, const stereo::RectifiedRig& g, double c) {
+    const Vec3 shift(0, 0, c);
+    const auto moved = [&](const Vec3& X) { return rig_point(g, rig_pixels(g, X) - shift); };
+    StereoFrame out;
+    out.reserve(frame.size());
+    for (const StereoLandmarkObs& o : frame) {
+        const Vec3 m = rig_pixels(g, o.p_cam) - shift;
+        if (!(m(0) - m(2) - (g.cx0 - g.cx1) > 0)) continue;
+        StereoLandmarkObs r = o;
+        r.p_cam = rig_point(g, m);
+        Mat3 J;   // d(moved)/dX by central differences, steps relative to the depth
+        const double h = 1e-6 * std::max(1.0, o.p_cam.z());
+        for (int k = 0; k < 3; ++k) J.col(k) = (moved(o.p_cam + h * Vec3::Unit(k)) - moved(o.p_cam - h * Vec3::Unit(k))) / (2 * h);
+        r.cov = J * o.cov * J.transpose();
+        r.cov = (r.cov + r.cov.transpose()) / 2;
+        out.push_back(std::move(r));
+    }
+    return out;
 }
 
 SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const std::vector<Pose>& truth,
@@ -430,7 +499,16 @@ SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const st
         throw InputError("a sequence needs one pose per frame to score: " + std::to_string(frames.size()) +
                          " frames, " + std::to_string(truth.size()) + " poses");
     VisualOdometry vo = visual_odometry(frames, cfg);
-    SequenceRun run = run_filter(frames, vo.motions, vo.covariances, Pose::Zero(), association, truth);
+    SequenceRun run;
+    if (cfg.residual == OdometryResidual::pixels && cfg.estimate_disparity_offset) {
+        std::vector<StereoFrame> seen;
+        seen.reserve(frames.size());
+        for (size_t k = 0; k < frames.size(); ++k) seen.push_back(with_disparity_offset(frames[k], *cfg.rig, vo.disparity_offset[k]));
+        run = run_filter(seen, vo.motions, vo.covariances, Pose::Zero(), association, truth);
+        run.disparity_offset = vo.disparity_offset;
+    } else {
+        run = run_filter(frames, vo.motions, vo.covariances, Pose::Zero(), association, truth);
+    }
     if (odometry) *odometry = std::move(vo);
     return run;
 }

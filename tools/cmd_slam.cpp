@@ -50,7 +50,7 @@ struct SlamOptions {
            vo_max_range = slam::VisualOdometryConfig{}.max_range;
     std::optional<double> sigma_dx, sigma_dtheta_deg;
     double sigma_dy = slam::SyntheticOdometry{}.sigma_dy;
-    bool descriptor = true;
+    bool descriptor = true, vo_disparity_offset = slam::VisualOdometryConfig{}.estimate_disparity_offset;
     // --landmarks-from stereo: the landmark pipeline's options
     std::string corners = "opencv", descriptor_name = "grid", config;
     int g = 16, h = 3;
@@ -150,6 +150,7 @@ slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::
     vc.min_inliers = o.vo_min_inliers;
     vc.max_range = o.vo_max_range;
     vc.residual = o.vo_residual == "top-view" ? slam::OdometryResidual::top_view : slam::OdometryResidual::pixels;
+    vc.estimate_disparity_offset = o.vo_disparity_offset;
     slam::SyntheticOdometry& so = k.synthetic;
     if (o.sigma_dx) so.sigma_dx = *o.sigma_dx;
     so.sigma_dy = o.sigma_dy;
@@ -179,7 +180,8 @@ slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::
     const slam::SequenceRun& run = kr.run;
     const std::string odo_args = k.visual_odometry
         ? " --vo-hamming-fraction " + num(vc.max_hamming_fraction) + " --vo-min-inliers " + std::to_string(vc.min_inliers) +
-              " --vo-max-range " + num(vc.max_range) + " --vo-residual " + o.vo_residual
+              " --vo-max-range " + num(vc.max_range) + " --vo-residual " + o.vo_residual +
+              (o.vo_disparity_offset ? "" : " --no-vo-disparity-offset")
         : " --sigma-dx " + num(so.sigma_dx) + " --sigma-dy " + num(so.sigma_dy) + " --sigma-dtheta " +
               num(so.sigma_dtheta / deg);
     const bool seeded = o.odometry == "synthetic" || o.landmarks_from == "synthetic";
@@ -262,6 +264,9 @@ void add_odometry_flags(CLI::App* cmd, SlamOptions& o) {
                     "visual odometry: pixels (6-DoF, reprojection into the rig's pixels) or top-view (3-DoF, "
                     "top-view points aligned in the plane)")
         ->capture_default_str();
+    cmd->add_flag("!--no-vo-disparity-offset", o.vo_disparity_offset,
+                  "visual odometry on pixels: do not estimate a disparity correction common to the rig's "
+                  "measurements (estimated by default, with each motion)");
 }
 
 }  // namespace

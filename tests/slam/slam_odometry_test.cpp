@@ -1,7 +1,8 @@
 // slam_odometry_test.cpp: stereo visual odometry, on pixel residuals and on the top view, on
 // synthetic frames of known motion (exact points: the motion to 1e-6 m; with pixel noise: the
 // error within its covariance, as a NEES over 200 scenes, each with its own noise draw, at
-// 0.02 px and at the default 0.5 px), the
+// 0.02 px and at the default 0.5 px), the disparity correction (a frame corrected by it; a rig
+// whose disparities read 1 px small: the correction found from the frames alone), the
 // relative descriptor threshold, the trajectory metrics, and
 // joint compatibility on an ambiguity that individual gating resolves wrongly.
 #include <catch2/catch.hpp>
@@ -38,7 +39,7 @@ Scene make_scene(int count, uint64_t seed, double z_max = 30) {
 /// sigma_px (the camera's model: on each of u_l, v_l, u_r, v_r) drawn from `noise` when it
 /// is given, else exact pixels (the covariance is the same).
 StereoFrame view(const Scene& s, const Pose& r, std::mt19937_64* noise,
-                 double sigma_px = hc::stereo::PixelNoise{}.sigma_px) {
+                 double sigma_px = hc::stereo::PixelNoise{}.sigma_px, double disparity_bias = 0) {
     const hc::stereo::RectifiedRig cam = synthetic_rig();
     const hc::stereo::PixelNoise pixel_noise{sigma_px};
     const Mat34 T = kitti_pose(r);
@@ -50,6 +51,7 @@ StereoFrame view(const Scene& s, const Pose& r, std::mt19937_64* noise,
         hc::stereo::StereoPixels m = hc::stereo::project(cam, q);
         if (m.u_l < 0 || m.u_l >= cam.width || m.v_l < 0 || m.v_l >= cam.height || m.u_r < 0) continue;
         if (noise) m = pixel_noise.perturb(m, *noise);
+        m.u_r += disparity_bias;   // a rig whose disparities all read disparity_bias px small
         StereoLandmarkObs o = to_observation(hc::stereo::triangulate(cam, m, pixel_noise));
         o.descriptor = s.desc[i];
         o.id_hint = static_cast<int>(i);
@@ -164,6 +166,63 @@ TEST_CASE("visual odometry on pixel residuals refuses to run without the frames'
     c.residual = OdometryResidual::top_view;   // the top view needs no rig
     c.rig.reset();
     CHECK(estimate_motion(f0, f1, c).ok);
+}
+
+TEST_CASE("a frame given a disparity correction is the frame the rig would have measured", "[slam][odometry]") {
+    const Scene s = make_scene(200, 6);
+    const Pose r(3, 0.5, 0.1);
+    const StereoFrame exact = view(s, r, nullptr), biased = view(s, r, nullptr, 0.5, 1.5);
+    const StereoFrame fixed = with_disparity_offset(biased, synthetic_rig(), 1.5);
+    REQUIRE(fixed.size() == exact.size());
+    for (size_t i = 0; i < exact.size(); ++i) {
+        INFO("point " << i << " at z " << exact[i].p_cam.z());
+        CHECK((fixed[i].p_cam - exact[i].p_cam).norm() < 1e-9 * exact[i].p_cam.norm());
+        // the covariance carried by the Jacobian of the correction: the exact pixels' covariance
+        CHECK((fixed[i].cov - exact[i].cov).norm() < 1e-5 * exact[i].cov.norm());
+        CHECK(fixed[i].descriptor == exact[i].descriptor);
+        CHECK(fixed[i].id_hint == exact[i].id_hint);
+    }
+    // a correction that makes a disparity negative drops the point
+    CHECK(with_disparity_offset(exact, synthetic_rig(), -1000).empty());
+}
+
+namespace {
+/// Visual odometry over `steps` frames 1 m apart (turning 0.01 rad a frame) of one scene at
+/// 0.5 px, the rig's disparities read `bias` px small; returns the odometry and, in `end`, the
+/// distance of the integrated end point from the true one.
+VisualOdometry biased_run(double bias, bool estimate, int steps, double& end) {
+    const Scene s = make_scene(2000, 7, 80);
+    std::mt19937_64 rng(21);
+    std::vector<StereoFrame> frames;
+    std::vector<Pose> truth{Pose::Zero()};
+    for (int k = 1; k <= steps; ++k) truth.push_back(compose(truth.back(), Motion(1.0, 0.0, 0.01)));
+    for (const Pose& p : truth) frames.push_back(view(s, p, &rng, 0.5, bias));
+    VisualOdometryConfig c = odometry();
+    c.estimate_disparity_offset = estimate;
+    VisualOdometry vo = visual_odometry(frames, c);
+    end = (dead_reckoning(Pose::Zero(), vo.motions).back().head<2>() - truth.back().head<2>()).norm();
+    return vo;
+}
+}  // namespace
+
+TEST_CASE("visual odometry estimates a disparity offset common to the rig from the frames alone", "[slam][odometry]") {
+    double end_fixed = 0, end_estimated = 0, end_unbiased = 0;
+    const VisualOdometry fixed = biased_run(1.0, false, 20, end_fixed);
+    const VisualOdometry estimated = biased_run(1.0, true, 20, end_estimated);
+    const VisualOdometry unbiased = biased_run(0.0, true, 20, end_unbiased);
+    INFO("end-point error: " << end_fixed << " m without the correction, " << end_estimated << " m with it, "
+         << end_unbiased << " m on an unbiased rig; correction " << estimated.disparity_offset.back() << " px (rig "
+         << unbiased.disparity_offset.back() << " px)");
+    REQUIRE(fixed.failures == 0);
+    REQUIRE(estimated.failures == 0);
+    // measured: 0.714 m, 0.067 m and 0.0076 m; the correction 0.951 px (σ 0.015 px) and, on
+    // the unbiased rig, -0.044 px
+    CHECK(std::abs(estimated.disparity_offset.back() - 1.0) < 0.1);
+    CHECK(end_estimated < 0.2 * end_fixed);
+    CHECK(std::abs(unbiased.disparity_offset.back()) < 0.1);
+    CHECK(end_unbiased < 0.05);
+    // without the estimate nothing is corrected
+    CHECK(fixed.disparity_offset == std::vector<double>(21, 0.0));
 }
 
 TEST_CASE("the descriptor threshold is a fraction of the descriptor's bits", "[slam]") {
