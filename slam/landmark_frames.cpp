@@ -8,6 +8,12 @@
 
 namespace hc::slam {
 
+landmarks::PipelineOptions kitti_pipeline_defaults() {
+    landmarks::PipelineOptions o;
+    o.descriptor = landmarks::Descriptor::brief;
+    return o;
+}
+
 StereoLandmarkObs to_observation(const landmarks::Landmark& l) {
     StereoLandmarkObs o;
     o.p_cam = Eigen::Vector3d(l.p_cam[0], l.p_cam[1], l.p_cam[2]);

@@ -31,7 +31,7 @@ constexpr double deg = std::numbers::pi / 180;
 
 struct SlamOptions {
     bool simulate = false;
-    std::string sequences, kitti, data, out = "slam-report", world = "cloister", landmarks_from = "synthetic",
+    std::string sequences, kitti, data, out = "slam-report", world = "cloister", landmarks_from = slam::KittiRunOptions{}.stereo_landmarks ? "stereo" : "synthetic",
                 odometry = "visual", association = "jcbb", vo_residual = "pixels";
     // every model default is its struct's (slam::SimConfig, SensorModel, AssociationConfig,
     // VisualOdometryConfig, SyntheticOdometry); the angles are the command's, in degrees
@@ -52,8 +52,9 @@ struct SlamOptions {
     double sigma_dy = slam::SyntheticOdometry{}.sigma_dy;
     bool descriptor = true, vo_disparity_offset = slam::VisualOdometryConfig{}.estimate_disparity_offset;
     // --landmarks-from stereo: the landmark pipeline's options
-    std::string corners = "opencv", descriptor_name = "grid", config;
-    int g = 16, h = 3;
+    std::string corners = landmarks::detector_name(slam::KittiRunOptions{}.pipeline.detector),
+                descriptor_name = landmarks::descriptor_name(slam::KittiRunOptions{}.pipeline.descriptor), config;
+    int g = slam::KittiRunOptions{}.pipeline.grid.g, h = slam::KittiRunOptions{}.pipeline.grid.h;
     // --simulate: Monte-Carlo seeds in shards (runner_flags.hpp: sharded())
     RunnerFlags runner;
     bool sharded = false;
