@@ -110,7 +110,7 @@ int take_chain_checked(json& merged) {
 void check_sharded_equals_single(const cluster::Manifest& sharded, const cluster::Manifest& single,
                                  cluster::RunnerKind kind, const std::string& name) {
     const fs::path dir = scratch(name);
-    json merged = jobs::run_and_merge(dir, sharded, runner(kind));
+    json merged = cluster::run_and_merge(jobs::registry(), dir, sharded, runner(kind));
     json once = cluster::run_in_process(jobs::registry(), single);
     if (sharded.job == "eval") {
         const bool cycle = sharded.common.at("source") == "cycle";
@@ -119,8 +119,8 @@ void check_sharded_equals_single(const cluster::Manifest& sharded, const cluster
         CHECK(take_chain_checked(once) == 0);
     }
     CHECK(merged == once);
-    CHECK(jobs::merged_path(dir).string().size() > 0);
-    CHECK(fs::exists(jobs::merged_path(dir)));
+    CHECK(cluster::merged_path(dir).string().size() > 0);
+    CHECK(fs::exists(cluster::merged_path(dir)));
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo st
     cluster::RunOptions o;
     o.jobs = 2;
     o.worker = {HC_CLI, "shard", "run"};
-    const jobs::json merged = jobs::run_and_merge(dir, m, o);
+    const jobs::json merged = cluster::run_and_merge(jobs::registry(), dir, m, o);
     CHECK(merged == cluster::run_in_process(jobs::registry(), m));
 
     const slam::MonteCarlo a = jobs::slam_result(m, merged);

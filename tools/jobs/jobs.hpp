@@ -2,7 +2,7 @@
 // verilate, sweep, mutate, landmarks, slam, ...) has a function here that builds its
 // manifest from typed parameters and one that adds its ShardJob to a registry; registry()
 // holds every kind, so that a worker (`harris-cosim shard run DIR INDEX`) and a merge
-// (`harris-cosim shard merge DIR`) can run any manifest.
+// (`harris-cosim shard merge DIR`, cluster::merge_run) can run any manifest.
 #pragma once
 
 #include <filesystem>
@@ -58,19 +58,6 @@ struct MutantsProgress {
     double wall_seconds = 0;
 };
 MutantsProgress mutants_finished(const fs::path& dir);
-
-/// The file a merge writes its folded data to: DIR/merged.json.
-fs::path merged_path(const fs::path& dir);
-
-/// Folds DIR's shard results with the registry and writes DIR/merged.json atomically.
-/// ClusterInputError (status 2) names missing or foreign results.
-json merge_run(const fs::path& dir);
-
-/// Prepares DIR for manifest `m` (or checks it is the same run: resume), runs the shards
-/// still missing through `o`'s runner, and merges them. ClusterRunError when shards are
-/// still missing after the runner's retries; the message names them and says that running
-/// the same command again resumes.
-json run_and_merge(const fs::path& dir, const cluster::Manifest& m, const cluster::RunOptions& o);
 
 // ---- eval (tools/jobs/eval_job.cpp) ---------------------------------------------------------
 
@@ -213,8 +200,6 @@ cluster::ShardJob slam_job();
 /// A list of doubles with NaN as null (JSON has no NaN) and back, bit for bit.
 json doubles(const std::vector<double>& v);
 std::vector<double> doubles(const json& j);
-/// [first, last) of `n` items in `k` groups (k <= 0 or > n: one per item).
-std::vector<std::pair<long, long>> groups(long n, int k);
 }  // namespace detail
 
 }  // namespace hc::jobs

@@ -157,8 +157,8 @@ cluster::Manifest landmarks_manifest(const LandmarksShards& p) {
     // pair chunks per software detector, so that the shards number about p.shards
     const int per_detector = p.shards <= 0 ? 0 : std::max(1, p.shards / static_cast<int>(o.detectors.size()));
     for (auto det : o.detectors) {
-        const auto chunks = lm::is_hardware(det) ? detail::groups(static_cast<long>(p.pairs), 1)
-                                                 : detail::groups(static_cast<long>(p.pairs), per_detector);
+        const auto chunks = lm::is_hardware(det) ? cluster::split_items(static_cast<long>(p.pairs), 1)
+                                                 : cluster::split_items(static_cast<long>(p.pairs), per_detector);
         for (auto [a, b] : chunks) m.shards.push_back({{"detector", lm::detector_name(det)}, {"first", a}, {"last", b}});
     }
     return m;

@@ -47,7 +47,7 @@ cluster::Manifest mutate_manifest(const MutateShards& p) {
     m.common = {{"list", fs::absolute(p.list).string()}, {"list_hash", file_hash(p.list)}, {"rtl_hash", rtl_hash()},
                 {"stream", mutation::stream_flags(c.stream)}};
     // unit 0 is the baseline, unit i the i-th mutant
-    for (auto [a, b] : detail::groups(static_cast<long>(ids.size()) + 1, p.shards)) {
+    for (auto [a, b] : cluster::split_items(static_cast<long>(ids.size()) + 1, p.shards)) {
         json s = {{"baseline", a == 0}, {"mutants", json::array()}};
         for (long u = std::max(a, 1L); u < b; ++u) s["mutants"].push_back(ids[u - 1]);
         m.shards.push_back(s);

@@ -124,7 +124,7 @@ cluster::Manifest slam_manifest(const SlamShards& p) {
     m.job = "slam";
     m.common = {{"config", config_json(p.config)}, {"runs", p.runs}, {"first_seed", p.first_seed},
                 {"confidence", p.confidence}};
-    for (auto [a, b] : detail::groups(p.runs, p.shards))
+    for (auto [a, b] : cluster::split_items(p.runs, p.shards))
         m.shards.push_back({{"first_run", a}, {"last_run", b}});
     return m;
 }

@@ -184,7 +184,7 @@ cluster::Manifest sweep_manifest(const SweepShards& p) {
                 {"cache", fs::absolute(p.cache).string()},
                 {"threads", p.threads},
                 {"jobs", p.jobs}};
-    for (auto [a, b] : detail::groups(static_cast<long>(spec.configs.size()), p.shards))
+    for (auto [a, b] : cluster::split_items(static_cast<long>(spec.configs.size()), p.shards))
         m.shards.push_back({{"first", a}, {"last", b}});
     return m;
 }
