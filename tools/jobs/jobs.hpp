@@ -10,7 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "io/cluster/cluster.hpp"
-#include "eval/report.hpp"
+#include "cosim/verilator/verilate_job.hpp"
+#include "eval/eval_job.hpp"
 #include "slam/landmarks/landmarks.hpp"
 #include "model/harris/harris_pkg.hpp"
 #include "mutation/mutation.hpp"
@@ -25,9 +26,6 @@ using nlohmann::json;
 
 /// Every job kind of the project.
 const cluster::JobRegistry& registry();
-/// Each kind's registration (registry() calls them).
-void add_eval_job(cluster::JobRegistry& r);
-void add_verilate_job(cluster::JobRegistry& r);
 
 /// The generated-mutants campaign (kind "mutants", tools/jobs/mutants_job.cpp): the named mutants of
 /// mutation::generate_all(), `per_shard` to a shard, each judged by mutation::run_mutant; the
@@ -58,48 +56,6 @@ struct MutantsProgress {
     double wall_seconds = 0;
 };
 MutantsProgress mutants_finished(const fs::path& dir);
-
-// ---- eval (tools/jobs/eval_job.cpp) ---------------------------------------------------------
-
-/// `harris-cosim eval` over KITTI-layout sequences, each streamed from its own reset.
-struct EvalJob {
-    std::string source = "spec";          ///< spec, cycle or rtl
-    fs::path kitti;                       ///< KITTI root holding sequences/
-    std::vector<std::string> sequences;
-    util::Range pairs{0, 1 << 30};        ///< stereo pairs of each sequence (an open end: all)
-    std::string pairs_flag = "--pairs";   ///< how the range is named in errors
-    bool ablation = true;
-    /// shards in all: at least one per sequence; spec and cycle split sequences further
-    /// (by pairs, in proportion to their length), rtl never does (0: one per sequence)
-    int shards = 0;
-    int threads = 1;                      ///< threads of each shard (0: all cores)
-};
-/// The manifest of an eval run. For the cycle source split within a sequence it runs the
-/// serial pre-pass: the cycle model's checkpoint at every part's first frame goes into its
-/// shard entry. InputError naming missing sequences or ranges without two pairs.
-cluster::Manifest eval_manifest(const EvalJob& j);
-/// The report of a merged eval run (merged.json's data), without timings.
-eval::Report eval_report(const json& merged);
-
-// ---- verilate (tools/jobs/verilate_job.cpp) -------------------------------------------------
-
-/// `harris-cosim verilate` over KITTI-layout sequences: one shard per sequence (the netlist
-/// cannot start half-way through a stream), each from its own reset.
-struct VerilateJob {
-    fs::path kitti;
-    std::vector<std::string> sequences;
-    util::Range pairs{0, 1 << 30};
-    std::string pairs_flag = "--pairs";
-    Formats formats;
-    fs::path cache;                       ///< netlist cache (empty: the default), shared by all shards
-    bool keep_going = false;
-};
-cluster::Manifest verilate_manifest(const VerilateJob& j);
-
-/// Before the shards of an eval (rtl source) or verilate run start: the gate and the netlist
-/// for every geometry of the manifest, so that shards find them in the cache instead of
-/// building the same files at once. Progress to stderr; throws as vl::run_verilate.
-void prepare_rtl(const cluster::Manifest& m);
 
 // ---- sweep (tools/jobs/sweep_job.cpp) --------------------------------------------------------
 // A shard evaluates a group of configurations (sweep::evaluate_points: synthesis cost,
@@ -197,9 +153,6 @@ cluster::ShardJob sweep_check_job();
 cluster::ShardJob mutate_job();
 cluster::ShardJob landmarks_job();
 cluster::ShardJob slam_job();
-/// A list of doubles with NaN as null (JSON has no NaN) and back, bit for bit.
-json doubles(const std::vector<double>& v);
-std::vector<double> doubles(const json& j);
 }  // namespace detail
 
 }  // namespace hc::jobs

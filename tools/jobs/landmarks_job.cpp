@@ -44,82 +44,6 @@ std::string mat_hash(const cv::Mat& m) {
     return util::hex64(util::fnv1a(std::string_view(reinterpret_cast<const char*>(c.data), c.total() * c.elemSize())));
 }
 
-json keypoints_json(const std::vector<cv::KeyPoint>& v) {
-    json a = json::array();
-    for (const auto& k : v) a.push_back({k.pt.x, k.pt.y, k.size, k.angle, k.response, k.octave, k.class_id});
-    return a;
-}
-
-std::vector<cv::KeyPoint> keypoints_from(const json& a) {
-    std::vector<cv::KeyPoint> v;
-    for (const auto& k : a)
-        v.emplace_back(cv::Point2f(k.at(0).get<float>(), k.at(1).get<float>()), k.at(2).get<float>(), k.at(3).get<float>(),
-                       k.at(4).get<float>(), k.at(5).get<int>(), k.at(6).get<int>());
-    return v;
-}
-
-json mat_json(const cv::Mat& m) {
-    static const char* hex = "0123456789abcdef";
-    const cv::Mat c = m.isContinuous() ? m : m.clone();
-    std::string s;
-    const auto* p = c.data;
-    for (std::size_t i = 0; i < c.total() * c.elemSize(); ++i) {
-        s += hex[p[i] >> 4];
-        s += hex[p[i] & 15];
-    }
-    return {{"type", m.type()}, {"rows", m.rows}, {"cols", m.cols}, {"hex", s}};
-}
-
-cv::Mat mat_from(const json& j) {
-    cv::Mat m(j.at("rows").get<int>(), j.at("cols").get<int>(), j.at("type").get<int>());
-    const std::string& s = j.at("hex").get_ref<const std::string&>();
-    if (s.size() != 2 * m.total() * m.elemSize()) throw cluster::ClusterInputError("landmarks: a descriptor matrix has the wrong size");
-    auto nib = [](char c) { return c <= '9' ? c - '0' : c - 'a' + 10; };
-    for (std::size_t i = 0; i < m.total() * m.elemSize(); ++i) m.data[i] = static_cast<uchar>(nib(s[2 * i]) * 16 + nib(s[2 * i + 1]));
-    return m;
-}
-
-json pair_json(const lm::PairResult& r) {
-    json matches = json::array();
-    for (const auto& m : r.matches)
-        matches.push_back({m.left.x, m.left.y, m.right.x, m.right.y, m.distance, m.left_index, m.right_index, m.epipolar, m.truth});
-    return {{"name", r.name},
-            {"keypoints_left", r.keypoints_left},
-            {"keypoints_right", r.keypoints_right},
-            {"matches", matches},
-            {"has_truth", r.has_truth},
-            {"descriptor_bytes", r.descriptor_bytes},
-            {"seconds", r.seconds},
-            {"desc_left", mat_json(r.desc_left)},
-            {"kp_left", keypoints_json(r.kp_left)},
-            {"kp_right", keypoints_json(r.kp_right)}};
-}
-
-lm::PairResult pair_from(const json& j) {
-    lm::PairResult r;
-    r.name = j.at("name");
-    r.keypoints_left = j.at("keypoints_left");
-    r.keypoints_right = j.at("keypoints_right");
-    for (const auto& a : j.at("matches")) {
-        lm::StereoMatch m;
-        m.left = {a.at(0).get<float>(), a.at(1).get<float>()};
-        m.right = {a.at(2).get<float>(), a.at(3).get<float>()};
-        m.distance = a.at(4);
-        m.left_index = a.at(5);
-        m.right_index = a.at(6);
-        m.epipolar = a.at(7);
-        m.truth = a.at(8);
-        r.matches.push_back(m);
-    }
-    r.has_truth = j.at("has_truth");
-    r.descriptor_bytes = j.at("descriptor_bytes");
-    r.seconds = j.at("seconds");
-    r.desc_left = mat_from(j.at("desc_left"));
-    r.kp_left = keypoints_from(j.at("kp_left"));
-    r.kp_right = keypoints_from(j.at("kp_right"));
-    return r;
-}
-
 /// Keypoints detected on a sub-dataset starting at pair `first` carry the frame numbers of
 /// the whole dataset (2k left, 2k+1 right of pair k), as compare() numbers them.
 void renumber(lm::FrameKeypoints& f, int offset) {
@@ -172,7 +96,7 @@ std::vector<lm::ComparisonRow> landmarks_rows(const json& merged) {
         row.descriptor = lm::parse_descriptor(j.at("descriptor"));
         row.grid = {j.at("grid").at(0).get<int>(), j.at("grid").at(1).get<int>()};
         for (const auto& pj : j.at("pairs")) {
-            row.pairs.push_back(pair_from(pj));
+            row.pairs.push_back(pj.get<lm::PairResult>());
             row.totals.add(row.pairs.back());
         }
         row.descriptor_bytes = row.pairs.empty() ? 0 : row.pairs.front().descriptor_bytes;
@@ -214,7 +138,7 @@ cluster::ShardJob landmarks_job() {
                     json pairs = json::array();
                     for (std::size_t k = 0; k < ds.pairs.size(); ++k) {
                         const cv::Mat none;
-                        json pj = pair_json(lm::match_pair(ds.pairs[k], kp[k], d, gp, mp,
+                        json pj = json(lm::match_pair(ds.pairs[k], kp[k], d, gp, mp,
                                                            k < ds.disparity.size() ? ds.disparity[k] : none));
                         pj["index"] = first + static_cast<long>(k);
                         pj["input_hash"] = inputs[k];

@@ -35,12 +35,7 @@ json point_json(const sweep::PointResult& p) {
               {"overflow_seconds", p.overflow_seconds}};
     if (p.has_cost_ghdl) j["cost_ghdl"] = json(p.cost_ghdl);
     if (p.has_ranges) j["ranges"] = sweep::range_report_to_json(p.ranges);
-    if (p.has_landmarks) {
-        const landmarks::Totals& l = p.landmarks;
-        j["landmarks"] = {{"keypoints", l.keypoints}, {"all", l.all}, {"correct", l.correct},
-                          {"truth_known", l.truth_known}, {"truth_correct", l.truth_correct},
-                          {"seconds", l.seconds}, {"pairs", l.pairs}};
-    }
+    if (p.has_landmarks) j["landmarks"] = p.landmarks;
     return j;
 }
 
@@ -71,14 +66,7 @@ sweep::PointResult point_from(const json& j) {
         p.has_ranges = true;
     }
     if (j.contains("landmarks")) {
-        const json& l = j.at("landmarks");
-        p.landmarks.keypoints = l.at("keypoints");
-        p.landmarks.all = l.at("all");
-        p.landmarks.correct = l.at("correct");
-        p.landmarks.truth_known = l.at("truth_known");
-        p.landmarks.truth_correct = l.at("truth_correct");
-        p.landmarks.seconds = l.at("seconds");
-        p.landmarks.pairs = l.at("pairs");
+        p.landmarks = j.at("landmarks").get<landmarks::Totals>();
         p.has_landmarks = true;
     }
     return p;
