@@ -8,12 +8,12 @@ const cluster::JobRegistry& registry() {
         cluster::JobRegistry r;
         eval::add_eval_job(r);
         vl::add_verilate_job(r);
-        r.add(detail::sweep_job());
-        r.add(detail::sweep_check_job());
-        r.add(detail::mutate_job());
+        sweep::add_sweep_job(r);
+        sweep::add_sweep_check_job(r);
+        mutation::add_mutate_job(r);
         r.add(detail::landmarks_job());
         r.add(detail::slam_job());
-        add_mutants_job(r);
+        mutation::add_mutants_job(r);
         return r;
     }();
     return reg;
