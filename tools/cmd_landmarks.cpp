@@ -21,6 +21,7 @@
 #include "model/harris/formats_json.hpp"
 #include "io/util/util.hpp"
 #include "slam/landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks_job.hpp"
 
 namespace fs = std::filesystem;
 
@@ -132,7 +133,7 @@ std::optional<std::vector<landmarks::ComparisonRow>> sharded_rows(const Landmark
                                                                   const fs::path& root, const landmarks::ComparisonOptions& co) {
     if (o.study) throw InputError("--study runs in one process: leave out " + sharding_flags_named());
     if (!o.calib.empty()) throw InputError("--calib (a rig's pairs) runs in one process: leave out " + sharding_flags_named());
-    jobs::LandmarksShards p;
+    landmarks::LandmarksShards p;
     p.dataset = o.dataset;
     p.root = root;
     p.need_truth = !o.no_truth;
@@ -145,11 +146,11 @@ std::optional<std::vector<landmarks::ComparisonRow>> sharded_rows(const Landmark
     p.options = co;
     p.pairs = ds.pairs.size();
     p.shards = o.runner.shards;
-    const cluster::Manifest m = jobs::landmarks_manifest(p);
+    const cluster::Manifest m = landmarks::landmarks_manifest(p);
     const fs::path dir = run_dir(o.runner, o.out);
     const auto merged = run_sharded(dir, m, o.runner);
     if (!merged) return std::nullopt;
-    return jobs::landmarks_rows(*merged);
+    return landmarks::landmarks_rows(*merged);
 }
 
 void run_landmarks(const LandmarksOptions& o) {

@@ -1,5 +1,5 @@
 // slam_job_test: Monte-Carlo seeds run in shards by `harris-cosim shard run` and folded by
-// jobs::slam_result give slam::monte_carlo's statistics bit for bit.
+// slam::slam_result give slam::monte_carlo's statistics bit for bit.
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
@@ -35,12 +35,12 @@ bool same_bits(const std::vector<M>& a, const std::vector<M>& b) {
 TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo statistics bit for bit", "[cluster]") {
     slam::SimConfig c;
     c.steps = 60;
-    jobs::SlamShards p;
+    slam::SlamShards p;
     p.config = c;
     p.runs = 7;
     p.first_seed = 3;
     p.shards = 3;
-    const cluster::Manifest m = jobs::slam_manifest(p);
+    const cluster::Manifest m = slam::slam_manifest(p);
     REQUIRE(m.shards.size() == 3);
     const jobs::fs::path dir = jobs::fs::temp_directory_path() / ("hc-slam-job-test-" + std::to_string(::getpid()));
     jobs::fs::remove_all(dir);
@@ -50,7 +50,7 @@ TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo st
     const jobs::json merged = cluster::run_and_merge(jobs::registry(), dir, m, o);
     CHECK(merged == cluster::run_in_process(jobs::registry(), m));
 
-    const slam::MonteCarlo a = jobs::slam_result(m, merged);
+    const slam::MonteCarlo a = slam::slam_result(m, merged);
     const slam::MonteCarlo b = slam::monte_carlo(c, 7, 3);
     CHECK(a.runs == 7);
     CHECK(a.pose_nees.size() == 61);
@@ -84,7 +84,7 @@ TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo st
 }
 
 TEST_CASE("a slam manifest refuses a bad run count with the input named", "[cluster]") {
-    jobs::SlamShards p;
+    slam::SlamShards p;
     p.runs = 0;
-    CHECK_THROWS_WITH(jobs::slam_manifest(p), Catch::Contains("--runs must be at least 1"));
+    CHECK_THROWS_WITH(slam::slam_manifest(p), Catch::Contains("--runs must be at least 1"));
 }

@@ -11,8 +11,8 @@ const cluster::JobRegistry& registry() {
         sweep::add_sweep_job(r);
         sweep::add_sweep_check_job(r);
         mutation::add_mutate_job(r);
-        r.add(detail::landmarks_job());
-        r.add(detail::slam_job());
+        landmarks::add_landmarks_job(r);
+        slam::add_slam_job(r);
         mutation::add_mutants_job(r);
         return r;
     }();

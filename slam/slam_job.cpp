@@ -1,15 +1,17 @@
-// slam_job.cpp: the "slam" job kind, Monte-Carlo seeds of the EKF-SLAM simulator in shards,
-// folded in seed order.
-#include "tools/jobs/jobs.hpp"
+// slam_job.cpp: the job kind "slam" (slam_job.hpp), Monte-Carlo seeds of the EKF-SLAM
+// simulator in shards, folded in seed order.
+#include "slam/slam_job.hpp"
 
 #include <string>
 
-namespace hc::jobs {
+namespace hc::slam {
+
+using nlohmann::json;
 
 cluster::Manifest slam_manifest(const SlamShards& p) {
     p.config.validate();
-    if (p.runs < 1) throw slam::InputError("--runs must be at least 1, got " + std::to_string(p.runs));
-    if (!(p.confidence > 0 && p.confidence < 1)) throw slam::InputError("the confidence must be in (0, 1)");
+    if (p.runs < 1) throw InputError("--runs must be at least 1, got " + std::to_string(p.runs));
+    if (!(p.confidence > 0 && p.confidence < 1)) throw InputError("the confidence must be in (0, 1)");
     cluster::Manifest m;
     m.job = "slam";
     m.common = {{"config", p.config}, {"runs", p.runs}, {"first_seed", p.first_seed},
@@ -19,28 +21,26 @@ cluster::Manifest slam_manifest(const SlamShards& p) {
     return m;
 }
 
-slam::MonteCarlo slam_result(const cluster::Manifest& m, const json& merged) {
-    std::vector<slam::RunErrors> runs;
-    for (const auto& r : merged.at("runs")) runs.push_back(r.get<slam::RunErrors>());
+MonteCarlo slam_result(const cluster::Manifest& m, const json& merged) {
+    std::vector<RunErrors> runs;
+    for (const auto& r : merged.at("runs")) runs.push_back(r.get<RunErrors>());
     if (static_cast<int>(runs.size()) != m.common.at("runs").get<int>())
         throw cluster::ClusterInputError("slam: the merged data holds " + std::to_string(runs.size()) + " runs, the manifest " +
                                          m.common.at("runs").dump());
-    return slam::fold_monte_carlo(runs, merged.at("first").get<slam::RunTrace>(), m.common.at("confidence"));
+    return fold_monte_carlo(runs, merged.at("first").get<RunTrace>(), m.common.at("confidence"));
 }
 
-namespace detail {
-
-cluster::ShardJob slam_job() {
-    return {"slam",
+void add_slam_job(cluster::JobRegistry& r) {
+    r.add({"slam",
             [](const json& common, const json& shard, std::size_t) {
-                const slam::SimConfig c = common.at("config").get<slam::SimConfig>();
+                const SimConfig c = common.at("config").get<SimConfig>();
                 c.validate();
                 const std::uint64_t seed0 = common.at("first_seed");
                 json runs = json::array();
                 json out;
                 for (long r = shard.at("first_run"); r < shard.at("last_run").get<long>(); ++r) {
-                    const slam::RunTrace t = slam::run_simulation(c, seed0 + r);
-                    runs.push_back(slam::run_errors(t));
+                    const RunTrace t = run_simulation(c, seed0 + r);
+                    runs.push_back(run_errors(t));
                     if (r == 0) out["first"] = t;
                 }
                 out["runs"] = std::move(runs);
@@ -53,9 +53,7 @@ cluster::ShardJob slam_job() {
                     if (d.contains("first")) first = d.at("first");
                 }
                 return json{{"runs", std::move(runs)}, {"first", std::move(first)}};
-            }};
+            }});
 }
 
-}  // namespace detail
-
-}  // namespace hc::jobs
+}  // namespace hc::slam

@@ -1,6 +1,6 @@
-// landmarks_job.cpp: the "landmarks" job kind, the descriptor comparison in shards of one
-// detector over a range of a dataset's pairs (every descriptor on those corners).
-#include "tools/jobs/jobs.hpp"
+// landmarks_job.cpp: the job kind "landmarks" (landmarks_job.hpp): the descriptor comparison
+// in shards of one detector over a range of a dataset's pairs (every descriptor on those corners).
+#include "slam/landmarks/landmarks_job.hpp"
 
 #include <map>
 #include <string>
@@ -8,30 +8,31 @@
 #include "model/harris/formats_json.hpp"
 #include "io/util/util.hpp"
 
-namespace hc::jobs {
+namespace hc::landmarks {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
 
 namespace {
 
-namespace lm = hc::landmarks;
-
-std::string norm_name(lm::Norm n) {
-    return n == lm::Norm::hamming ? "hamming" : n == lm::Norm::l2 ? "l2" : "auto";
+std::string norm_name(Norm n) {
+    return n == Norm::hamming ? "hamming" : n == Norm::l2 ? "l2" : "auto";
 }
 
-lm::Dataset load_pairs(const json& common, long first, long last) {
+Dataset load_pairs(const json& common, long first, long last) {
     const fs::path root = common.at("root").get<std::string>();
     if (common.at("dataset") == "kitti") {
         const int f = common.at("first");
-        return lm::kitti_dataset(root, common.at("sequence"), {f + static_cast<int>(first), f + static_cast<int>(last)});
+        return kitti_dataset(root, common.at("sequence"), {f + static_cast<int>(first), f + static_cast<int>(last)});
     }
     // the shard's scenes only, each loaded as middlebury_dataset loads it
-    const auto scenes = lm::middlebury_scenes(root);
+    const auto scenes = middlebury_scenes(root);
     if (last > static_cast<long>(scenes.size()))
         throw cluster::ClusterInputError("landmarks: " + root.string() + " holds " + std::to_string(scenes.size()) +
                                          " scenes, the run expects at least " + std::to_string(last));
-    lm::Dataset ds;
+    Dataset ds;
     for (long k = first; k < last; ++k) {
-        lm::Dataset one = lm::middlebury_dataset(scenes[k], common.at("need_truth"));
+        Dataset one = middlebury_dataset(scenes[k], common.at("need_truth"));
         ds.pairs.push_back(std::move(one.pairs.at(0)));
         ds.disparity.push_back(std::move(one.disparity.at(0)));
         ds.calib.push_back(one.calib.at(0));
@@ -46,7 +47,7 @@ std::string mat_hash(const cv::Mat& m) {
 
 /// Keypoints detected on a sub-dataset starting at pair `first` carry the frame numbers of
 /// the whole dataset (2k left, 2k+1 right of pair k), as compare() numbers them.
-void renumber(lm::FrameKeypoints& f, int offset) {
+void renumber(FrameKeypoints& f, int offset) {
     f.frame += offset;
     for (auto& k : f.points) k.class_id += offset;
 }
@@ -56,14 +57,14 @@ void renumber(lm::FrameKeypoints& f, int offset) {
 cluster::Manifest landmarks_manifest(const LandmarksShards& p) {
     const auto& o = p.options;
     if (o.detectors.empty() || o.descriptors.empty())
-        throw lm::InputError("the comparison needs at least one detector and one descriptor");
-    lm::validate(o.grid);
+        throw InputError("the comparison needs at least one detector and one descriptor");
+    validate(o.grid);
     for (auto det : o.detectors)
-        for (auto d : o.descriptors) lm::check_combination(d, det, o.match.norm);
+        for (auto d : o.descriptors) check_combination(d, det, o.match.norm);
     cluster::Manifest m;
     m.job = "landmarks";
     json descriptors = json::array();
-    for (auto d : o.descriptors) descriptors.push_back(lm::descriptor_name(d));
+    for (auto d : o.descriptors) descriptors.push_back(descriptor_name(d));
     m.common = {{"dataset", p.dataset},
                 {"root", fs::absolute(p.root).string()},
                 {"need_truth", p.need_truth},
@@ -81,22 +82,22 @@ cluster::Manifest landmarks_manifest(const LandmarksShards& p) {
     // pair chunks per software detector, so that the shards number about p.shards
     const int per_detector = p.shards <= 0 ? 0 : std::max(1, p.shards / static_cast<int>(o.detectors.size()));
     for (auto det : o.detectors) {
-        const auto chunks = lm::is_hardware(det) ? cluster::split_items(static_cast<long>(p.pairs), 1)
+        const auto chunks = is_hardware(det) ? cluster::split_items(static_cast<long>(p.pairs), 1)
                                                  : cluster::split_items(static_cast<long>(p.pairs), per_detector);
-        for (auto [a, b] : chunks) m.shards.push_back({{"detector", lm::detector_name(det)}, {"first", a}, {"last", b}});
+        for (auto [a, b] : chunks) m.shards.push_back({{"detector", detector_name(det)}, {"first", a}, {"last", b}});
     }
     return m;
 }
 
-std::vector<lm::ComparisonRow> landmarks_rows(const json& merged) {
-    std::vector<lm::ComparisonRow> rows;
+std::vector<ComparisonRow> landmarks_rows(const json& merged) {
+    std::vector<ComparisonRow> rows;
     for (const auto& j : merged.at("rows")) {
-        lm::ComparisonRow row;
-        row.detector = lm::parse_detector(j.at("detector"));
-        row.descriptor = lm::parse_descriptor(j.at("descriptor"));
+        ComparisonRow row;
+        row.detector = parse_detector(j.at("detector"));
+        row.descriptor = parse_descriptor(j.at("descriptor"));
         row.grid = {j.at("grid").at(0).get<int>(), j.at("grid").at(1).get<int>()};
         for (const auto& pj : j.at("pairs")) {
-            row.pairs.push_back(pj.get<lm::PairResult>());
+            row.pairs.push_back(pj.get<PairResult>());
             row.totals.add(row.pairs.back());
         }
         row.descriptor_bytes = row.pairs.empty() ? 0 : row.pairs.front().descriptor_bytes;
@@ -105,25 +106,23 @@ std::vector<lm::ComparisonRow> landmarks_rows(const json& merged) {
     return rows;
 }
 
-namespace detail {
-
-cluster::ShardJob landmarks_job() {
-    return {"landmarks",
+void add_landmarks_job(cluster::JobRegistry& r) {
+    r.add({"landmarks",
             [](const json& common, const json& shard, std::size_t) {
                 const long first = shard.at("first"), last = shard.at("last");
-                const lm::Detector det = lm::parse_detector(shard.at("detector"));
-                const lm::Dataset ds = load_pairs(common, first, last);
-                lm::CornerOptions co;
+                const Detector det = parse_detector(shard.at("detector"));
+                const Dataset ds = load_pairs(common, first, last);
+                CornerOptions co;
                 co.formats = formats_from_json(common.at("corners").at("formats"), "landmarks run formats");
                 co.keypoint_size = common.at("corners").at("keypoint_size");
                 co.orb_features = common.at("corners").at("orb_features");
-                lm::MatchParams mp;
-                mp.norm = lm::parse_norm(common.at("match").at("norm"));
+                MatchParams mp;
+                mp.norm = parse_norm(common.at("match").at("norm"));
                 mp.ratio = common.at("match").at("ratio");
                 mp.drop_ties = common.at("match").at("drop_ties");
                 mp.epipolar_px = common.at("match").at("epipolar_px");
-                const lm::GridParams gp{common.at("grid").at(0).get<int>(), common.at("grid").at(1).get<int>()};
-                auto kp = lm::detect_dataset(ds, det, co);
+                const GridParams gp{common.at("grid").at(0).get<int>(), common.at("grid").at(1).get<int>()};
+                auto kp = detect_dataset(ds, det, co);
                 for (auto& p : kp) {
                     renumber(p.left, static_cast<int>(2 * first));
                     renumber(p.right, static_cast<int>(2 * first));
@@ -134,17 +133,17 @@ cluster::ShardJob landmarks_job() {
                 cv::setNumThreads(1);   // extraction and matching timed on one thread, as compare() does
                 json rows = json::array();
                 for (const auto& dn : common.at("descriptors")) {
-                    const lm::Descriptor d = lm::parse_descriptor(dn);
+                    const Descriptor d = parse_descriptor(dn);
                     json pairs = json::array();
                     for (std::size_t k = 0; k < ds.pairs.size(); ++k) {
                         const cv::Mat none;
-                        json pj = json(lm::match_pair(ds.pairs[k], kp[k], d, gp, mp,
+                        json pj = json(match_pair(ds.pairs[k], kp[k], d, gp, mp,
                                                            k < ds.disparity.size() ? ds.disparity[k] : none));
                         pj["index"] = first + static_cast<long>(k);
                         pj["input_hash"] = inputs[k];
                         pairs.push_back(std::move(pj));
                     }
-                    rows.push_back({{"detector", lm::detector_name(det)}, {"descriptor", dn}, {"grid", common.at("grid")},
+                    rows.push_back({{"detector", detector_name(det)}, {"descriptor", dn}, {"grid", common.at("grid")},
                                     {"pairs", std::move(pairs)}});
                 }
                 cv::setNumThreads(threads);
@@ -178,9 +177,7 @@ cluster::ShardJob landmarks_job() {
                     out["rows"].push_back(std::move(rows[k]));
                 }
                 return out;
-            }};
+            }});
 }
 
-}  // namespace detail
-
-}  // namespace hc::jobs
+}  // namespace hc::landmarks
