@@ -12,7 +12,7 @@
 #include "eval/eval_job.hpp"
 #include "eval/sequences.hpp"
 #include "io/frames/frames.hpp"
-#include "tools/jobs/jobs.hpp"
+#include "tools/registry.hpp"
 #include "tools/commands.hpp"
 #include "tools/frame_source.hpp"
 #include "tools/runner_flags.hpp"
@@ -73,7 +73,7 @@ void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
         if (!got) return;
         merged = std::move(*got);
     } else {
-        merged = cluster::run_in_process(jobs::registry(), m);
+        merged = cluster::run_in_process(registry(), m);
     }
     eval::Report rep = eval::eval_report(merged);
     rep.command = fmt::format("harris-cosim eval --source {} --kitti {} --sequences {}{}{} --out {}", j.source,

@@ -13,7 +13,6 @@
 
 #include <fmt/format.h>
 
-#include "tools/jobs/jobs.hpp"
 #include "tools/commands.hpp"
 #include "tools/frame_source.hpp"
 #include "tools/runner_flags.hpp"

@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include "io/frames/frames.hpp"
-#include "tools/jobs/jobs.hpp"
 #include "mutation/mutants_job.hpp"
 #include "mutation/mutation.hpp"
 #include "io/util/util.hpp"

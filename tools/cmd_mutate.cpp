@@ -2,7 +2,6 @@
 // or writes its Markdown table (docs/mutation-smoke.md).
 #include <cstdio>
 
-#include "tools/jobs/jobs.hpp"
 #include "mutation/mutate_job.hpp"
 #include "mutation/mutation.hpp"
 #include "tools/cmd_mutants.hpp"

@@ -15,7 +15,6 @@
 
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
-#include "tools/jobs/jobs.hpp"
 #include "io/frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
 #include "io/util/util.hpp"

@@ -14,7 +14,6 @@
 #include "io/frames/frames.hpp"
 #include "sweep/sweep.hpp"
 #include "sweep/sweep_job.hpp"
-#include "tools/jobs/jobs.hpp"
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
 #include "sweep/sweep_report.hpp"

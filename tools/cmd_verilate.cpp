@@ -15,7 +15,7 @@
 #include "cosim/verilator/verilate.hpp"
 #include "cosim/verilator/verilate_job.hpp"
 #include "eval/sequences.hpp"
-#include "tools/jobs/jobs.hpp"
+#include "tools/registry.hpp"
 #include "model/harris/formats_json.hpp"
 #include "tools/commands.hpp"
 #include "tools/frame_source.hpp"
@@ -64,7 +64,7 @@ void run_verilate_job(const VerilateArgs& a) {
         if (!got) return;
         merged = std::move(*got);
     } else {
-        merged = cluster::run_in_process(jobs::registry(), m);
+        merged = cluster::run_in_process(registry(), m);
     }
     for (const auto& s : merged.at("sequences"))
         std::fprintf(stderr, "verilate: sequence %s: %ld frames, %ld writes, %ld reads, %ld corners, %ld mismatches (%s)\n",

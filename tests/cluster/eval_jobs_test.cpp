@@ -22,7 +22,7 @@
 #include "eval/eval_job.hpp"
 #include "eval/sequences.hpp"
 #include "io/frames/frames.hpp"
-#include "tools/jobs/jobs.hpp"
+#include "tools/registry.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/harris/harris_top.hpp"
 #include "tests/cluster/standin_kitti.hpp"
@@ -112,8 +112,8 @@ int take_chain_checked(json& merged) {
 void check_sharded_equals_single(const cluster::Manifest& sharded, const cluster::Manifest& single,
                                  cluster::RunnerKind kind, const std::string& name) {
     const fs::path dir = scratch(name);
-    json merged = cluster::run_and_merge(jobs::registry(), dir, sharded, runner(kind));
-    json once = cluster::run_in_process(jobs::registry(), single);
+    json merged = cluster::run_and_merge(tools::registry(), dir, sharded, runner(kind));
+    json once = cluster::run_in_process(tools::registry(), single);
     if (sharded.job == "eval") {
         const bool cycle = sharded.common.at("source") == "cycle";
         CHECK(take_chain_checked(merged) ==
@@ -310,7 +310,7 @@ TEST_CASE("spec and cycle evaluations sharded within sequences merge to the sing
         REQUIRE(sharded.shards.size() == 5);
         if (std::string(source) == "cycle") CHECK_FALSE(sharded.shards[1].at("start").is_null());
         check_sharded_equals_single(sharded, single, cluster::RunnerKind::local, std::string("local-") + source);
-        const eval::Report r = eval::eval_report(cluster::run_in_process(jobs::registry(), single));
+        const eval::Report r = eval::eval_report(cluster::run_in_process(tools::registry(), single));
         CHECK(r.frames.size() == 24);
         CHECK(r.sequences.size() == 2);
     }
@@ -323,7 +323,7 @@ TEST_CASE("a sharded cycle run checks its chain at every boundary and refuses a 
     REQUIRE(m.shards.size() == 3);
     // the good chain: two boundaries checked, and the report says so
     {
-        const eval::Report r = eval::eval_report(cluster::run_in_process(jobs::registry(), m));
+        const eval::Report r = eval::eval_report(cluster::run_in_process(tools::registry(), m));
         CHECK(std::count(r.notes.begin(), r.notes.end(),
                          "Sharded cycle run: chain checked at 2 boundaries (at each, the cycle model's registers, the "
                          "host driver's position and the recent writes where a part stopped equal the next part's "
@@ -338,7 +338,7 @@ TEST_CASE("a sharded cycle run checks its chain at every boundary and refuses a 
     REQUIRE(eval::to_json(bad) != m.shards[2].at("start"));   // the short warm-up does give another state
     m.shards[2]["start"] = eval::to_json(bad);
     try {
-        cluster::run_in_process(jobs::registry(), m);
+        cluster::run_in_process(tools::registry(), m);
         FAIL("the merge accepted a part started from a wrong checkpoint");
     } catch (const SimulatorError& e) {
         const std::string what = e.what();
@@ -360,7 +360,7 @@ TEST_CASE("rtl evaluations and verilate runs sharded by sequence merge to the si
     v.sequences = {"02", "03"};
     const cluster::Manifest vm = vl::verilate_manifest(v);
     vl::prepare_rtl(vm);
-    const json once = cluster::run_in_process(jobs::registry(), vm);
+    const json once = cluster::run_in_process(tools::registry(), vm);
     CHECK(once.at("status") == "pass");
     CHECK(once.at("totals").at("frames") == 24);
     check_sharded_equals_single(vm, vm, cluster::RunnerKind::local, "local-verilate");

@@ -6,8 +6,10 @@
 #include <unistd.h>
 
 #include <cstring>
+#include <filesystem>
 
-#include "tools/jobs/jobs.hpp"
+#include "slam/slam_job.hpp"
+#include "tools/registry.hpp"
 
 using namespace hc;
 
@@ -42,13 +44,13 @@ TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo st
     p.shards = 3;
     const cluster::Manifest m = slam::slam_manifest(p);
     REQUIRE(m.shards.size() == 3);
-    const jobs::fs::path dir = jobs::fs::temp_directory_path() / ("hc-slam-job-test-" + std::to_string(::getpid()));
-    jobs::fs::remove_all(dir);
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("hc-slam-job-test-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
     cluster::RunOptions o;
     o.jobs = 2;
     o.worker = {HC_CLI, "shard", "run"};
-    const jobs::json merged = cluster::run_and_merge(jobs::registry(), dir, m, o);
-    CHECK(merged == cluster::run_in_process(jobs::registry(), m));
+    const nlohmann::json merged = cluster::run_and_merge(tools::registry(), dir, m, o);
+    CHECK(merged == cluster::run_in_process(tools::registry(), m));
 
     const slam::MonteCarlo a = slam::slam_result(m, merged);
     const slam::MonteCarlo b = slam::monte_carlo(c, 7, 3);
@@ -80,7 +82,7 @@ TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo st
     CHECK(same_bits(a.first.world.landmarks, b.first.world.landmarks));
     CHECK(same_bits(a.first.final_map, b.first.final_map));
     CHECK(same_bits(a.first.final_map_cov, b.first.final_map_cov));
-    jobs::fs::remove_all(dir);
+    std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("a slam manifest refuses a bad run count with the input named", "[cluster]") {

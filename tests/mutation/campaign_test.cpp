@@ -7,12 +7,12 @@
 #include <algorithm>
 
 #include "io/frames/frames.hpp"
-#include "tools/jobs/jobs.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/harris/find_max.hpp"
 #include "model/harris/harris_top.hpp"
 #include "mutation/mutants_job.hpp"
 #include "mutation/mutation.hpp"
+#include "tools/registry.hpp"
 
 using namespace hc;
 
@@ -145,7 +145,7 @@ TEST_CASE("the mutants job splits the named mutants into shards in order", "[mut
     REQUIRE(m.shards.size() == 3);
     CHECK(m.shards[0]["names"].size() == 4);
     CHECK(m.shards[2]["names"].back() == "m9");
-    const auto kinds = jobs::registry().names();
+    const auto kinds = tools::registry().names();
     CHECK(std::find(kinds.begin(), kinds.end(), "mutants") != kinds.end());
 }
 

@@ -1,7 +1,15 @@
-// jobs.cpp: the registry of job kinds.
-#include "tools/jobs/jobs.hpp"
+// registry.cpp: the registry of every job kind (registry.hpp).
+#include "tools/registry.hpp"
 
-namespace hc::jobs {
+#include "cosim/verilator/verilate_job.hpp"
+#include "eval/eval_job.hpp"
+#include "mutation/mutants_job.hpp"
+#include "mutation/mutate_job.hpp"
+#include "slam/landmarks/landmarks_job.hpp"
+#include "slam/slam_job.hpp"
+#include "sweep/sweep_job.hpp"
+
+namespace hc::tools {
 
 const cluster::JobRegistry& registry() {
     static const cluster::JobRegistry reg = [] {
@@ -19,4 +27,4 @@ const cluster::JobRegistry& registry() {
     return reg;
 }
 
-}  // namespace hc::jobs
+}  // namespace hc::tools
