@@ -183,6 +183,9 @@ struct SequenceRun {
     TrajectoryMetrics slam_metrics, odometry_metrics;
     std::vector<Vec2> map;   ///< final landmark positions
     std::vector<Mat2> map_cov;
+    /// Visual odometry on pixels with the disparity correction estimated: the correction each
+    /// frame was given (px, VisualOdometry::disparity_offset); empty otherwise.
+    std::vector<double> disparity_offset;
 };
 /// The filter over frames with the given motions (motions.size() == frames.size() − 1),
 /// started at `start`, then scored against `truth` (one pose per frame; used only after the

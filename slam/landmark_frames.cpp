@@ -8,6 +8,12 @@
 
 namespace hc::slam {
 
+landmarks::PipelineOptions kitti_pipeline_defaults() {
+    landmarks::PipelineOptions o;
+    o.descriptor = landmarks::Descriptor::brief;
+    return o;
+}
+
 StereoLandmarkObs to_observation(const landmarks::Landmark& l) {
     StereoLandmarkObs o;
     o.p_cam = Eigen::Vector3d(l.p_cam[0], l.p_cam[1], l.p_cam[2]);
@@ -30,9 +36,10 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const lan
 
 namespace {
 
-/// The landmark pipeline on the sequence's first `poses` stereo pairs (fewer when it has fewer).
+/// The landmark pipeline on the sequence's first `poses` stereo pairs (fewer when it has fewer);
+/// `rig`, the rig of the first pair.
 std::vector<StereoFrame> stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, size_t poses,
-                                       const KittiRunOptions& o) {
+                                       const KittiRunOptions& o, stereo::RectifiedRig& rig) {
     const landmarks::PipelineOptions& po = o.pipeline;
     landmarks::validate(po.grid);
     landmarks::check_combination(po.descriptor, po.detector, landmarks::Norm::automatic);
@@ -46,6 +53,7 @@ std::vector<StereoFrame> stereo_frames(const std::filesystem::path& kitti, const
         o.progress("landmarks of " + std::to_string(ds.pairs.size()) + " stereo pairs of " + sequence + " (" +
                    landmarks::detector_name(po.detector) + " corners, " + landmarks::descriptor_name(po.descriptor) +
                    " descriptor)");
+    rig = ds.calib.front();
     return landmark_frames(ds, po);
 }
 
@@ -55,20 +63,24 @@ KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::strin
     auto poses = read_kitti_poses(frames::kitti_poses_file(kitti, sequence));
     if (poses.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
     o.association.validate();
-    o.vo.validate();
+    // the frames' rig, for visual odometry on pixel residuals: synthetic_rig() for synthetic
+    // landmarks, the first pair's rig for the pipeline's (set by stereo_frames)
+    VisualOdometryConfig vo = o.vo;
+    vo.rig = synthetic_rig();
+    vo.validate();
     if (!o.visual_odometry) o.synthetic.validate();
     std::vector<StereoFrame> frames;
     if (o.stereo_landmarks) {
-        frames = stereo_frames(kitti, sequence, poses.size(), o);
+        frames = stereo_frames(kitti, sequence, poses.size(), o, *vo.rig);
         poses.resize(frames.size());
     } else {
         if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
-        frames = synthesize_stereo_frames(poses, synthetic_rig(), {}, o.synthetic_count, o.flip_bits, o.seed);
+        frames = synthesize_stereo_frames(poses, *vo.rig, {}, o.synthetic_count, o.flip_bits, o.seed);
     }
     std::vector<Pose> truth;
     for (const auto& T : poses) truth.push_back(planar_pose(T));
     KittiRun r;
-    r.run = o.visual_odometry ? run_visual_sequence(frames, truth, o.vo, o.association, &r.vo)
+    r.run = o.visual_odometry ? run_visual_sequence(frames, truth, vo, o.association, &r.vo)
                               : run_sequence(poses, frames, o.synthetic, o.association, o.seed);
     return r;
 }

@@ -22,11 +22,16 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const lan
 /// One KITTI odometry sequence through the filter (`harris-cosim slam --sequences`): where the
 /// landmarks come from, where the motion comes from, the association. Every default is the
 /// owning struct's.
+/// The landmark pipeline a KITTI run uses by default: landmarks::PipelineOptions's, with
+/// BRIEF (the authors' box smoothing) as the descriptor. Chosen on Middlebury 2006, not on a
+/// KITTI sequence (docs/slam.md, "How the defaults were chosen").
+landmarks::PipelineOptions kitti_pipeline_defaults();
+
 struct KittiRunOptions {
     /// true: the landmark pipeline on the sequence's stereo pairs (`pipeline`); false:
     /// synthetic landmarks along the ground-truth trajectory (synthesize_stereo_frames)
-    bool stereo_landmarks = false;
-    landmarks::PipelineOptions pipeline;   ///< corners, descriptor (binary), grid, formats
+    bool stereo_landmarks = true;
+    landmarks::PipelineOptions pipeline = kitti_pipeline_defaults();   ///< corners, descriptor (binary), grid, formats
     int synthetic_count = 1000;            ///< synthetic landmarks: world points
     int flip_bits = 8;                     ///< synthetic landmarks: bits flipped per observed descriptor
     /// true: stereo visual odometry from the frames (run_visual_sequence, no ground truth);

@@ -1,12 +1,13 @@
-// odometry.cpp: stereo visual odometry on the top view: descriptor matches between the
-// landmarks of consecutive frames, RANSAC over pairs of matches with the closed-form 2-D
-// rigid alignment, weighted Gauss-Newton on the inliers and the covariance of its solution.
+// odometry.cpp: stereo visual odometry: descriptor matches between the landmarks of
+// consecutive frames, then RANSAC, weighted Gauss-Newton on the inliers and the covariance of
+// its solution, on pixel residuals (6-DoF) or on the top view (3-DoF).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 
 #include "slam/odometry.hpp"
 
@@ -23,6 +24,12 @@ void VisualOdometryConfig::validate() const {
     if (!(max_step > 0)) throw InputError("the odometry's largest step must be positive");
     if (!(fail_sigma_xy > 0) || !(fail_sigma_theta > 0))
         throw InputError("the odometry's failure standard deviations must be positive");
+    if (!(disparity_offset_significance >= 0))
+        throw InputError("the odometry's disparity-correction significance must not be negative");
+    if (residual == OdometryResidual::pixels) {
+        if (!rig) throw InputError("visual odometry on pixel residuals needs the rig the frames were triangulated through");
+        rig->validate();
+    }
 }
 
 std::pair<Vec2, Mat2> top_view(const StereoLandmarkObs& o) {
@@ -34,10 +41,28 @@ std::pair<Vec2, Mat2> top_view(const StereoLandmarkObs& o) {
 
 namespace {
 
+using Vec3 = Eigen::Vector3d;
+
+/// (u_l, v, u_r) of the camera-frame point X through the rig, and its Jacobian in X.
+Vec3 rig_pixels(const stereo::RectifiedRig& g, const Vec3& X, Mat3* J = nullptr) {
+    const double iz = 1 / X.z();
+    const Vec3 m((g.fx * X.x() + g.tx0) * iz + g.cx0, (g.fy * X.y() + g.ty) * iz + g.cy,
+                 (g.fx * X.x() + g.tx1) * iz + g.cx1);
+    if (J)
+        *J << g.fx * iz, 0, -(g.fx * X.x() + g.tx0) * iz * iz,  //
+            0, g.fy * iz, -(g.fy * X.y() + g.ty) * iz * iz,      //
+            g.fx * iz, 0, -(g.fx * X.x() + g.tx1) * iz * iz;
+    return m;
+}
+
 struct Point {
     int index;
-    Vec2 q;
+    Vec2 q;     // top view and its covariance
     Mat2 C;
+    Vec3 X;     // camera frame and its covariance
+    Mat3 C3;
+    Vec3 m;     // with a rig: where the rig saw it, (u_l, v, u_r), and that covariance
+    Mat3 M;
     const std::vector<uint8_t>* desc;
 };
 
@@ -48,7 +73,13 @@ std::vector<Point> usable(const StereoFrame& f, const VisualOdometryConfig& c) {
         const auto [q, C] = top_view(f[i]);
         const double r = q.norm();
         if (r < c.min_range || r > c.max_range) continue;
-        out.push_back({i, q, C, &f[i].descriptor});
+        Point p{i, q, C, f[i].p_cam, f[i].cov, Vec3::Zero(), Mat3::Zero(), &f[i].descriptor};
+        if (c.rig) {
+            Mat3 J;
+            p.m = rig_pixels(*c.rig, p.X, &J);
+            p.M = J * p.C3 * J.transpose();
+        }
+        out.push_back(p);
     }
     return out;
 }
@@ -97,15 +128,9 @@ Mat3 refine(const std::vector<const Match*>& in, Motion& u) {
     return H;
 }
 
-}  // namespace
-
-MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& current,
-                               const VisualOdometryConfig& cfg) {
-    cfg.validate();
-    MotionEstimate est;
-    const std::vector<Point> P = usable(previous, cfg), C = usable(current, cfg);
-    if (P.empty() || C.empty()) return est;
-    // mutual nearest neighbours by Hamming distance under the relative threshold
+/// Mutual nearest neighbours by Hamming distance under the relative threshold.
+std::vector<Match> descriptor_matches(const std::vector<Point>& P, const std::vector<Point>& C,
+                                      const VisualOdometryConfig& cfg) {
     std::vector<int> best_c(P.size(), -1), best_p(C.size(), -1);
     std::vector<int> dist_c(P.size(), std::numeric_limits<int>::max()), dist_p(C.size(), std::numeric_limits<int>::max());
     for (size_t i = 0; i < P.size(); ++i)
@@ -122,8 +147,46 @@ MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& c
             continue;
         matches.push_back({&P[i], &C[j]});
     }
-    est.candidates = static_cast<int>(matches.size());
-    if (matches.size() < 2) return est;
+    return matches;
+}
+
+/// The inliers and the motion of one residual model, in its own parameters.
+struct Solved {
+    std::vector<const Match*> inliers;
+    Motion u = Motion::Zero();
+    Mat3 cov = Mat3::Identity();
+    bool ok = false;
+    double disparity_offset = 0, disparity_offset_sigma = 0;   // pixels with the offset estimated
+};
+
+/// A hypothesis's support: the matches within `gate` of it (`distance2(m)`, a Mahalanobis
+/// distance²) and the sum of their distances².
+template <class Distance2>
+std::pair<int, double> support(const std::vector<Match>& matches, double gate, Distance2 distance2) {
+    int n = 0;
+    double cost = 0;
+    for (const auto& m : matches) {
+        const double d2 = distance2(m);
+        if (d2 <= gate) {
+            ++n;
+            cost += d2;
+        }
+    }
+    return {n, cost};
+}
+
+/// The matches within `gate` of the hypothesis `within(m)` (a Mahalanobis distance²).
+template <class Distance2>
+std::vector<const Match*> select_inliers(const std::vector<Match>& matches, double gate, Distance2 within) {
+    std::vector<const Match*> in;
+    for (const auto& m : matches)
+        if (within(m) <= gate) in.push_back(&m);
+    return in;
+}
+
+Solved top_view_motion(const std::vector<Match>& matches, const VisualOdometryConfig& cfg) {
+    Solved out;
+    if (matches.size() < 2) return out;
     const double gate = chi2_quantile(cfg.inlier_probability, 2);
     // RANSAC over pairs: the rotation that turns the current pair's chord into the previous one's
     std::mt19937_64 rng(0x5eed);
@@ -140,43 +203,243 @@ MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& c
         const Mat2 R = rotation(th);
         const Vec2 t = (matches[a].p->q + matches[b].p->q) / 2 - R * (matches[a].c->q + matches[b].c->q) / 2;
         if (t.norm() > cfg.max_step) continue;
-        int n = 0;
-        double cost = 0;
-        for (const auto& m : matches) {
-            const double d2 = residual2(m, R, t);
-            if (d2 <= gate) {
-                ++n;
-                cost += d2;
-            }
-        }
+        const auto [n, cost] = support(matches, gate, [&](const Match& m) { return residual2(m, R, t); });
         if (n > best_n || (n == best_n && cost < best_cost)) {
             best_n = n;
             best_cost = cost;
             best = Motion(t.x(), t.y(), th);
         }
     }
-    if (best_n < 2) return est;
+    if (best_n < 2) return out;
     Motion u = best;
-    std::vector<const Match*> in;
     Mat3 H = Mat3::Zero();
     for (int round = 0; round < 3; ++round) {
         const Mat2 R = rotation(u(2));
-        std::vector<const Match*> next;
-        for (const auto& m : matches)
-            if (residual2(m, R, u.head<2>()) <= gate) next.push_back(&m);
-        if (next.size() < 2) return est;
-        const bool same = next == in;
-        in.swap(next);
-        H = refine(in, u);
+        std::vector<const Match*> next =
+            select_inliers(matches, gate, [&](const Match& m) { return residual2(m, R, u.head<2>()); });
+        if (next.size() < 2) return out;
+        const bool same = next == out.inliers;
+        out.inliers.swap(next);
+        H = refine(out.inliers, u);
         if (same) break;
     }
-    est.inliers = static_cast<int>(in.size());
-    if (est.inliers < cfg.min_inliers || u.head<2>().norm() > cfg.max_step) return est;
-    est.u = u;
-    est.cov = H.inverse();
-    est.cov = (est.cov + est.cov.transpose()) / 2;
+    out.u = u;
+    out.cov = H.inverse();
+    out.ok = true;
+    return out;
+}
+
+// ---- pixel residuals, 6-DoF and the disparity correction -------------------------------------
+
+using Mat7 = Eigen::Matrix<double, 7, 7>;
+using Vec7 = Eigen::Matrix<double, 7, 1>;
+
+/// The current camera in the previous one's frame, X_prev = R X_cur + t, and the disparity
+/// correction c (px) of both frames' measurements: a point seen at (u_l, v, u_r) is taken at
+/// (u_l, v, u_r − c), its disparity c larger.
+struct Rigid {
+    Mat3 R = Mat3::Identity();
+    Vec3 t = Vec3::Zero();
+    double c = 0;
+};
+
+/// T moved by d = (ω, δt, δc): R Exp(ω), t + δt, c + δc.
+Rigid perturbed(const Rigid& T, const Vec7& d) {
+    const Vec3 w = d.head<3>();
+    const double a = w.norm();
+    Rigid out = T;
+    if (a > 0) out.R = T.R * Eigen::AngleAxisd(a, w / a).toRotationMatrix();
+    out.t = T.t + d.segment<3>(3);
+    out.c = T.c + d(6);
+    return out;
+}
+
+/// The point the rig sees at m = (u_l, v, u_r): rig_pixels' inverse (stereo.hpp's model).
+Vec3 rig_point(const stereo::RectifiedRig& g, const Vec3& m) {
+    const double D = m(0) - m(2) - (g.cx0 - g.cx1), Z = (g.tx0 - g.tx1) / D;
+    return Vec3(((m(0) - g.cx0) * Z - g.tx0) / g.fx, ((m(1) - g.cy) * Z - g.ty) / g.fy, Z);
+}
+
+Motion planar_motion(const Rigid& T) {
+    Mat34 M;
+    M << T.R, T.t;
+    return planar_pose(M);
+}
+
+/// Where the current frame saw match m's point, minus where the previous frame's point lands in
+/// the current camera under T, in pixels (u_l, v, u_r), both frames' measurements corrected by
+/// T.c; S, its covariance: both points' covariances carried into those pixels. false when the
+/// moved point is not in front.
+bool pixel_residual(const Match& m, const Rigid& T, const stereo::RectifiedRig& g, Vec3& r, Mat3* S = nullptr) {
+    const Vec3 corr(0, 0, T.c);
+    const Vec3 Xp = T.c == 0 ? m.p->X : rig_point(g, m.p->m - corr);
+    if (!(Xp.z() > 0)) return false;
+    const Vec3 X = T.R.transpose() * (Xp - T.t);
+    if (!(X.z() > 0.1)) return false;
+    Mat3 J;
+    r = (m.c->m - corr) - rig_pixels(g, X, S ? &J : nullptr);
+    if (S) {
+        const Mat3 A = J * T.R.transpose();
+        *S = m.c->M + A * m.p->C3 * A.transpose();
+    }
+    return true;
+}
+
+double pixel_distance2(const Match& m, const Rigid& T, const stereo::RectifiedRig& g) {
+    Vec3 r;
+    Mat3 S;
+    if (!pixel_residual(m, T, g, r, &S)) return std::numeric_limits<double>::infinity();
+    return r.dot(S.ldlt().solve(r));
+}
+
+/// Weighted Gauss-Newton in (ω, δt), and δc when `offset`, from T (each match's weight at
+/// the current T; Jacobians by central differences); returns the information matrix at the
+/// end (7 × 7; without `offset` its c row and column are those of a fixed c: H(6, 6) = 1).
+/// With `offset` and prior.sigma > 0, the prior on c enters as one more residual, c − mean.
+Mat7 refine_pixels(const std::vector<const Match*>& in, const stereo::RectifiedRig& g, Rigid& T, bool offset,
+                   const DisparityPrior& prior = {}) {
+    Mat7 H = Mat7::Zero();
+    constexpr double h = 1e-6;
+    const int dof = offset ? 7 : 6;
+    for (int it = 0; it < 10; ++it) {
+        H.setZero();
+        Vec7 grad = Vec7::Zero();
+        for (const Match* m : in) {
+            Vec3 r, rp, rm;
+            Mat3 S;
+            if (!pixel_residual(*m, T, g, r, &S)) continue;
+            Eigen::Matrix<double, 3, 7> J = Eigen::Matrix<double, 3, 7>::Zero();
+            for (int k = 0; k < dof; ++k) {
+                const Vec7 d = Vec7::Unit(k) * h;
+                pixel_residual(*m, perturbed(T, d), g, rp);
+                pixel_residual(*m, perturbed(T, -d), g, rm);
+                J.col(k) = (rp - rm) / (2 * h);
+            }
+            const Mat3 W = S.inverse();
+            H += J.transpose() * W * J;
+            grad += J.transpose() * W * r;
+        }
+        if (!offset) {
+            H(6, 6) = 1;
+        } else if (prior.sigma > 0) {
+            const double w = 1 / (prior.sigma * prior.sigma);
+            H(6, 6) += w;
+            grad(6) += w * (T.c - prior.mean);
+        }
+        const Vec7 d = -H.ldlt().solve(grad);
+        T = perturbed(T, d);
+        if (d.norm() < 1e-12) break;
+    }
+    return H;
+}
+
+/// RANSAC over triples of matches: the closed-form rigid alignment of their 3-D points; each
+/// hypothesis that beats the best unrefined one is also refined on its inliers (locally
+/// optimised RANSAC), since a triple's depth errors put its alignment off by more than the
+/// pixel gate allows. `best_n`: the support of the hypothesis returned.
+/// The correction the motion is computed at: the prior's mean once it differs from 0 by more
+/// than disparity_offset_significance of its standard deviations, else 0.
+double applied_offset(const DisparityPrior& prior, const VisualOdometryConfig& cfg) {
+    return prior.sigma > 0 && std::abs(prior.mean) > cfg.disparity_offset_significance * prior.sigma ? prior.mean : 0;
+}
+
+/// Hypotheses keep the disparity correction c0.
+Rigid pixel_hypothesis(const std::vector<Match>& matches, const VisualOdometryConfig& cfg, double c0, int& best_n) {
+    const stereo::RectifiedRig& g = *cfg.rig;
+    const double gate = chi2_quantile(cfg.inlier_probability, 3);
+    std::mt19937_64 rng(0x5eed);
+    std::uniform_int_distribution<size_t> pick(0, matches.size() - 1);
+    std::pair<int, double> best{-1, 0}, best_raw{-1, 0};
+    const auto better = [](const std::pair<int, double>& a, const std::pair<int, double>& b) {
+        return a.first > b.first || (a.first == b.first && a.second < b.second);
+    };
+    Rigid best_T;
+    for (int it = 0; it < cfg.ransac_iterations; ++it) {
+        const size_t a = pick(rng), b = pick(rng), c = pick(rng);
+        if (a == b || a == c || b == c) continue;
+        Mat3 cur, prev;
+        cur << matches[a].c->X, matches[b].c->X, matches[c].c->X;
+        prev << matches[a].p->X, matches[b].p->X, matches[c].p->X;
+        if ((cur.col(1) - cur.col(0)).cross(cur.col(2) - cur.col(0)).norm() < 0.25) continue;
+        const Eigen::Matrix4d M = Eigen::umeyama(cur, prev, false);
+        Rigid T{M.topLeftCorner<3, 3>(), M.topRightCorner<3, 1>(), c0};
+        if (T.t.norm() > cfg.max_step) continue;
+        refine_pixels({&matches[a], &matches[b], &matches[c]}, g, T, false);
+        if (!(T.t.norm() <= cfg.max_step)) continue;
+        const auto raw = support(matches, gate, [&](const Match& m) { return pixel_distance2(m, T, g); });
+        if (!better(raw, best_raw)) continue;
+        best_raw = raw;
+        if (better(raw, best)) best = raw, best_T = T;
+        const std::vector<const Match*> in =
+            select_inliers(matches, gate, [&](const Match& m) { return pixel_distance2(m, T, g); });
+        if (in.size() < 3) continue;
+        refine_pixels(in, g, T, false);
+        if (T.t.norm() > cfg.max_step) continue;
+        const auto refined = support(matches, gate, [&](const Match& m) { return pixel_distance2(m, T, g); });
+        if (better(refined, best)) best = refined, best_T = T;
+    }
+    best_n = best.first;
+    return best_T;
+}
+
+Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfig& cfg, const DisparityPrior& prior) {
+    Solved out;
+    if (matches.size() < 3) return out;
+    const stereo::RectifiedRig& g = *cfg.rig;
+    const double gate = chi2_quantile(cfg.inlier_probability, 3);
+    int best_n = 0;
+    // the motion at the correction the earlier steps established
+    Rigid T = pixel_hypothesis(matches, cfg, cfg.estimate_disparity_offset ? applied_offset(prior, cfg) : 0, best_n);
+    if (best_n < 3) return out;
+    Mat7 H = Mat7::Zero();
+    for (int round = 0; round < 3; ++round) {
+        std::vector<const Match*> next =
+            select_inliers(matches, gate, [&](const Match& m) { return pixel_distance2(m, T, g); });
+        if (next.size() < 3) return out;
+        const bool same = next == out.inliers;
+        out.inliers.swap(next);
+        H = refine_pixels(out.inliers, g, T, false);
+        if (same) break;
+    }
+    // the top view of T and its covariance: Jacobian of planar_motion in (ω, δt), central differences
+    out.u = planar_motion(T);
+    Eigen::Matrix<double, 3, 7> J = Eigen::Matrix<double, 3, 7>::Zero();
+    constexpr double h = 1e-7;
+    for (int k = 0; k < 6; ++k) {
+        Motion d = planar_motion(perturbed(T, Vec7::Unit(k) * h)) - planar_motion(perturbed(T, -Vec7::Unit(k) * h));
+        d(2) = wrap_angle(d(2));
+        J.col(k) = d / (2 * h);
+    }
+    out.cov = J * H.inverse() * J.transpose();
+    if (cfg.estimate_disparity_offset) {   // the correction's estimate with this step's inliers
+        Rigid T7 = T;
+        const Mat7 H7 = refine_pixels(out.inliers, g, T7, true, prior);
+        out.disparity_offset = T7.c;
+        out.disparity_offset_sigma = std::sqrt(H7.inverse()(6, 6));
+    }
+    out.ok = true;
+    return out;
+}
+
+}  // namespace
+
+MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& current,
+                               const VisualOdometryConfig& cfg, const DisparityPrior& prior) {
+    cfg.validate();
+    MotionEstimate est;
+    const std::vector<Point> P = usable(previous, cfg), C = usable(current, cfg);
+    const std::vector<Match> matches = descriptor_matches(P, C, cfg);
+    est.candidates = static_cast<int>(matches.size());
+    const Solved s = cfg.residual == OdometryResidual::pixels ? pixel_motion(matches, cfg, prior) : top_view_motion(matches, cfg);
+    if (!s.ok) return est;
+    est.inliers = static_cast<int>(s.inliers.size());
+    if (est.inliers < cfg.min_inliers || s.u.head<2>().norm() > cfg.max_step) return est;
+    est.u = s.u;
+    est.cov = (s.cov + s.cov.transpose()) / 2;
+    est.disparity_offset = s.disparity_offset;
+    est.disparity_offset_sigma = s.disparity_offset_sigma;
     est.ok = true;
-    for (const Match* m : in) est.matches.emplace_back(m->p->index, m->c->index);
+    for (const Match* m : s.inliers) est.matches.emplace_back(m->p->index, m->c->index);
     return est;
 }
 
@@ -187,20 +450,45 @@ VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const Vis
     const Mat3 fail = Eigen::Vector3d(cfg.fail_sigma_xy * cfg.fail_sigma_xy, cfg.fail_sigma_xy * cfg.fail_sigma_xy,
                                       cfg.fail_sigma_theta * cfg.fail_sigma_theta)
                           .asDiagonal();
+    DisparityPrior offset;   // the posterior of the last step that estimated c
     for (size_t k = 1; k < frames.size(); ++k) {
-        MotionEstimate e = estimate_motion(frames[k - 1], frames[k], cfg);
+        MotionEstimate e = estimate_motion(frames[k - 1], frames[k], cfg, offset);
         if (e.ok) {
             last = e.u;
             vo.motions.push_back(e.u);
             vo.covariances.push_back(e.cov);
+            if (e.disparity_offset_sigma > 0) offset = {e.disparity_offset, e.disparity_offset_sigma};
         } else {
             ++vo.failures;
             vo.motions.push_back(last);
             vo.covariances.push_back(fail);
         }
+        vo.disparity_offset.push_back(applied_offset(offset, cfg));
         vo.estimates.push_back(std::move(e));
     }
+    // frame 0 takes step 1's correction, frame k step k's
+    vo.disparity_offset.insert(vo.disparity_offset.begin(), vo.disparity_offset.empty() ? 0 : vo.disparity_offset[0]);
     return vo;
+}
+
+StereoFrame with_disparity_offset(const StereoFrame& frame, const stereo::RectifiedRig& g, double c) {
+    const Vec3 shift(0, 0, c);
+    const auto moved = [&](const Vec3& X) { return rig_point(g, rig_pixels(g, X) - shift); };
+    StereoFrame out;
+    out.reserve(frame.size());
+    for (const StereoLandmarkObs& o : frame) {
+        const Vec3 m = rig_pixels(g, o.p_cam) - shift;
+        if (!(m(0) - m(2) - (g.cx0 - g.cx1) > 0)) continue;
+        StereoLandmarkObs r = o;
+        r.p_cam = rig_point(g, m);
+        Mat3 J;   // d(moved)/dX by central differences, steps relative to the depth
+        const double h = 1e-6 * std::max(1.0, o.p_cam.z());
+        for (int k = 0; k < 3; ++k) J.col(k) = (moved(o.p_cam + h * Vec3::Unit(k)) - moved(o.p_cam - h * Vec3::Unit(k))) / (2 * h);
+        r.cov = J * o.cov * J.transpose();
+        r.cov = (r.cov + r.cov.transpose()) / 2;
+        out.push_back(std::move(r));
+    }
+    return out;
 }
 
 SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const std::vector<Pose>& truth,
@@ -211,7 +499,16 @@ SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const st
         throw InputError("a sequence needs one pose per frame to score: " + std::to_string(frames.size()) +
                          " frames, " + std::to_string(truth.size()) + " poses");
     VisualOdometry vo = visual_odometry(frames, cfg);
-    SequenceRun run = run_filter(frames, vo.motions, vo.covariances, Pose::Zero(), association, truth);
+    SequenceRun run;
+    if (cfg.residual == OdometryResidual::pixels && cfg.estimate_disparity_offset) {
+        std::vector<StereoFrame> seen;
+        seen.reserve(frames.size());
+        for (size_t k = 0; k < frames.size(); ++k) seen.push_back(with_disparity_offset(frames[k], *cfg.rig, vo.disparity_offset[k]));
+        run = run_filter(seen, vo.motions, vo.covariances, Pose::Zero(), association, truth);
+        run.disparity_offset = vo.disparity_offset;
+    } else {
+        run = run_filter(frames, vo.motions, vo.covariances, Pose::Zero(), association, truth);
+    }
     if (odometry) *odometry = std::move(vo);
     return run;
 }

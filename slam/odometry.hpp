@@ -1,24 +1,49 @@
-// odometry.hpp: stereo visual odometry on the top view. The landmarks of two consecutive
-// stereo frames are matched by descriptor (mutual nearest neighbours under a Hamming
-// threshold that is a fraction of the descriptor's length); RANSAC over pairs of matches
-// with the closed-form 2-D rigid alignment finds the inliers; weighted Gauss-Newton on the
-// inliers gives the motion (dx, dy, dθ) and its covariance (the inverse of the Fisher
-// information of the top-view residuals, each weighted by both points' covariances).
+// odometry.hpp: stereo visual odometry. The landmarks of two consecutive stereo frames are
+// matched by descriptor (mutual nearest neighbours under a Hamming threshold that is a
+// fraction of the descriptor's length); RANSAC finds the inliers and weighted Gauss-Newton on
+// them gives the motion (dx, dy, dθ) and its covariance (the inverse of the Fisher information
+// of the residuals, each weighted by both points' covariances), by one of two residuals:
+//  - pixels (OdometryResidual::pixels): 6-DoF. A previous point moved into the current camera
+//    and projected through the rig, against where the current frame saw it, (u_l, v, u_r) in
+//    pixels; its covariance is both points' covariances carried into those pixels. RANSAC
+//    over triples of matches (the closed-form 3-D rigid alignment of the triple, Umeyama);
+//    the motion is the top view of the 6-DoF estimate, its covariance carried there.
+//    With estimate_disparity_offset, a disparity correction c (px) common to both frames'
+//    measurements is estimated with the motion: a rig whose disparities are all off by the
+//    same amount (a principal-point or rectification error) scales every motion; c is
+//    observable because a point's optical flow gives Z_prev / Z_cur independently of its
+//    disparity. c is estimated recursively over the sequence (each step's estimate has the one
+//    before as its prior); once it is significant (a 3σ test) the motions are computed, and
+//    the filter's frames corrected, at the estimate so far.
+//  - top view (OdometryResidual::top_view): 3-DoF. The top-view points of the two frames
+//    aligned in the plane; RANSAC over pairs of matches (the closed-form 2-D alignment).
 // Deterministic: RANSAC draws from a generator of fixed seed.
 #pragma once
 
 #include "slam/slam.hpp"
 
+#include <optional>
 #include <utility>
 #include <vector>
 
 namespace hc::slam {
 
+/// What visual odometry's residuals measure (header comment).
+enum class OdometryResidual { pixels, top_view };
+
 struct VisualOdometryConfig {
+    OdometryResidual residual = OdometryResidual::pixels;
+    /// The rig the frames were triangulated through; required by OdometryResidual::pixels.
+    std::optional<stereo::RectifiedRig> rig;
+    /// Pixels only: estimate the disparity correction c with each motion (header comment).
+    bool estimate_disparity_offset = true;
+    /// The correction is applied (to the motions and the filter's frames) once its estimate
+    /// differs from 0 by more than this many standard deviations (a 3σ test).
+    double disparity_offset_significance = 3.0;
     double max_hamming_fraction = 0.25;   ///< temporal matches: Hamming ≤ this fraction of the bits
     double min_range = 1.0, max_range = 60.0;   ///< m: top-view range of the points used
     int ransac_iterations = 300;
-    double inlier_probability = 0.99;     ///< inlier gate: χ²(2) quantile of the Mahalanobis residual
+    double inlier_probability = 0.99;     ///< inlier gate: χ² quantile (2 dof top view, 3 pixels) of the Mahalanobis residual
     int min_inliers = 8;                  ///< fewer: the estimate is marked failed
     double max_step = 5.0;                ///< m: hypotheses moving farther in one frame are rejected
     /// The motion used when the estimate fails: the previous motion with this covariance
@@ -34,6 +59,9 @@ struct MotionEstimate {
     int candidates = 0;              ///< descriptor matches before RANSAC
     int inliers = 0;
     bool ok = false;                 ///< false: fewer than min_inliers inliers (u, cov undefined)
+    /// With estimate_disparity_offset: the disparity correction c (px) estimated with u, and
+    /// its standard deviation; 0 and 0 without.
+    double disparity_offset = 0, disparity_offset_sigma = 0;
     std::vector<std::pair<int, int>> matches;   ///< inliers: (index in previous, index in current)
 };
 
@@ -41,9 +69,16 @@ struct MotionEstimate {
 /// covariance.
 std::pair<Vec2, Mat2> top_view(const StereoLandmarkObs& o);
 
-/// The motion between two stereo frames from their landmarks alone.
+/// What earlier steps know of the disparity correction c: its mean and standard deviation
+/// (px); sigma 0: nothing (c is estimated from the step's matches alone).
+struct DisparityPrior {
+    double mean = 0, sigma = 0;
+};
+
+/// The motion between two stereo frames from their landmarks alone; with the disparity
+/// correction estimated, `prior` is its estimate so far (hypotheses start from its mean).
 MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& current,
-                               const VisualOdometryConfig& config = {});
+                               const VisualOdometryConfig& config = {}, const DisparityPrior& prior = {});
 
 /// Visual odometry over a sequence: one estimate per consecutive pair; a failed one is
 /// replaced by the previous motion (zero at the start) with the failure covariance.
@@ -52,12 +87,23 @@ struct VisualOdometry {
     std::vector<Mat3> covariances;
     std::vector<MotionEstimate> estimates;   ///< as estimated (ok, inliers, candidates)
     int failures = 0;
+    /// Per frame, the disparity correction the filter's frame is given: the estimate after the
+    /// last step up to max(k, 1) that succeeded, each step's estimate taking the one before as
+    /// its prior (a recursive estimate of one constant), when significant; else 0.
+    std::vector<double> disparity_offset;
 };
 VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const VisualOdometryConfig& config = {});
 
+/// `frame` with every disparity made `c` px larger: each point re-triangulated through `rig` at
+/// (u_l, v, u_r − c), its covariance carried by the Jacobian of that map. Points whose
+/// disparity does not stay positive are dropped; descriptors and id hints are kept.
+StereoFrame with_disparity_offset(const StereoFrame& frame, const stereo::RectifiedRig& rig, double c);
+
 /// Visual odometry and EKF-SLAM on stereo frames alone, started at the origin (KITTI's
 /// first pose is the identity); `truth` (one pose per frame) is read after the run only, to
-/// score. Throws InputError on fewer than 2 frames or a truth of another length.
+/// score. With the disparity correction estimated, the filter sees each frame corrected by
+/// VisualOdometry::disparity_offset. Throws InputError on fewer than 2 frames or a truth of
+/// another length.
 SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const std::vector<Pose>& truth,
                                 const VisualOdometryConfig& vo, const AssociationConfig& association,
                                 VisualOdometry* odometry = nullptr);

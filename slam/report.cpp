@@ -363,6 +363,10 @@ void save_sequence_summary(const fs::path& dir, const SequenceRun& r, const Sequ
     j["matches_with_id_hints"] = {{"total", t.hinted}, {"agreeing", t.agreeing}};
     j["matches_checked_against_truth"] = {{"total", t.checked}, {"wrong", t.wrong}};
     j["jcbb_frames_cut_at_node_limit"] = t.jcbb_cut;
+    if (!r.disparity_offset.empty())
+        j["disparity_correction_px"] = {{"final", r.disparity_offset.back()},
+                                        {"min", *std::min_element(r.disparity_offset.begin(), r.disparity_offset.end())},
+                                        {"max", *std::max_element(r.disparity_offset.begin(), r.disparity_offset.end())}};
     save(dir / "summary.json", j.dump(2) + "\n");
 }
 
@@ -420,6 +424,12 @@ std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, con
     if (t.hinted > 0)
         md << "Matches whose observation and landmark carry id hints: " << t.hinted << ", of which " << t.agreeing
            << " agree (" << 100.0 * t.agreeing / t.hinted << " %).\n\n";
+    if (!r.disparity_offset.empty())
+        md << "Disparity correction estimated by the visual odometry from the frames alone (no ground truth): "
+           << r.disparity_offset.back() << " px at the end of the run (from "
+           << *std::min_element(r.disparity_offset.begin(), r.disparity_offset.end()) << " to "
+           << *std::max_element(r.disparity_offset.begin(), r.disparity_offset.end())
+           << " px over the frames); the filter saw every disparity that much larger.\n\n";
     if (t.jcbb_cut > 0) md << "JCBB stopped at its node limit in " << t.jcbb_cut << " frames (best hypothesis so far kept).\n\n";
     if (traj_png) md << "![trajectory](trajectory.png)\n\n";
     if (map_png) md << "![map size](map_size.png)\n\n";

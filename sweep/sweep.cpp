@@ -28,6 +28,7 @@
 #include "io/frames/frames.hpp"
 #include "golden/golden.hpp"
 #include "model/harris/formats_json.hpp"
+#include "slam/landmark_frames.hpp"
 #include "io/util/util.hpp"
 #include "sweep/pareto.hpp"
 #include "sweep/sweep_report.hpp"
@@ -163,6 +164,28 @@ void score_landmarks(std::vector<PointResult>& pts, const landmarks::Dataset& ds
     cv::setNumThreads(before);
 }
 
+std::string score_trajectories(std::vector<PointResult>& pts, const fs::path& kitti, const TrajectorySpec& spec,
+                               bool show) {
+    slam::KittiRunOptions k;
+    k.stereo_landmarks = true;
+    k.pipeline.detector = landmarks::Detector::spec;
+    k.pipeline.descriptor = landmarks::parse_descriptor(spec.descriptor);
+    for (auto& p : pts) {
+        k.pipeline.corners.formats = p.config.formats;
+        const slam::KittiRun r = slam::run_kitti_sequence(kitti, spec.sequence, k);
+        p.trajectory = {r.run.slam_metrics.ape, r.run.odometry_metrics.ape, r.run.slam_metrics.path_length,
+                        static_cast<int>(r.run.truth.size()), r.vo.failures};
+        p.has_trajectory = true;
+        progress(show, fmt::format("[trajectory] {}: APE EKF-SLAM {:.3f} m ({:.2f} % of {:.1f} m), visual odometry alone "
+                                   "{:.3f} m, {} odometry failures",
+                                   p.config.name, p.trajectory.ape_slam, p.trajectory.ape_percent(), p.trajectory.path_length,
+                                   p.trajectory.ape_odometry, p.trajectory.odometry_failures));
+    }
+    return fmt::format("KITTI {}: {} stereo pairs, spec-model corners, {} descriptor, visual odometry and EKF-SLAM "
+                       "(slam::run_kitti_sequence defaults; poses/{}.txt only scores)",
+                       spec.sequence, pts.empty() ? 0 : pts.front().trajectory.frames, spec.descriptor, spec.sequence);
+}
+
 namespace {
 
 // ---- the phases of evaluate_points, each on every point of `res` ----------------------
@@ -265,6 +288,18 @@ void landmarks_phase(PointsRun& res, const SweepSpec& spec, const SweepOptions& 
     res.seconds_landmarks = since(t);
 }
 
+// 3c. downstream: the trajectory of visual odometry and EKF-SLAM from each point's corners.
+void trajectory_phase(PointsRun& res, const SweepSpec& spec, const SweepOptions& o) {
+    const auto t = Clock::now();
+    if (!spec.trajectory.enabled)
+        res.trajectory_run = "not scored (the spec has no \"trajectory\")";
+    else if (!fs::is_directory(o.kitti / "sequences" / spec.trajectory.sequence / "image_1"))
+        res.trajectory_run = "not scored (no stereo pairs of KITTI " + spec.trajectory.sequence + " under " + o.kitti.string() + ")";
+    else
+        res.trajectory_run = score_trajectories(res.points, o.kitti, spec.trajectory, o.progress);
+    res.seconds_trajectory = since(t);
+}
+
 }  // namespace
 
 PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& which, const SweepOptions& o) {
@@ -302,6 +337,7 @@ PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& whic
     ranges_phase(res, o);
     accuracy_phase(res, stream, ref, o);
     landmarks_phase(res, spec, o);
+    trajectory_phase(res, spec, o);
     cv::setNumThreads(1);
 
     return res;
@@ -329,6 +365,8 @@ SweepResult run_sweep(const SweepOptions& o) {
     res.synth_seconds_sum = pr.synth_seconds_sum;
     res.landmark_pairs = pr.landmark_pairs;
     res.seconds_landmarks = pr.seconds_landmarks;
+    res.trajectory_run = pr.trajectory_run;
+    res.seconds_trajectory = pr.seconds_trajectory;
     mark_pareto(res.points);
     mark_verify(res);
     check_points(res, o);

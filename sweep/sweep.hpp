@@ -41,6 +41,18 @@ struct TrustResult {
 nlohmann::json trust_to_json(const TrustResult& t);
 TrustResult trust_from_json(const nlohmann::json& j);
 
+/// A configuration's trajectory column (TrajectorySpec): APE of EKF-SLAM and of visual
+/// odometry alone against the sequence's poses, the path's length, failed odometry steps.
+struct Trajectory {
+    double ape_slam = 0, ape_odometry = 0, path_length = 0;
+    int frames = 0, odometry_failures = 0;
+    double ape_percent() const { return path_length > 0 ? 100 * ape_slam / path_length : 0; }
+};
+/// Its JSON (sweep.json and the sweep job's shard results): {"ape_slam_m", "ape_odometry_m",
+/// "path_length_m", "frames", "odometry_failures"}.
+void to_json(nlohmann::json& j, const Trajectory& t);
+void from_json(const nlohmann::json& j, Trajectory& t);
+
 struct PointResult {
     Config config;
     OverflowCounts overflow;
@@ -58,6 +70,8 @@ struct PointResult {
     TrustResult rtl, verilator;
     bool has_landmarks = false;        ///< the landmark column was scored (SweepResult::landmark_pairs)
     landmarks::Totals landmarks;       ///< correct stereo matches downstream (score_formats)
+    bool has_trajectory = false;       ///< the trajectory column was scored (SweepResult::trajectory_run)
+    Trajectory trajectory;
     /// verilate's three-way gate (GHDL / Verilator / model on small frames) for these formats:
     /// runs 1, failed 1 on a translation or RTL fault; seconds: the gate's own run (also
     /// when the verdict comes from the cache); detail: the verdict
@@ -84,6 +98,8 @@ struct SweepResult {
     std::string stream;                ///< what the accuracy was measured on
     int scored_frames = 0;
     std::string landmark_pairs;        ///< what the landmark column was scored on, or why it is absent
+    std::string trajectory_run;        ///< what the trajectory column was scored on, or why it is absent
+    double seconds_trajectory = 0;
     double seconds_load = 0, seconds_reference = 0, seconds_cost = 0, seconds_accuracy = 0,
            seconds_landmarks = 0, seconds_trust = 0, seconds_total = 0;
     int synthesised = 0, synth_cached = 0;
@@ -107,6 +123,11 @@ landmarks::Dataset landmark_dataset(const std::filesystem::path& middlebury, con
 std::string describe_landmark_pairs(const landmarks::Dataset& ds, const LandmarkSpec& spec);
 /// The landmark column of every point: landmarks::score_formats(ds, formats, spec model,
 /// {g, h}, thesis matching), configurations in parallel on `threads` (0: all cores).
+/// The trajectory column of every point, one after the other (slam::run_kitti_sequence on
+/// the sequence under `kitti`); returns what it was scored on. InputError (slam's or
+/// landmarks') for a sequence without stereo pairs or poses, or a descriptor that is not binary.
+std::string score_trajectories(std::vector<PointResult>& pts, const std::filesystem::path& kitti, const TrajectorySpec& spec,
+                               bool progress);
 void score_landmarks(std::vector<PointResult>& pts, const landmarks::Dataset& ds, const LandmarkSpec& spec,
                      int threads);
 
@@ -125,6 +146,8 @@ struct PointsRun {
     double synth_seconds_sum = 0;
     std::string landmark_pairs;          ///< as SweepResult::landmark_pairs
     double seconds_landmarks = 0;
+    std::string trajectory_run;          ///< as SweepResult::trajectory_run
+    double seconds_trajectory = 0;
 };
 /// Synthesis cost, derived ranges (cached under the synthesis key), overflow audit, accuracy and the landmark column of the configurations `which` (indices into
 /// spec.configs; InputError for one out of range). Each point depends on its configuration

@@ -191,6 +191,23 @@ void parse_data(const json& d, SweepSpec& s, const std::string& what) {
     if (d.contains("pairs")) s.pairs = string_value(d["pairs"], what, "data.pairs");
 }
 
+void parse_trajectory(const json& t, SweepSpec& s, const std::string& what) {
+    if (t.is_boolean()) {
+        s.trajectory.enabled = t.get<bool>();
+        return;
+    }
+    if (!t.is_object()) fail(what, "trajectory", "must be a boolean or an object {\"sequence\": \"01\", \"descriptor\": \"orb\"}");
+    check_keys(t, {"sequence", "descriptor"}, what, "trajectory");
+    s.trajectory.enabled = true;
+    if (t.contains("sequence")) s.trajectory.sequence = string_value(t["sequence"], what, "trajectory.sequence");
+    if (t.contains("descriptor")) s.trajectory.descriptor = string_value(t["descriptor"], what, "trajectory.descriptor");
+    try {
+        landmarks::parse_descriptor(s.trajectory.descriptor);
+    } catch (const landmarks::InputError& e) {
+        fail(what, "trajectory.descriptor", e.what());
+    }
+}
+
 void parse_landmarks(const json& l, SweepSpec& s, const std::string& what) {
     if (l.is_boolean()) {
         s.landmarks.enabled = l.get<bool>();
@@ -224,7 +241,8 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& what) {
         throw InputError(what + ": not valid JSON: " + e.what());
     }
     if (!j.is_object()) throw InputError(what + ": the sweep spec must be a JSON object");
-    check_keys(j, {"name", "base", "configs", "grid", "cost", "trust", "data", "landmarks", "comment"}, what, "top level");
+    check_keys(j, {"name", "base", "configs", "grid", "cost", "trust", "data", "landmarks", "trajectory", "comment"}, what,
+               "top level");
     SweepSpec s;
     if (j.contains("name")) s.name = string_value(j["name"], what, "name");
     Formats base;
@@ -238,6 +256,7 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& what) {
     if (j.contains("trust")) parse_trust(j["trust"], s, what);
     if (j.contains("data")) parse_data(j["data"], s, what);
     if (j.contains("landmarks")) parse_landmarks(j["landmarks"], s, what);
+    if (j.contains("trajectory")) parse_trajectory(j["trajectory"], s, what);
     return s;
 }
 

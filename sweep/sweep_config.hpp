@@ -52,6 +52,15 @@ struct LandmarkSpec {
     int g = 16, h = 3;                                   ///< the thesis's Harris choice
 };
 
+/// The trajectory column: visual odometry and EKF-SLAM on a KITTI sequence's stereo pairs from
+/// the spec model's corners of each configuration (slam::run_kitti_sequence with its defaults
+/// and `descriptor`); the sequence's poses only score. Off unless the spec asks for it.
+struct TrajectorySpec {
+    bool enabled = false;
+    std::string sequence = "01";
+    std::string descriptor = "orb";   ///< a binary descriptor of landmarks::parse_descriptor
+};
+
 struct SweepSpec {
     std::string name = "sweep";
     std::vector<Config> configs;      ///< in file order: configs, then grid points, then thesis
@@ -60,6 +69,7 @@ struct SweepSpec {
     std::string sequence = "01";      ///< KITTI sequence
     std::string pairs;                ///< "a:b" stereo pairs ("" = all)
     LandmarkSpec landmarks;
+    TrajectorySpec trajectory;
     std::vector<std::string> notes;   ///< merged duplicates etc., for the report
 };
 

@@ -39,6 +39,7 @@ json point_json(const PointResult& p) {
     if (p.has_cost_ghdl) j["cost_ghdl"] = json(p.cost_ghdl);
     if (p.has_ranges) j["ranges"] = range_report_to_json(p.ranges);
     if (p.has_landmarks) j["landmarks"] = p.landmarks;
+    if (p.has_trajectory) j["trajectory"] = json(p.trajectory);
     return j;
 }
 
@@ -71,6 +72,10 @@ PointResult point_from(const json& j) {
     if (j.contains("landmarks")) {
         p.landmarks = j.at("landmarks").get<landmarks::Totals>();
         p.has_landmarks = true;
+    }
+    if (j.contains("trajectory")) {
+        p.trajectory = j.at("trajectory").get<Trajectory>();
+        p.has_trajectory = true;
     }
     return p;
 }
@@ -196,6 +201,8 @@ SweepResult sweep_result(const cluster::Manifest& m, const json& merged) {
     r.scored_frames = merged.at("scored_frames");
     r.landmark_pairs = merged.at("landmark_pairs");
     r.seconds_landmarks = merged.at("seconds").at("landmarks");
+    r.trajectory_run = merged.at("trajectory_run");
+    r.seconds_trajectory = merged.at("seconds").at("trajectory");
     for (const auto& p : r.points)
         for (const Cost* c : {&p.cost, p.has_cost_ghdl ? &p.cost_ghdl : nullptr}) {
             if (!c) continue;
@@ -225,24 +232,29 @@ void add_sweep_job(cluster::JobRegistry& reg) {
                 return json{{"stream", pr.stream},
                             {"scored_frames", pr.scored_frames},
                             {"landmark_pairs", pr.landmark_pairs},
+                            {"trajectory_run", pr.trajectory_run},
                             {"points", points},
                             {"seconds", {{"load", pr.seconds_load}, {"reference", pr.seconds_reference},
                                          {"cost", pr.seconds_cost}, {"accuracy", pr.seconds_accuracy},
-                                         {"landmarks", pr.seconds_landmarks}}}};
+                                         {"landmarks", pr.seconds_landmarks}, {"trajectory", pr.seconds_trajectory}}}};
             },
             [](const json&, const std::vector<json>& data) {
                 json points = json::array();
-                json seconds = {{"load", 0.0}, {"reference", 0.0}, {"cost", 0.0}, {"accuracy", 0.0}, {"landmarks", 0.0}};
+                json seconds = {{"load", 0.0},     {"reference", 0.0}, {"cost", 0.0},
+                                {"accuracy", 0.0}, {"landmarks", 0.0}, {"trajectory", 0.0}};
                 for (const auto& d : data) {
                     for (auto& [k, v] : seconds.items()) v = v.get<double>() + d.at("seconds").at(k).get<double>();
                     if (d.at("stream") != data.front().at("stream") || d.at("scored_frames") != data.front().at("scored_frames") ||
-                        d.at("landmark_pairs") != data.front().at("landmark_pairs"))
-                        throw cluster::ClusterInputError("sweep: shards measured different streams or landmark pairs");
+                        d.at("landmark_pairs") != data.front().at("landmark_pairs") ||
+                        d.at("trajectory_run") != data.front().at("trajectory_run"))
+                        throw cluster::ClusterInputError(
+                            "sweep: shards measured different streams, landmark pairs or trajectory runs");
                     for (const auto& p : d.at("points")) points.push_back(p);
                 }
                 return json{{"stream", data.empty() ? json("") : data.front().at("stream")},
                             {"scored_frames", data.empty() ? json(0) : data.front().at("scored_frames")},
                             {"landmark_pairs", data.empty() ? json("") : data.front().at("landmark_pairs")},
+                            {"trajectory_run", data.empty() ? json("") : data.front().at("trajectory_run")},
                             {"points", points},
                             {"seconds", seconds}};
             }});

@@ -78,7 +78,8 @@ std::string to_csv(const SweepResult& r) {
         "wrap_sobel,wrap_m_resize,wrap_block_sum,wrap_k_term,wrap_response,pareto,"
         "rtl_runs,rtl_failed,rtl_mismatches,verilator_runs,verilator_failed,verilator_mismatches,synth_seconds,"
         "landmark_keypoints,landmark_matches,landmark_correct,landmark_truth_known,landmark_truth_correct,"
-        "gate_passed,gate_seconds,ranges,ranges_first_wrap\n";
+        "gate_passed,gate_seconds,ranges,ranges_first_wrap,"
+        "trajectory_ape_slam,trajectory_ape_odometry,trajectory_path_length,trajectory_odometry_failures\n";
     for (const auto& p : r.points) {
         const Formats& f = p.config.formats;
         s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},", p.config.name, f.sobel_w, f.m_prod_w, f.m_drop, f.bf_sum_w,
@@ -97,8 +98,42 @@ std::string to_csv(const SweepResult& r) {
                              : std::string(",,,,,");
         s += p.gate.ran ? fmt::format("{},{:.1f},", p.gate.failed == 0 ? 1 : 0, p.gate.seconds) : std::string(",,");
         const RegisterRange* fw = p.has_ranges ? p.ranges.first_wrap() : nullptr;
-        s += fmt::format("{},{}\n", p.has_ranges ? verdict_name(p.ranges.overall()) : "",
+        s += fmt::format("{},{},", p.has_ranges ? verdict_name(p.ranges.overall()) : "",
                          fw ? kRegNames[static_cast<int>(fw->reg)] : "");
+        const Trajectory& t = p.trajectory;
+        s += p.has_trajectory ? fmt::format("{:.6f},{:.6f},{:.6f},{}\n", t.ape_slam, t.ape_odometry, t.path_length,
+                                            t.odometry_failures)
+                              : std::string(",,,\n");
+    }
+    return s;
+}
+
+void to_json(json& j, const Trajectory& t) {
+    j = {{"ape_slam_m", t.ape_slam}, {"ape_odometry_m", t.ape_odometry}, {"path_length_m", t.path_length},
+         {"frames", t.frames}, {"odometry_failures", t.odometry_failures}};
+}
+
+void from_json(const json& j, Trajectory& t) {
+    t.ape_slam = j.at("ape_slam_m");
+    t.ape_odometry = j.at("ape_odometry_m");
+    t.path_length = j.at("path_length_m");
+    t.frames = j.at("frames");
+    t.odometry_failures = j.at("odometry_failures");
+}
+
+/// The trajectory column's table (a line saying why it is absent when no point has one).
+std::string trajectory_markdown(const SweepResult& r) {
+    if (std::none_of(r.points.begin(), r.points.end(), [](const PointResult& p) { return p.has_trajectory; }))
+        return fmt::format("\nTrajectory downstream: {}.\n", r.trajectory_run);
+    std::string s = fmt::format("\nTrajectory downstream (APE: translation RMSE against the poses, no alignment): {}.\n\n"
+                                "| configuration | F1 | wraps | APE EKF-SLAM (m) | % of path | APE visual odometry alone (m) | "
+                                "odometry failures |\n|---|---:|---|---:|---:|---:|---:|\n",
+                                r.trajectory_run);
+    for (const auto& p : r.points) {
+        if (!p.has_trajectory) continue;
+        const Trajectory& t = p.trajectory;
+        s += fmt::format("| {} | {:.4f} | {} | {:.3f} | {:.2f} | {:.3f} | {} |\n", p.config.name, p.accuracy.f1(),
+                         p.wraps ? "yes" : "no", t.ape_slam, t.ape_percent(), t.ape_odometry, t.odometry_failures);
     }
     return s;
 }
@@ -142,6 +177,7 @@ std::string to_markdown(const SweepResult& r) {
                          p.cost.carry4, p.register_bits, p.wraps ? "**" + p.overflow.summary() + "**" : std::string("none"),
                          ranges_cell(p), pc, trust_cell(p.rtl), gate_cell(p.gate), trust_cell(p.verilator));
     }
+    s += trajectory_markdown(r);
     const Findings f = findings(r);
     if (f.thesis >= 0) {
         const auto& T = r.points[f.thesis];
@@ -172,10 +208,11 @@ std::string to_markdown(const SweepResult& r) {
     s += "Timing: ";
     s += fmt::format("frames {:.1f} s, OpenCV reference {:.1f} s, cost {:.1f} s ({} synthesised, {} from the cache; "
                      "{:.0f} s of synthesis wall time summed), accuracy + overflow audit {:.1f} s, stereo matches {:.1f} s, "
+                     "trajectories {:.1f} s, "
                      "RTL checks {:.1f} s (three-way gates: {} run, {:.0f} s of wall time summed, {} verdicts recorded earlier); "
                      "total {:.1f} s.\n",
                      r.seconds_load, r.seconds_reference, r.seconds_cost, r.synthesised, r.synth_cached, r.synth_seconds_sum,
-                     r.seconds_accuracy, r.seconds_landmarks, r.seconds_trust, r.gates_run, r.gate_seconds_sum, r.gates_cached,
+                     r.seconds_accuracy, r.seconds_landmarks, r.seconds_trajectory, r.seconds_trust, r.gates_run, r.gate_seconds_sum, r.gates_cached,
                      r.seconds_total);
     for (const auto& n : r.spec.notes) s += "\nNote: " + n + ".\n";
     return s;
@@ -212,15 +249,16 @@ std::string to_json(const SweepResult& r) {
                                                 {"truth_known", l.truth_known}, {"truth_correct", l.truth_correct},
                                                 {"pairs", l.pairs}}
                                          : json(nullptr);
+        j["trajectory"] = p.has_trajectory ? json(p.trajectory) : json(nullptr);
         pts.push_back(j);
     }
     json j = {{"name", r.spec.name}, {"command", r.command}, {"stream", r.stream}, {"scored_frames", r.scored_frames},
-              {"landmark_pairs", r.landmark_pairs},
+              {"landmark_pairs", r.landmark_pairs}, {"trajectory_run", r.trajectory_run},
               {"cost_geometry", {{"width", r.spec.cost_geometry.width}, {"height", r.spec.cost_geometry.height}}},
               {"points", pts}, {"notes", r.spec.notes},
               {"seconds", {{"load", r.seconds_load}, {"reference", r.seconds_reference}, {"cost", r.seconds_cost},
-                           {"accuracy", r.seconds_accuracy}, {"landmarks", r.seconds_landmarks}, {"trust", r.seconds_trust},
-                           {"total", r.seconds_total}}},
+                           {"accuracy", r.seconds_accuracy}, {"landmarks", r.seconds_landmarks},
+                           {"trajectory", r.seconds_trajectory}, {"trust", r.seconds_trust}, {"total", r.seconds_total}}},
               {"synthesised", r.synthesised}, {"synth_cached", r.synth_cached}, {"synth_seconds_sum", r.synth_seconds_sum},
               {"gates_run", r.gates_run}, {"gates_cached", r.gates_cached}, {"gate_seconds_sum", r.gate_seconds_sum}};
     return j.dump(2) + "\n";

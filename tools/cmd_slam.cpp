@@ -31,8 +31,8 @@ constexpr double deg = std::numbers::pi / 180;
 
 struct SlamOptions {
     bool simulate = false;
-    std::string sequences, kitti, data, out = "slam-report", world = "cloister", landmarks_from = "synthetic",
-                odometry = "visual", association = "jcbb";
+    std::string sequences, kitti, data, out = "slam-report", world = "cloister", landmarks_from = slam::KittiRunOptions{}.stereo_landmarks ? "stereo" : "synthetic",
+                odometry = "visual", association = "jcbb", vo_residual = "pixels";
     // every model default is its struct's (slam::SimConfig, SensorModel, AssociationConfig,
     // VisualOdometryConfig, SyntheticOdometry); the angles are the command's, in degrees
     int landmarks = slam::SimConfig{}.landmarks, steps = slam::SimConfig{}.steps, runs = 50,
@@ -50,10 +50,11 @@ struct SlamOptions {
            vo_max_range = slam::VisualOdometryConfig{}.max_range;
     std::optional<double> sigma_dx, sigma_dtheta_deg;
     double sigma_dy = slam::SyntheticOdometry{}.sigma_dy;
-    bool descriptor = true;
+    bool descriptor = true, vo_disparity_offset = slam::VisualOdometryConfig{}.estimate_disparity_offset;
     // --landmarks-from stereo: the landmark pipeline's options
-    std::string corners = "opencv", descriptor_name = "grid", config;
-    int g = 16, h = 3;
+    std::string corners = landmarks::detector_name(slam::KittiRunOptions{}.pipeline.detector),
+                descriptor_name = landmarks::descriptor_name(slam::KittiRunOptions{}.pipeline.descriptor), config;
+    int g = slam::KittiRunOptions{}.pipeline.grid.g, h = slam::KittiRunOptions{}.pipeline.grid.h;
     // --simulate: Monte-Carlo seeds in shards (runner_flags.hpp: sharded())
     RunnerFlags runner;
     bool sharded = false;
@@ -149,6 +150,8 @@ slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::
     vc.max_hamming_fraction = o.vo_hamming_fraction;
     vc.min_inliers = o.vo_min_inliers;
     vc.max_range = o.vo_max_range;
+    vc.residual = o.vo_residual == "top-view" ? slam::OdometryResidual::top_view : slam::OdometryResidual::pixels;
+    vc.estimate_disparity_offset = o.vo_disparity_offset;
     slam::SyntheticOdometry& so = k.synthetic;
     if (o.sigma_dx) so.sigma_dx = *o.sigma_dx;
     so.sigma_dy = o.sigma_dy;
@@ -178,7 +181,8 @@ slam::SequenceRun run_one_sequence(const SlamOptions& o, const std::filesystem::
     const slam::SequenceRun& run = kr.run;
     const std::string odo_args = k.visual_odometry
         ? " --vo-hamming-fraction " + num(vc.max_hamming_fraction) + " --vo-min-inliers " + std::to_string(vc.min_inliers) +
-              " --vo-max-range " + num(vc.max_range)
+              " --vo-max-range " + num(vc.max_range) + " --vo-residual " + o.vo_residual +
+              (o.vo_disparity_offset ? "" : " --no-vo-disparity-offset")
         : " --sigma-dx " + num(so.sigma_dx) + " --sigma-dy " + num(so.sigma_dy) + " --sigma-dtheta " +
               num(so.sigma_dtheta / deg);
     const bool seeded = o.odometry == "synthetic" || o.landmarks_from == "synthetic";
@@ -203,6 +207,8 @@ void run_sequences(const SlamOptions& o) {
     const std::filesystem::path kitti = frames::require_kitti_root(o.kitti, o.data, "slam --sequences needs KITTI data");
     if (o.odometry != "visual" && o.odometry != "synthetic")
         throw InputError("--odometry '" + o.odometry + "' is neither visual nor synthetic");
+    if (o.vo_residual != "pixels" && o.vo_residual != "top-view")
+        throw InputError("--vo-residual '" + o.vo_residual + "' is neither pixels nor top-view");
     if (o.association != "jcbb" && o.association != "nearest")
         throw InputError("--association '" + o.association + "' is neither jcbb nor nearest");
     if (o.seed_given && o.odometry == "visual" && o.landmarks_from == "stereo")
@@ -239,6 +245,33 @@ void run_slam(const SlamOptions& o) {
 
 }  // namespace
 
+namespace {
+
+/// The KITTI run's odometry flags: which odometry, and visual odometry's settings.
+void add_odometry_flags(CLI::App* cmd, SlamOptions& o) {
+    cmd->add_option("--odometry", o.odometry,
+                    "KITTI: visual (stereo visual odometry from the landmarks; no ground truth) or synthetic "
+                    "(the ground-truth relative poses plus noise of --sigma-dx/dy/dtheta)")
+        ->capture_default_str();
+    cmd->add_option("--vo-hamming-fraction", o.vo_hamming_fraction,
+                    "visual odometry: frame-to-frame matches up to this fraction of the descriptor's bits")
+        ->capture_default_str();
+    cmd->add_option("--vo-min-inliers", o.vo_min_inliers,
+                    "visual odometry: fewer RANSAC inliers and the frame's estimate counts as failed")
+        ->capture_default_str();
+    cmd->add_option("--vo-max-range", o.vo_max_range, "visual odometry: points farther than this (m) are not used")
+        ->capture_default_str();
+    cmd->add_option("--vo-residual", o.vo_residual,
+                    "visual odometry: pixels (6-DoF, reprojection into the rig's pixels) or top-view (3-DoF, "
+                    "top-view points aligned in the plane)")
+        ->capture_default_str();
+    cmd->add_flag("!--no-vo-disparity-offset", o.vo_disparity_offset,
+                  "visual odometry on pixels: do not estimate a disparity correction common to the rig's "
+                  "measurements (estimated by default, with each motion)");
+}
+
+}  // namespace
+
 void add_slam_command(CLI::App& app) {
     const auto [cmd, o] = add_command<SlamOptions>(app,
         "slam", "2-D EKF-SLAM (thesis 2.5, 5.4): Monte-Carlo consistency in the simulator, or a KITTI trajectory");
@@ -271,18 +304,7 @@ void add_slam_command(CLI::App& app) {
     cmd->add_option("--sigma-dtheta", o->sigma_dtheta_deg,
                     noise_help("odometry noise on dθ (deg per step", fmt::format("{:.3f}", slam::OdometryModel{}.sigma_dtheta / deg),
                                fmt::format("{:.3f}", slam::SyntheticOdometry{}.sigma_dtheta / deg)));
-    cmd->add_option("--odometry", o->odometry,
-                    "KITTI: visual (stereo visual odometry from the landmarks; no ground truth) or synthetic "
-                    "(the ground-truth relative poses plus noise of --sigma-dx/dy/dtheta)")
-        ->capture_default_str();
-    cmd->add_option("--vo-hamming-fraction", o->vo_hamming_fraction,
-                    "visual odometry: frame-to-frame matches up to this fraction of the descriptor's bits")
-        ->capture_default_str();
-    cmd->add_option("--vo-min-inliers", o->vo_min_inliers,
-                    "visual odometry: fewer RANSAC inliers and the frame's estimate counts as failed")
-        ->capture_default_str();
-    cmd->add_option("--vo-max-range", o->vo_max_range, "visual odometry: points farther than this (m) are not used")
-        ->capture_default_str();
+    add_odometry_flags(cmd, *o);
     cmd->add_option("--association", o->association, "KITTI: jcbb (joint compatibility) or nearest (individual gating)")
         ->capture_default_str();
     cmd->add_option("--joint-gate", o->joint_gate, "JCBB: joint gate probability (chi-square, 2k dof)")

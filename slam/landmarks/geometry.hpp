@@ -2,6 +2,7 @@
 // Middlebury rig, the pixel-noise model, the landmark and its files, depth errors against ground truth.
 #pragma once
 
+#include <cstdlib>
 #include "slam/landmarks/matching.hpp"
 #include "slam/landmarks/stereo.hpp"
 
@@ -28,7 +29,7 @@ stereo::RectifiedRig middlebury_calib(double scale, double dmin_full, cv::Size i
 using PixelNoise = stereo::PixelNoise;
 
 /// The four image coordinates of a stereo match (left, right) as stereo::triangulate takes them.
-inline stereo::StereoPixels pixels(cv::Point2f left, cv::Point2f right) { return {left.x, left.y, right.x, right.y}; }
+inline stereo::StereoPixels pixels(cv::Point2f left, cv::Point2f right) { static const double dbg = std::getenv("HC_DU") ? std::atof(std::getenv("HC_DU")) : 0.0; return {left.x, left.y, right.x + dbg, right.y}; }
 
 /// A landmark as an EKF-SLAM front end consumes it.
 struct Landmark {

@@ -4,7 +4,8 @@
 // (landmarks::match_pair), triangulation (landmarks_from), visual odometry against the
 // previous frame (estimate_motion) and the filter step (prediction, gating, association,
 // corrections, new landmarks). One thread (cv::setNumThreads(1)). The filter's own part is
-// also timed with nearest-neighbour association, the peer of JCBB in the same run.
+// also timed with nearest-neighbour association, the peer of JCBB in the same run, and with
+// visual odometry on the top view, the peer of the pixel residuals.
 // Without the data (HARRIS_COSIM_DATA or the build's data directory holding kitti/) the
 // benchmarks report an error and skip.
 #include <benchmark/benchmark.h>
@@ -62,14 +63,16 @@ slam::StereoFrame landmark_frame(const Kitti& k, size_t f, const landmarks::Pipe
 
 /// Frames 0..n: everything after corner detection, frame by frame, timed per frame.
 void BM_frame_after_corners(benchmark::State& state, landmarks::Descriptor descriptor,
-                            slam::AssociationMethod method) {
+                            slam::AssociationMethod method, slam::OdometryResidual residual) {
     const Kitti* k = setup(state);
     if (!k) return;
     landmarks::PipelineOptions po;
     po.descriptor = descriptor;
     slam::AssociationConfig ac;
     ac.method = method;
-    const slam::VisualOdometryConfig vc;
+    slam::VisualOdometryConfig vc;
+    vc.residual = residual;
+    vc.rig = k->ds.calib.front();
     const int n = static_cast<int>(k->ds.pairs.size());
     double frames = 0;
     for (auto _ : state) {
@@ -95,7 +98,8 @@ void BM_frame_after_corners(benchmark::State& state, landmarks::Descriptor descr
 
 /// The filter and odometry alone on the frames' landmarks (description and matching done
 /// before timing): visual odometry + prediction + association + corrections.
-void BM_vo_and_filter(benchmark::State& state, landmarks::Descriptor descriptor, slam::AssociationMethod method) {
+void BM_vo_and_filter(benchmark::State& state, landmarks::Descriptor descriptor, slam::AssociationMethod method,
+                      slam::OdometryResidual residual) {
     const Kitti* k = setup(state);
     if (!k) return;
     landmarks::PipelineOptions po;
@@ -104,7 +108,9 @@ void BM_vo_and_filter(benchmark::State& state, landmarks::Descriptor descriptor,
     for (size_t f = 0; f < k->ds.pairs.size(); ++f) frames.push_back(landmark_frame(*k, f, po));
     slam::AssociationConfig ac;
     ac.method = method;
-    const slam::VisualOdometryConfig vc;
+    slam::VisualOdometryConfig vc;
+    vc.residual = residual;
+    vc.rig = k->ds.calib.front();
     double count = 0;
     for (auto _ : state) {
         slam::LandmarkSlam filter(slam::Pose::Zero(), ac);
@@ -123,15 +129,20 @@ void BM_vo_and_filter(benchmark::State& state, landmarks::Descriptor descriptor,
 
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_frame_after_corners, orb_jcbb, landmarks::Descriptor::orb, slam::AssociationMethod::Jcbb)
+BENCHMARK_CAPTURE(BM_frame_after_corners, orb_jcbb, landmarks::Descriptor::orb, slam::AssociationMethod::Jcbb,
+                  slam::OdometryResidual::pixels)
     ->Unit(benchmark::kMillisecond)->Iterations(2);
-BENCHMARK_CAPTURE(BM_frame_after_corners, grid_jcbb, landmarks::Descriptor::grid, slam::AssociationMethod::Jcbb)
+BENCHMARK_CAPTURE(BM_frame_after_corners, grid_jcbb, landmarks::Descriptor::grid, slam::AssociationMethod::Jcbb,
+                  slam::OdometryResidual::pixels)
     ->Unit(benchmark::kMillisecond)->Iterations(2);
-BENCHMARK_CAPTURE(BM_vo_and_filter, orb_jcbb, landmarks::Descriptor::orb, slam::AssociationMethod::Jcbb)
+BENCHMARK_CAPTURE(BM_vo_and_filter, orb_jcbb, landmarks::Descriptor::orb, slam::AssociationMethod::Jcbb, slam::OdometryResidual::pixels)
     ->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(BM_vo_and_filter, orb_nearest, landmarks::Descriptor::orb, slam::AssociationMethod::Nearest)
+BENCHMARK_CAPTURE(BM_vo_and_filter, orb_jcbb_top_view, landmarks::Descriptor::orb, slam::AssociationMethod::Jcbb, slam::OdometryResidual::top_view)
     ->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(BM_vo_and_filter, grid_jcbb, landmarks::Descriptor::grid, slam::AssociationMethod::Jcbb)
+BENCHMARK_CAPTURE(BM_vo_and_filter, orb_nearest, landmarks::Descriptor::orb, slam::AssociationMethod::Nearest,
+                  slam::OdometryResidual::pixels)
+    ->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_vo_and_filter, grid_jcbb, landmarks::Descriptor::grid, slam::AssociationMethod::Jcbb, slam::OdometryResidual::pixels)
     ->Unit(benchmark::kMillisecond)->Iterations(3);
 
 BENCHMARK_MAIN();

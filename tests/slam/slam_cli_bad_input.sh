@@ -32,6 +32,7 @@ expect2 "neither mode" "exactly one of" --runs 3
 mkdir -p "$work/kitti1/poses" && printf '1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1 0 0 0 0 1 1\n' > "$work/kitti1/poses/05.txt"
 expect2 "unknown odometry" "neither visual nor synthetic" --sequences 05 --kitti "$work/kitti1" --odometry wheels
 expect2 "unknown association" "neither jcbb nor nearest" --sequences 05 --kitti "$work/kitti1" --association greedy
+expect2 "unknown odometry residual" "neither pixels nor top-view" --sequences 05 --kitti "$work/kitti1" --vo-residual depth
 expect2 "a seed for deterministic visual odometry" "deterministic" --sequences 05 --kitti "$work/kitti1" --landmarks-from stereo --seed 3
 expect2 "Hamming fraction above 1" "max-hamming-fraction" --sequences 05 --kitti "$work/kitti1" --max-hamming-fraction 2
 expect2 "unknown world" "neither cloister nor random" --simulate --world maze

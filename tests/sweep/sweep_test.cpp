@@ -196,8 +196,27 @@ TEST_CASE("the sweep report shows each checked point's three-way gate in its Gat
     CHECK_THAT(md, Catch::Contains("| - |  | - | - | - |"));
     CHECK_THAT(md, Catch::Contains("| **wraps at sobel_x** (witnesses/sobel_w-10_sobel_x.pgm) (interval 12, search 2; netlist not run) |  | - | - | - |"));
     const std::string csv = sweep::to_csv(r);
-    CHECK_THAT(csv, Catch::Contains("gate_passed,gate_seconds,ranges,ranges_first_wrap\n"));
-    CHECK_THAT(csv, Catch::Contains(",1,81.0,proven,\n"));
-    CHECK_THAT(csv, Catch::Contains(",0,0.0,,\n"));
-    CHECK_THAT(csv, Catch::Contains(",,,wraps,sobel_x\n"));
+    CHECK_THAT(csv, Catch::Contains("gate_passed,gate_seconds,ranges,ranges_first_wrap,trajectory_ape_slam,"
+                                    "trajectory_ape_odometry,trajectory_path_length,trajectory_odometry_failures\n"));
+    // the four trajectory columns stay empty: no trajectory was scored
+    CHECK_THAT(csv, Catch::Contains(",1,81.0,proven,,,,,\n"));
+    CHECK_THAT(csv, Catch::Contains(",0,0.0,,,,,,\n"));
+    CHECK_THAT(csv, Catch::Contains(",,,wraps,sobel_x,,,,\n"));
+}
+
+TEST_CASE("the trajectory column's spec: off unless asked for, a sequence and a descriptor, bad keys refused", "[sweep]") {
+    CHECK_FALSE(parse_sweep_spec(R"({"configs": [{"name": "a"}]})", "t").trajectory.enabled);
+    const SweepSpec s = parse_sweep_spec(R"({"configs": [{"name": "a"}], "trajectory": {"sequence": "07", "descriptor": "brief"}})", "t");
+    CHECK(s.trajectory.enabled);
+    CHECK(s.trajectory.sequence == "07");
+    CHECK(s.trajectory.descriptor == "brief");
+    const SweepSpec d = parse_sweep_spec(R"({"configs": [{"name": "a"}], "trajectory": true})", "t");
+    CHECK(d.trajectory.enabled);
+    CHECK(d.trajectory.sequence == "01");
+    CHECK(d.trajectory.descriptor == "orb");
+    CHECK_THROWS_WITH(parse_sweep_spec(R"({"configs": [{"name": "a"}], "trajectory": {"descriptor": "surf2"}})", "t"),
+                      Catch::Contains("trajectory.descriptor"));
+    CHECK_THROWS_WITH(parse_sweep_spec(R"({"configs": [{"name": "a"}], "trajectory": {"seq": "01"}})", "t"),
+                      Catch::Contains("unknown key 'seq'"));
+    CHECK_THROWS_WITH(parse_sweep_spec(R"({"configs": [{"name": "a"}], "trajectory": 3})", "t"), Catch::Contains("trajectory"));
 }
