@@ -108,17 +108,6 @@ std::vector<std::string> parse_sequences(const std::string& s) {
     return out;
 }
 
-void check_sequences(const fs::path& kitti, const std::vector<std::string>& seqs) {
-    std::string missing;
-    for (const auto& q : seqs)
-        if (!frames::is_kitti_sequence(kitti, q))
-            missing += (missing.empty() ? "" : ", ") + q;
-    if (!missing.empty())
-        throw InputError("--sequences: no KITTI sequence " + missing + " under " +
-                         frames::kitti_sequences_dir(kitti).string() +
-                         " (each needs image_0/ and image_1/)");
-}
-
 json Part::to_json() const {
     json rows_j = json::array();
     for (const auto& r : rows)

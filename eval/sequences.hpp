@@ -25,8 +25,6 @@ namespace hc::eval {
 /// `00-21` (a range, both ends included) or `00,01,05` (a list), each two digits or more
 /// as KITTI names them. InputError naming the flag value otherwise.
 std::vector<std::string> parse_sequences(const std::string& s);
-/// InputError naming every sequence of `seqs` that is not under kitti/sequences/.
-void check_sequences(const std::filesystem::path& kitti, const std::vector<std::string>& seqs);
 
 /// One part of a sequence's evaluation.
 struct PartInput {

@@ -60,6 +60,13 @@ struct RunErrors {
     std::vector<double> heading_sq;            ///< squared wrapped heading error (rad²)
 };
 RunErrors run_errors(const RunTrace& t);
+/// A run's errors and what the report draws of a run's trace (the filter itself is not
+/// carried) as JSON: lists of numbers, NaN as null, bit for bit back; matrices row-major.
+/// slam/simulation_json.cpp.
+void to_json(nlohmann::json& j, const RunErrors& e);
+void from_json(const nlohmann::json& j, RunErrors& e);
+void to_json(nlohmann::json& j, const RunTrace& t);
+void from_json(const nlohmann::json& j, RunTrace& t);
 /// The statistics of runs of consecutive seeds, folded in the order given (seed order: the
 /// order fixes every floating-point sum, so runs computed anywhere and folded here give the
 /// same bits as monte_carlo()). `first` is the first seed's trace. Throws InputError for

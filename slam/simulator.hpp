@@ -6,6 +6,8 @@
 
 #include <random>
 
+#include <nlohmann/json_fwd.hpp>
+
 namespace hc::slam {
 
 /// A range-bearing sensor: field of view (full angle), range limit, Gaussian noise.
@@ -41,6 +43,10 @@ struct SimConfig {
     /// Throws InputError naming the first bad value (non-positive noise, empty world, ...).
     void validate() const;
 };
+/// A configuration as one flat JSON object (layout "cloister" or "random", the sensor's and
+/// the odometry's fields beside the others); slam/simulation_json.cpp.
+void to_json(nlohmann::json& j, const SimConfig& c);
+void from_json(const nlohmann::json& j, SimConfig& c);
 
 /// A world: landmark positions (index = landmark id).
 struct World {

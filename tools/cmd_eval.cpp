@@ -8,9 +8,11 @@
 
 #include "io/cluster/cluster.hpp"
 #include "eval/evaluate.hpp"
+#include "cosim/verilator/verilate_job.hpp"
+#include "eval/eval_job.hpp"
 #include "eval/sequences.hpp"
 #include "io/frames/frames.hpp"
-#include "tools/jobs/jobs.hpp"
+#include "tools/registry.hpp"
 #include "tools/commands.hpp"
 #include "tools/frame_source.hpp"
 #include "tools/runner_flags.hpp"
@@ -51,7 +53,7 @@ std::vector<int> parse_list(const std::string& s) {
 void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
     if (!o.overlay.empty())
         throw InputError("--overlay draws frames of a single stream: leave out --sequences and the sharding flags");
-    jobs::EvalJob j;
+    eval::EvalJob j;
     j.source = eval::source_name(eval::parse_source(o.source));
     j.kitti = kitti;
     j.sequences = o.sequences.empty() ? std::vector<std::string>{o.sequence} : eval::parse_sequences(o.sequences);
@@ -61,8 +63,8 @@ void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
     j.shards = o.sharded ? o.runner.shards : 0;
     // a shard is one process on one core unless --threads says otherwise
     j.threads = o.sharded && !o.threads_given ? 1 : o.threads;
-    const cluster::Manifest m = jobs::eval_manifest(j);
-    if (j.source == "rtl") jobs::prepare_rtl(m);
+    const cluster::Manifest m = eval::eval_manifest(j);
+    if (j.source == "rtl") vl::prepare_rtl(m);
     json merged;
     if (o.sharded) {
         const fs::path dir = run_dir(o.runner, o.out);
@@ -71,9 +73,9 @@ void run_eval_job(const EvalOptions& o, const fs::path& kitti) {
         if (!got) return;
         merged = std::move(*got);
     } else {
-        merged = cluster::run_in_process(jobs::registry(), m);
+        merged = cluster::run_in_process(registry(), m);
     }
-    eval::Report rep = jobs::eval_report(merged);
+    eval::Report rep = eval::eval_report(merged);
     rep.command = fmt::format("harris-cosim eval --source {} --kitti {} --sequences {}{}{} --out {}", j.source,
                               kitti.string(), o.sequences.empty() ? o.sequence : o.sequences,
                               o.frames.empty() ? "" : " --pairs " + o.frames, o.ablation ? "" : " --no-ablation", o.out);

@@ -13,7 +13,6 @@
 
 #include <fmt/format.h>
 
-#include "tools/jobs/jobs.hpp"
 #include "tools/commands.hpp"
 #include "tools/frame_source.hpp"
 #include "tools/runner_flags.hpp"
@@ -21,6 +20,7 @@
 #include "model/harris/formats_json.hpp"
 #include "io/util/util.hpp"
 #include "slam/landmarks/landmarks.hpp"
+#include "slam/landmarks/landmarks_job.hpp"
 
 namespace fs = std::filesystem;
 
@@ -30,8 +30,7 @@ namespace {
 
 struct LandmarksOptions {
     std::string corners = "opencv", descriptor = "grid", norm = "auto", config, out = "landmarks-report";
-    std::string dataset = "middlebury", middlebury, kitti, sequence = "01", frames = "0:10", data, calib;
-    std::vector<std::string> left, right;
+    landmarks::DatasetChoice source;   ///< --calib, --left, --right, --dataset, --middlebury, --kitti, --data, --sequence, --pairs
     int g = 16, h = 3, overlays = 2, threads = 0;
     double ratio = 0, sigma = 0.5;
     bool drop_ties = false, compare = false, study = false, corrected = false, landmark_files = true, no_truth = false;
@@ -49,30 +48,6 @@ std::vector<std::string> split(const std::string& s) {
     return v;
 }
 
-/// The dataset of the flags; `root` receives its folder.
-landmarks::Dataset load_dataset(const LandmarksOptions& o, fs::path& root) {
-    if (!o.calib.empty()) {
-        if (o.left.empty() || o.right.empty()) throw InputError("--calib needs the rig's images: --left and --right");
-        return landmarks::rig_dataset(calib::expand_image_list(o.left, "--left"), calib::expand_image_list(o.right, "--right"),
-                                      landmarks::read_rig_calibration(o.calib));
-    }
-    if (!o.left.empty() || !o.right.empty()) throw InputError("--left and --right are the images of a rig: give its --calib");
-    const auto data = frames::data_dir(o.data);
-    if (o.dataset == "middlebury") {
-        root = o.middlebury;
-        if (root.empty()) {
-            if (!data) throw InputError("no --middlebury folder and no data directory (--data, $HARRIS_COSIM_DATA)");
-            root = *data / "middlebury2006" / "half";
-        }
-        return landmarks::middlebury_dataset(root, !o.no_truth);
-    }
-    if (o.dataset == "kitti") {
-        root = frames::require_kitti_root(o.kitti, o.data, "--dataset kitti needs KITTI data");
-        return landmarks::kitti_dataset(root, o.sequence, util::parse_range(o.frames, "--pairs"), "--pairs " + o.frames);
-    }
-    throw InputError("--dataset '" + o.dataset + "' (middlebury or kitti)");
-}
-
 /// The re-observation study: its table on stdout and in <out>/reobservation.md and .csv.
 void run_reobservation(const LandmarksOptions& o) {
     landmarks::ReobservationOptions ro;
@@ -87,7 +62,7 @@ void run_reobservation(const LandmarksOptions& o) {
     landmarks::validate(ro.grid);
     ro.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
     fs::path root;
-    const landmarks::Dataset ds = load_dataset(o, root);
+    const landmarks::Dataset ds = landmarks::open_dataset(o.source, root);
     std::fprintf(stderr, "landmarks: re-observations over %zu consecutive left images of %s...\n", ds.pairs.size(),
                  ds.name.c_str());
     const auto rows = landmarks::reobservation_study(ds, ro);
@@ -131,25 +106,25 @@ landmarks::ComparisonOptions comparison_options(const LandmarksOptions& o) {
 std::optional<std::vector<landmarks::ComparisonRow>> sharded_rows(const LandmarksOptions& o, const landmarks::Dataset& ds,
                                                                   const fs::path& root, const landmarks::ComparisonOptions& co) {
     if (o.study) throw InputError("--study runs in one process: leave out " + sharding_flags_named());
-    if (!o.calib.empty()) throw InputError("--calib (a rig's pairs) runs in one process: leave out " + sharding_flags_named());
-    jobs::LandmarksShards p;
-    p.dataset = o.dataset;
+    if (!o.source.calib.empty()) throw InputError("--calib (a rig's pairs) runs in one process: leave out " + sharding_flags_named());
+    landmarks::LandmarksShards p;
+    p.dataset = o.source.dataset;
     p.root = root;
-    p.need_truth = !o.no_truth;
-    p.sequence = o.sequence;
-    if (o.dataset == "kitti") {
-        const util::Range r = util::parse_range(o.frames, "--pairs");
+    p.need_truth = o.source.need_truth;
+    p.sequence = o.source.sequence;
+    if (o.source.dataset == "kitti") {
+        const util::Range r = util::parse_range(o.source.pairs, "--pairs");
         p.first = r.first;
         p.last = r.first + static_cast<int>(ds.pairs.size());
     }
     p.options = co;
     p.pairs = ds.pairs.size();
     p.shards = o.runner.shards;
-    const cluster::Manifest m = jobs::landmarks_manifest(p);
+    const cluster::Manifest m = landmarks::landmarks_manifest(p);
     const fs::path dir = run_dir(o.runner, o.out);
     const auto merged = run_sharded(dir, m, o.runner);
     if (!merged) return std::nullopt;
-    return jobs::landmarks_rows(*merged);
+    return landmarks::landmarks_rows(*merged);
 }
 
 void run_landmarks(const LandmarksOptions& o) {
@@ -157,16 +132,16 @@ void run_landmarks(const LandmarksOptions& o) {
     const std::function<double()> secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     try {
         if (o.reobservation) {
-            if (o.compare || o.study || o.sharded || !o.calib.empty())
+            if (o.compare || o.study || o.sharded || !o.source.calib.empty())
                 throw InputError("--reobservation runs alone: leave out --compare, --study, --calib and " + sharding_flags_named());
             run_reobservation(o);
             return;
         }
         const landmarks::ComparisonOptions co = comparison_options(o);
 
-        std::fprintf(stderr, "landmarks: loading %s...\n", o.calib.empty() ? o.dataset.c_str() : o.calib.c_str());
+        std::fprintf(stderr, "landmarks: loading %s...\n", o.source.calib.empty() ? o.source.dataset.c_str() : o.source.calib.c_str());
         fs::path root;
-        const landmarks::Dataset ds = load_dataset(o, root);
+        const landmarks::Dataset ds = landmarks::open_dataset(o.source, root);
         std::fprintf(stderr, "landmarks: %s, %zu pairs\n", ds.name.c_str(), ds.pairs.size());
         fs::create_directories(o.out);
 
@@ -187,7 +162,7 @@ void run_landmarks(const LandmarksOptions& o) {
         ro.study = o.study;
         ro.corrected = o.corrected;
         ro.threads = o.threads;
-        ro.calib = o.calib;
+        ro.calib = o.source.calib;
         ro.config = o.config;
         const auto rep = landmarks::write_comparison_report(ds, co, rows, kps, ro, secs);
         std::printf("%s", landmarks::comparison_markdown(rows).c_str());
@@ -221,18 +196,18 @@ void add_landmarks_command(CLI::App& app) {
                   "image to the next, Hamming distance of re-observations against random pairs (default descriptors: "
                   "grid, grid-corrected, orb, brisk, brief, freak)");
     cmd->add_flag("--corrected", o->corrected, "study the corrected g x g grid instead of the thesis's");
-    cmd->add_option("--dataset", o->dataset, "middlebury or kitti")->capture_default_str();
-    cmd->add_option("--middlebury", o->middlebury, "Middlebury 2006 folder of scenes, or one scene (default: <data>/middlebury2006/half)");
+    cmd->add_option("--dataset", o->source.dataset, "middlebury or kitti")->capture_default_str();
+    cmd->add_option("--middlebury", o->source.middlebury, "Middlebury 2006 folder of scenes, or one scene (default: <data>/middlebury2006/half)");
     cmd->add_flag("--no-truth", o->no_truth, "accept Middlebury scenes without disp1.png (e.g. third/): no ground-truth scoring");
-    cmd->add_option("--kitti", o->kitti, "KITTI odometry root holding sequences/ (default: <data>/kitti)");
-    cmd->add_option("--sequence", o->sequence, "KITTI sequence")->capture_default_str();
-    add_pair_range_option(cmd, o->frames, "KITTI stereo pair range a:b (b excluded; default " + o->frames + ")");
-    cmd->add_option("--calib", o->calib,
+    cmd->add_option("--kitti", o->source.kitti, "KITTI odometry root holding sequences/ (default: <data>/kitti)");
+    cmd->add_option("--sequence", o->source.sequence, "KITTI sequence")->capture_default_str();
+    add_pair_range_option(cmd, o->source.pairs, "KITTI stereo pair range a:b (b excluded; default " + o->source.pairs + ")");
+    cmd->add_option("--calib", o->source.calib,
                     "a rig's calibration (harris-cosim calibrate's calib.yml/.json, or a calib.txt of rectified images): "
                     "run on its unrectified pairs --left/--right, keypoints undistorted and rectified (cv::undistortPoints)");
-    cmd->add_option("--left", o->left, "with --calib: the rig's left images (files or glob patterns, sorted)");
-    cmd->add_option("--right", o->right, "with --calib: the rig's right images, in the order of --left");
-    cmd->add_option("--data", o->data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");
+    cmd->add_option("--left", o->source.left, "with --calib: the rig's left images (files or glob patterns, sorted)");
+    cmd->add_option("--right", o->source.right, "with --calib: the rig's right images, in the order of --left");
+    cmd->add_option("--data", o->source.data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");
     cmd->add_option("--config", o->config, "formats JSON of the co-processor (spec, cycle, rtl corners)");
     cmd->add_option("--sigma", o->sigma, "corner localisation noise: standard deviation (px) of each of x_l, y_l, x_r, y_r, independent, "
                     "in the landmark covariance (an assumed value; integer rounding alone would be 1/sqrt(12) = 0.29 px)")->capture_default_str();
@@ -246,6 +221,7 @@ void add_landmarks_command(CLI::App& app) {
     cmd->callback([o, cmd] {
         o->sharded = sharded(cmd);
         o->descriptor_given = cmd->count("--descriptor") > 0;
+        o->source.need_truth = !o->no_truth;
         run_landmarks(*o);
     });
 }

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "io/frames/frames.hpp"
-#include "tools/jobs/jobs.hpp"
+#include "mutation/mutants_job.hpp"
 #include "mutation/mutation.hpp"
 #include "io/util/util.hpp"
 
@@ -120,7 +120,7 @@ void run_generated(const GeneratedFlags& f) {
         return;
     }
     if (f.render) {
-        const jobs::MutantsProgress p = jobs::mutants_finished(run_dir(f.runner, folder_of(f.report)));
+        const mutation::MutantsProgress p = mutation::mutants_finished(run_dir(f.runner, folder_of(f.report)));
         const auto& rs = p.results;
         write_report(f, rs, p.quick, p.longer, static_cast<int>(all.size()), p.shards, p.wall_seconds);
         const mutation::Tally t = mutation::tally(rs);
@@ -130,7 +130,7 @@ void run_generated(const GeneratedFlags& f) {
                     100.0 * t.score());
         return;
     }
-    jobs::MutantsJob job;
+    mutation::MutantsJob job;
     for (const auto& m : sel) job.names.push_back(m.name());
     if (!f.quick_only) {
         const auto data = frames::data_dir(f.data);
@@ -141,7 +141,7 @@ void run_generated(const GeneratedFlags& f) {
     job.proof_timeout_s = f.proof_timeout;
     job.per_shard = f.per_shard;
     job.shards = f.runner.shards;
-    const cluster::Manifest m = jobs::mutants_manifest(job);
+    const cluster::Manifest m = mutation::mutants_manifest(job);
     {
         mutation::Options control;
         control.quick = job.quick;
@@ -156,7 +156,7 @@ void run_generated(const GeneratedFlags& f) {
     const auto got = run_sharded(dir, m, f.runner);
     if (!got) return;
     const nlohmann::json& merged = *got;
-    const auto rs = jobs::mutants_results(merged);
+    const auto rs = mutation::mutants_results(merged);
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     write_report(f, rs, job.quick, job.longer, static_cast<int>(all.size()), m.shards.size(), wall);

@@ -1,5 +1,5 @@
 // cmd_mutants.hpp: the generated-mutants side of `harris-cosim mutate` (--generate): its
-// flags and its run (mutation/mutation.hpp through the job kind "mutants" of tools/jobs/jobs.hpp).
+// flags and its run (mutation/mutation.hpp through the job kind "mutants" of mutation/mutants_job.hpp).
 #pragma once
 
 #include <string>

@@ -2,7 +2,7 @@
 // or writes its Markdown table (docs/mutation-smoke.md).
 #include <cstdio>
 
-#include "tools/jobs/jobs.hpp"
+#include "mutation/mutate_job.hpp"
 #include "mutation/mutation.hpp"
 #include "tools/cmd_mutants.hpp"
 #include "tools/commands.hpp"
@@ -43,11 +43,11 @@ void add_mutate_command(CLI::App& app) {
         mutation::SmokeResult r;
         const RunnerFlags& rf = o->gen.runner;
         if (sharded(cmd)) {
-            const cluster::Manifest m = jobs::mutate_manifest({o->list, only, rf.shards});
+            const cluster::Manifest m = mutation::mutate_manifest({o->list, only, rf.shards});
             const std::filesystem::path dir = run_dir(rf, folder_of(o->report));
             const auto merged = run_sharded(dir, m, rf);
             if (!merged) return;
-            r = jobs::mutate_result(m, *merged);
+            r = mutation::mutate_result(m, *merged);
         } else {
             r = mutation::run_smoke_list(c, only, [](const std::string& s) { std::fprintf(stderr, "[mutate] %s\n", s.c_str()); });
         }

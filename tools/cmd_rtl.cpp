@@ -1,15 +1,14 @@
 // cmd_rtl.cpp: `harris-cosim rtl` (GHDL co-simulation against the cycle model, through
-// cosim::run_ghdl) and `harris-cosim model` (the cycle model alone, for speed and read lists).
-#include <chrono>
+// cosim::run_ghdl) and `harris-cosim model` (the cycle model alone, for speed and read lists:
+// run_cycle_model, model/driver/model_run.hpp).
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "cosim/cosim.hpp"
-#include "model/driver/host_driver.hpp"
+#include "model/driver/model_run.hpp"
 #include "model/harris/formats_json.hpp"
-#include "model/harris/harris_top.hpp"
 #include "tools/commands.hpp"
 #include "tools/frame_source.hpp"
 #include "io/util/util.hpp"
@@ -138,45 +137,23 @@ struct ModelOptions {
 
 void run_model(const ModelOptions& o) {
     const Formats formats = o.config.empty() ? Formats{} : formats_from_file(o.config);
-    frames::LoadedFrames lf = frames::load_frames(o.src);
+    const frames::LoadedFrames lf = frames::load_frames(o.src);
     const Geometry g{lf.frames[0].width, lf.frames[0].height};
-    HostDriver drv(g, frames::pointers(lf.frames));
-    HarrisTop top(g, formats);
-    std::ostringstream reads;
-    reads << "write,frame,x,y,value\n";
-    std::vector<long> corners(lf.frames.size(), 0);
-    std::vector<Corner> cs;
-    BusEvent ev;
-    long nreads = 0;
-    const auto t0 = std::chrono::steady_clock::now();
-    while (drv.next(ev)) {
-        top.write(ev.data);
-        if (ev.read) {
-            ++nreads;
-            cs.clear();
-            drv.decode(*ev.read, top.corner(), cs);
-            corners[ev.read->frame] += static_cast<long>(cs.size());
-            if (!o.reads_out.empty())
-                reads << top.writes() << ',' << ev.read->frame << ',' << ev.read->x << ',' << ev.read->y << ','
-                      << top.corner() << '\n';
-        }
-    }
-    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    long total = 0;
-    for (long c : corners) total += c;
+    const ModelRun r = run_cycle_model(lf.frames, formats, !o.reads_out.empty());
+    const double secs = r.seconds;
     json j = {{"geometry", {{"width", g.width}, {"height", g.height}}},
               {"frames", lf.frames.size()},
-              {"writes", top.writes()},
-              {"reads", nreads},
-              {"corners", total},
-              {"corners_per_frame", corners},
+              {"writes", r.writes},
+              {"reads", r.reads},
+              {"corners", r.corners()},
+              {"corners_per_frame", r.corners_per_frame},
               {"wall_seconds", secs},
-              {"writes_per_second", secs > 0 ? static_cast<double>(top.writes()) / secs : 0.0}};
-    if (!o.reads_out.empty()) util::write_file_atomic(o.reads_out, reads.str());
+              {"writes_per_second", secs > 0 ? static_cast<double>(r.writes) / secs : 0.0}};
+    if (!o.reads_out.empty()) util::write_file_atomic(o.reads_out, r.reads_csv);
     if (!o.json_out.empty()) util::write_file_atomic(o.json_out, j.dump(2) + "\n");
     std::printf("harris-cosim model: %s, %dx%d: %ld writes, %ld reads, %ld corners, %.3f s (%.2f M writes/s)\n",
-                lf.description.c_str(), g.width, g.height, top.writes(), nreads, total, secs,
-                secs > 0 ? static_cast<double>(top.writes()) / secs / 1e6 : 0.0);
+                lf.description.c_str(), g.width, g.height, r.writes, r.reads, r.corners(), secs,
+                secs > 0 ? static_cast<double>(r.writes) / secs / 1e6 : 0.0);
 }
 
 }  // namespace

@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "io/cluster/cluster.hpp"
-#include "tools/jobs/jobs.hpp"
+#include "tools/registry.hpp"
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
 
@@ -28,8 +28,8 @@ void add_shard_command(CLI::App& app) {
     CLI::App* merge = cmd->add_subcommand("merge", "fold every shard result of DIR into DIR/merged.json");
     merge->add_option("dir", o->dir, "run directory")->required();
     merge->callback([o]() {
-        jobs::merge_run(o->dir);
-        std::printf("harris-cosim shard merge: wrote %s\n", jobs::merged_path(o->dir).c_str());
+        cluster::merge_run(registry(), o->dir);
+        std::printf("harris-cosim shard merge: wrote %s\n", cluster::merged_path(o->dir).c_str());
     });
     CLI::App* status = cmd->add_subcommand("status", "list the shards of DIR without a result");
     status->add_option("dir", o->dir, "run directory")->required();

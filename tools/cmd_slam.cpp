@@ -15,13 +15,13 @@
 
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
-#include "tools/jobs/jobs.hpp"
 #include "io/frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
 #include "io/util/util.hpp"
 #include "slam/landmarks/landmarks.hpp"
 #include "slam/landmark_frames.hpp"
 #include "slam/slam.hpp"
+#include "slam/slam_job.hpp"
 
 namespace hc::tools {
 
@@ -96,16 +96,16 @@ void run_simulate(const SlamOptions& o) {
         " --sigma-dtheta " + num(c.odometry.sigma_dtheta / deg) + " --out " + o.out;
     slam::MonteCarlo mc;
     if (o.sharded) {
-        jobs::SlamShards p;
+        slam::SlamShards p;
         p.config = c;
         p.runs = o.runs;
         p.first_seed = o.seed;
         p.shards = o.runner.shards;
-        const cluster::Manifest m = jobs::slam_manifest(p);
+        const cluster::Manifest m = slam::slam_manifest(p);
         const std::filesystem::path dir = run_dir(o.runner, o.out);
         const auto merged = run_sharded(dir, m, o.runner);
         if (!merged) return;
-        mc = jobs::slam_result(m, *merged);
+        mc = slam::slam_result(m, *merged);
     } else {
         mc = slam::monte_carlo(c, o.runs, o.seed, 0.95, [](int done, int total) {
             if (done % 10 == 0 || done == total) std::fprintf(stderr, "slam: run %d/%d\n", done, total);

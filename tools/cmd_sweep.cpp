@@ -13,7 +13,7 @@
 #include "cosim/cosim.hpp"
 #include "io/frames/frames.hpp"
 #include "sweep/sweep.hpp"
-#include "tools/jobs/jobs.hpp"
+#include "sweep/sweep_job.hpp"
 #include "tools/commands.hpp"
 #include "tools/runner_flags.hpp"
 #include "sweep/sweep_report.hpp"
@@ -63,7 +63,7 @@ void run(const SweepCli& c) {
     if (c.sharded) {
         // configurations in shards, then the RTL checks of the merged Pareto front here
         const auto t0 = std::chrono::steady_clock::now();
-        jobs::SweepShards p;
+        sweep::SweepShards p;
         p.spec_text = util::read_file(o.spec_file, "--config");
         p.spec_name = c.config;
         p.kitti = o.kitti;
@@ -72,19 +72,19 @@ void run(const SweepCli& c) {
         p.threads = c.threads;
         p.jobs = 1;
         p.shards = c.runner.shards;
-        const cluster::Manifest m = jobs::sweep_manifest(p);
+        const cluster::Manifest m = sweep::sweep_manifest(p);
         const fs::path dir = run_dir(c.runner, o.out);
         const auto merged = run_sharded(dir, m, c.runner);
         if (!merged) return;
-        r = jobs::sweep_result(m, *merged);
+        r = sweep::sweep_result(m, *merged);
         // the RTL checks of the merged Pareto front: a second run, one shard per check
         const auto tc = std::chrono::steady_clock::now();
         const sweep::CheckPlan plan = sweep::plan_checks(r, o);
         if (!plan.tasks.empty()) {
-            const cluster::Manifest cm = jobs::sweep_check_manifest(p.spec_text, p.spec_name, r, plan, o);
+            const cluster::Manifest cm = sweep::sweep_check_manifest(p.spec_text, p.spec_name, r, plan, o);
             const auto checked = run_sharded(dir / "checks", cm, c.runner);
             if (!checked) return;
-            jobs::apply_sweep_checks(r, plan, *checked, o);
+            sweep::apply_sweep_checks(r, plan, *checked, o);
         }
         r.seconds_trust = std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count();
         r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -13,8 +13,9 @@
 
 #include "io/cluster/cluster.hpp"
 #include "cosim/verilator/verilate.hpp"
+#include "cosim/verilator/verilate_job.hpp"
 #include "eval/sequences.hpp"
-#include "tools/jobs/jobs.hpp"
+#include "tools/registry.hpp"
 #include "model/harris/formats_json.hpp"
 #include "tools/commands.hpp"
 #include "tools/frame_source.hpp"
@@ -46,7 +47,7 @@ void run_verilate_job(const VerilateArgs& a) {
                          "--gate-only, --build-only, --obs, --variant and --reads");
     if (!a.src.images.empty() || !a.src.pattern.empty())
         throw InputError("--sequences and the sharding flags stream KITTI sequences: leave out images and --pattern");
-    jobs::VerilateJob j;
+    vl::VerilateJob j;
     j.kitti = frames::require_kitti_root(a.src.kitti, a.src.data, "--sequences needs KITTI data");
     j.sequences = a.sequences.empty() ? std::vector<std::string>{a.src.sequence} : eval::parse_sequences(a.sequences);
     if (!a.src.pairs.empty()) j.pairs = util::parse_range(a.src.pairs, "--pairs");
@@ -55,15 +56,15 @@ void run_verilate_job(const VerilateArgs& a) {
     j.formats = a.config.empty() ? Formats{} : formats_from_file(a.config);
     j.cache = a.cache;
     j.keep_going = a.keep_going;
-    const cluster::Manifest m = jobs::verilate_manifest(j);
-    jobs::prepare_rtl(m);
+    const cluster::Manifest m = vl::verilate_manifest(j);
+    vl::prepare_rtl(m);
     json merged;
     if (a.sharded) {
         auto got = run_sharded(run_dir(a.runner, folder_of(a.json_path)), m, a.runner);
         if (!got) return;
         merged = std::move(*got);
     } else {
-        merged = cluster::run_in_process(jobs::registry(), m);
+        merged = cluster::run_in_process(registry(), m);
     }
     for (const auto& s : merged.at("sequences"))
         std::fprintf(stderr, "verilate: sequence %s: %ld frames, %ld writes, %ld reads, %ld corners, %ld mismatches (%s)\n",

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "tools/jobs/jobs.hpp"
+#include "tools/registry.hpp"
 #include "io/util/errors.hpp"
 
 namespace hc::tools {
@@ -109,10 +109,10 @@ std::optional<nlohmann::json> run_sharded(const fs::path& dir, const cluster::Ma
     cluster::RunOptions o = run_options(f, dir);
     if (fork) fork_workers(o);
     if (o.runner == cluster::RunnerKind::slurm && !o.slurm.wait) {
-        jobs::registry().at(m.job);   // an unknown kind is bad input before anything is written
+        registry().at(m.job);   // an unknown kind is bad input before anything is written
         cluster::prepare_run(dir, m);
         const cluster::RunSummary s = cluster::run(dir, o);
-        if (s.ran == 0) return jobs::merge_run(dir);   // every shard already has its result
+        if (s.ran == 0) return cluster::merge_run(registry(), dir);   // every shard already has its result
         std::printf("harris-cosim: submitted %zu shard(s) of %s as Slurm array job %s, merge job %s.\n"
                     "`harris-cosim shard status %s` shows what is missing; when both jobs are done, the same\n"
                     "command with --resume renders the report from the merged results without running anything.\n",
@@ -120,11 +120,11 @@ std::optional<nlohmann::json> run_sharded(const fs::path& dir, const cluster::Ma
                     s.slurm_merge_job.empty() ? "(none)" : s.slurm_merge_job.c_str(), dir.c_str());
         return std::nullopt;
     }
-    return jobs::run_and_merge(dir, m, o);
+    return cluster::run_and_merge(registry(), dir, m, o);
 }
 
 void run_worker(const fs::path& dir, std::size_t index) {
-    cluster::run_shard(jobs::registry(), dir, index, {{"harris-cosim", HC_VERSION}});
+    cluster::run_shard(registry(), dir, index, {{"harris-cosim", HC_VERSION}});
 }
 
 void fork_workers(cluster::RunOptions& o) { o.fork_worker = run_worker; }

@@ -61,7 +61,7 @@ const std::filesystem::path& program_path();
 /// earlier run's results are never silently reused (InputError naming the directory).
 cluster::RunOptions run_options(const RunnerFlags& f, const std::filesystem::path& dir);
 
-/// Runs the manifest's shards in `dir` and returns the merged result (jobs::run_and_merge).
+/// Runs the manifest's shards in `dir` and returns the merged result (cluster::run_and_merge).
 /// With --runner slurm --no-wait it submits the array and the merge job, prints their ids
 /// and how to render the report once they are done (the same command with --resume), and
 /// returns nothing: the caller writes no report. When every shard already has its result,

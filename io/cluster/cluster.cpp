@@ -579,4 +579,32 @@ std::vector<std::pair<long, long>> split_range(long first, long last, int k) {
     return v;
 }
 
+std::vector<std::pair<long, long>> split_items(long n, int k) {
+    if (n <= 0) return {};
+    return split_range(0, n, k <= 0 || k > n ? static_cast<int>(n) : k);
+}
+
+fs::path merged_path(const fs::path& dir) { return dir / "merged.json"; }
+
+json merge_run(const JobRegistry& reg, const fs::path& dir) {
+    json merged = merge(reg, dir);
+    util::write_file_atomic(merged_path(dir), merged.dump(1) + "\n");
+    return merged;
+}
+
+json run_and_merge(const JobRegistry& reg, const fs::path& dir, const Manifest& m, const RunOptions& o) {
+    reg.at(m.job);   // an unknown kind is bad input before anything is written
+    prepare_run(dir, m);
+    const RunSummary s = run(dir, o);
+    if (!s.failed.empty()) {
+        std::string which;
+        for (std::size_t i : s.failed) which += (which.empty() ? "" : ", ") + std::to_string(i);
+        throw ClusterRunError(std::to_string(s.failed.size()) + " of " + std::to_string(s.shards) +
+                              " shard(s) of " + dir.string() + " have no result (" + which +
+                              "; logs in " + (dir / "logs").string() +
+                              "); the same command resumes and runs only those");
+    }
+    return merge_run(reg, dir);
+}
+
 }  // namespace hc::cluster

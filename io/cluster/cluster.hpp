@@ -197,5 +197,20 @@ json run_in_process(const JobRegistry& reg, const Manifest& m);
 
 /// `a:b` of [0, n) split into `k` contiguous parts as equal as possible, as (first, last).
 std::vector<std::pair<long, long>> split_range(long first, long last, int k);
+/// [first, last) of `n` items in `k` groups (k <= 0 or > n: one per item; n <= 0: none).
+std::vector<std::pair<long, long>> split_items(long n, int k);
+
+/// The file a merge writes its folded data to: DIR/merged.json.
+fs::path merged_path(const fs::path& dir);
+
+/// Folds DIR's shard results with `reg` and writes DIR/merged.json atomically.
+/// ClusterInputError (status 2) names missing or foreign results.
+json merge_run(const JobRegistry& reg, const fs::path& dir);
+
+/// Prepares DIR for manifest `m` (or checks it is the same run: resume), runs the shards
+/// still missing through `o`'s runner, and merges them with `reg`. ClusterRunError when
+/// shards are still missing after the runner's retries; the message names them and says
+/// that running the same command again resumes.
+json run_and_merge(const JobRegistry& reg, const fs::path& dir, const Manifest& m, const RunOptions& o);
 
 }  // namespace hc::cluster

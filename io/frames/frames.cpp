@@ -87,6 +87,16 @@ bool is_kitti_sequence(const fs::path& kitti_root, const std::string& sequence) 
     return fs::is_directory(s / "image_0") && fs::is_directory(s / "image_1");
 }
 
+void check_kitti_sequences(const fs::path& kitti_root, const std::vector<std::string>& seqs) {
+    std::string missing;
+    for (const auto& q : seqs)
+        if (!is_kitti_sequence(kitti_root, q))
+            missing += (missing.empty() ? "" : ", ") + q;
+    if (!missing.empty())
+        throw InputError("--sequences: no KITTI sequence " + missing + " under " +
+                         kitti_sequences_dir(kitti_root).string() + " (each needs image_0/ and image_1/)");
+}
+
 fs::path kitti_poses_file(const fs::path& kitti_root, const std::string& sequence) {
     return kitti_root / "poses" / (sequence + ".txt");
 }

@@ -49,6 +49,9 @@ std::filesystem::path kitti_sequences_dir(const std::filesystem::path& kitti_roo
 std::filesystem::path kitti_sequence_dir(const std::filesystem::path& kitti_root, const std::string& sequence);
 /// True when sequence NN has both image folders (image_0/ and image_1/).
 bool is_kitti_sequence(const std::filesystem::path& kitti_root, const std::string& sequence);
+/// InputError (naming the flag --sequences) listing every sequence of `seqs` that is not a
+/// KITTI sequence under kitti_root/sequences/.
+void check_kitti_sequences(const std::filesystem::path& kitti_root, const std::vector<std::string>& seqs);
 /// <kitti_root>/poses/NN.txt, the ground-truth poses of sequence NN.
 std::filesystem::path kitti_poses_file(const std::filesystem::path& kitti_root, const std::string& sequence);
 

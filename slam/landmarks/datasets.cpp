@@ -150,4 +150,27 @@ Dataset rig_dataset(const std::vector<fs::path>& left, const std::vector<fs::pat
     return ds;
 }
 
+Dataset open_dataset(const DatasetChoice& c, fs::path& root) {
+    if (!c.calib.empty()) {
+        if (c.left.empty() || c.right.empty()) throw InputError("--calib needs the rig's images: --left and --right");
+        return rig_dataset(calib::expand_image_list(c.left, "--left"), calib::expand_image_list(c.right, "--right"),
+                           read_rig_calibration(c.calib));
+    }
+    if (!c.left.empty() || !c.right.empty()) throw InputError("--left and --right are the images of a rig: give its --calib");
+    const auto data = frames::data_dir(c.data);
+    if (c.dataset == "middlebury") {
+        root = c.middlebury;
+        if (root.empty()) {
+            if (!data) throw InputError("no --middlebury folder and no data directory (--data, $HARRIS_COSIM_DATA)");
+            root = *data / "middlebury2006" / "half";
+        }
+        return middlebury_dataset(root, c.need_truth);
+    }
+    if (c.dataset == "kitti") {
+        root = frames::require_kitti_root(c.kitti, c.data, "--dataset kitti needs KITTI data");
+        return kitti_dataset(root, c.sequence, util::parse_range(c.pairs, "--pairs"), "--pairs " + c.pairs);
+    }
+    throw InputError("--dataset '" + c.dataset + "' (middlebury or kitti)");
+}
+
 }  // namespace hc::landmarks

@@ -67,4 +67,22 @@ calib::Calibration read_rig_calibration(const std::filesystem::path& file);
 Dataset rig_dataset(const std::vector<std::filesystem::path>& left, const std::vector<std::filesystem::path>& right,
                     const calib::Calibration& rig);
 
+/// A dataset as the `landmarks` command chooses it (its flags in brackets): a user's rig
+/// (--calib with --left and --right), else Middlebury (--middlebury, default
+/// <data>/middlebury2006/half) or KITTI (--kitti, default <data>/kitti) by --dataset.
+struct DatasetChoice {
+    std::string calib;                      ///< the rig's calibration file ("": no rig)
+    std::vector<std::string> left, right;   ///< the rig's images, files or glob patterns
+    std::string dataset = "middlebury";     ///< middlebury or kitti
+    std::string middlebury, kitti;          ///< the dataset's folder ("": under the data directory)
+    std::string data;                       ///< the data directory (--data; "": frames::data_dir's default)
+    bool need_truth = true;                 ///< Middlebury: require disp1.png (false: --no-truth)
+    std::string sequence = "01";            ///< KITTI sequence
+    std::string pairs = "0:10";             ///< KITTI stereo pair range a:b (--pairs)
+};
+/// The chosen dataset; `root` receives its folder (left empty for a rig). InputError naming
+/// the flags for a rig without its images, images without a rig, no folder and no data
+/// directory, or another --dataset.
+Dataset open_dataset(const DatasetChoice& c, std::filesystem::path& root);
+
 }  // namespace hc::landmarks

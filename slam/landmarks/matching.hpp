@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 
@@ -87,6 +88,11 @@ struct PairResult {
     cv::Mat desc_left;             ///< descriptors of the described keypoints (rows)
     std::vector<cv::KeyPoint> kp_left, kp_right;
 };
+/// A pair's result as JSON, everything it holds (a match and a keypoint as an array of its
+/// fields, the descriptor matrix as hex) and back; InputError for a matrix whose hex does not
+/// fit its size (results_json.cpp).
+void to_json(nlohmann::json& j, const PairResult& r);
+void from_json(const nlohmann::json& j, PairResult& r);
 
 /// Describes and matches one pair on given keypoints, timed on the calling thread (set
 /// cv::setNumThreads(1) for one-thread figures). `disparity` (CV_32F, left image's size,

@@ -43,6 +43,10 @@ struct Totals {
     int pairs = 0;
     void add(const PairResult& r);
 };
+/// Totals as JSON and back, as a sweep point carries them (results_json.cpp): every count but
+/// truth_correct_x, which no sweep report shows.
+void to_json(nlohmann::json& j, const Totals& t);
+void from_json(const nlohmann::json& j, Totals& t);
 
 /// Summed counts of one descriptor on one detector's corners over a set of pairs.
 struct ComparisonRow {

@@ -18,9 +18,11 @@
 #include <fmt/format.h>
 
 #include "io/cluster/cluster.hpp"
+#include "cosim/verilator/verilate_job.hpp"
+#include "eval/eval_job.hpp"
 #include "eval/sequences.hpp"
 #include "io/frames/frames.hpp"
-#include "tools/jobs/jobs.hpp"
+#include "tools/registry.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/harris/harris_top.hpp"
 #include "tests/cluster/standin_kitti.hpp"
@@ -55,8 +57,8 @@ const fs::path& standin() {
 }
 
 // An evaluation of `source` over the stand-in's `sequences`, one thread a shard.
-jobs::EvalJob standin_job(std::vector<std::string> sequences, const std::string& source, bool ablation) {
-    jobs::EvalJob j;
+eval::EvalJob standin_job(std::vector<std::string> sequences, const std::string& source, bool ablation) {
+    eval::EvalJob j;
     j.kitti = standin();
     j.sequences = std::move(sequences);
     j.source = source;
@@ -66,11 +68,11 @@ jobs::EvalJob standin_job(std::vector<std::string> sequences, const std::string&
 }
 
 // The manifests of `j` in as few shards as it splits into and in `shards` shards.
-std::pair<cluster::Manifest, cluster::Manifest> single_and_sharded(jobs::EvalJob j, int shards) {
+std::pair<cluster::Manifest, cluster::Manifest> single_and_sharded(eval::EvalJob j, int shards) {
     j.shards = 0;
-    cluster::Manifest single = jobs::eval_manifest(j);
+    cluster::Manifest single = eval::eval_manifest(j);
     j.shards = shards;
-    return {std::move(single), jobs::eval_manifest(j)};
+    return {std::move(single), eval::eval_manifest(j)};
 }
 
 eval::Stream pattern_stream(int w, int h, int frames) {
@@ -110,8 +112,8 @@ int take_chain_checked(json& merged) {
 void check_sharded_equals_single(const cluster::Manifest& sharded, const cluster::Manifest& single,
                                  cluster::RunnerKind kind, const std::string& name) {
     const fs::path dir = scratch(name);
-    json merged = jobs::run_and_merge(dir, sharded, runner(kind));
-    json once = cluster::run_in_process(jobs::registry(), single);
+    json merged = cluster::run_and_merge(tools::registry(), dir, sharded, runner(kind));
+    json once = cluster::run_in_process(tools::registry(), single);
     if (sharded.job == "eval") {
         const bool cycle = sharded.common.at("source") == "cycle";
         CHECK(take_chain_checked(merged) ==
@@ -119,8 +121,8 @@ void check_sharded_equals_single(const cluster::Manifest& sharded, const cluster
         CHECK(take_chain_checked(once) == 0);
     }
     CHECK(merged == once);
-    CHECK(jobs::merged_path(dir).string().size() > 0);
-    CHECK(fs::exists(jobs::merged_path(dir)));
+    CHECK(cluster::merged_path(dir).string().size() > 0);
+    CHECK(fs::exists(cluster::merged_path(dir)));
 }
 
 }  // namespace
@@ -292,7 +294,7 @@ TEST_CASE("a list or range of sequences is parsed and missing sequences are name
     CHECK_THROWS_AS(eval::parse_sequences("0a"), InputError);
     CHECK_THROWS_AS(eval::parse_sequences("01,01"), InputError);
     try {
-        eval::check_sequences(standin(), {"02", "04", "03", "09"});
+        frames::check_kitti_sequences(standin(), {"02", "04", "03", "09"});
         FAIL("missing sequences were not reported");
     } catch (const InputError& e) {
         CHECK(std::string(e.what()).find("04, 09") != std::string::npos);
@@ -300,7 +302,7 @@ TEST_CASE("a list or range of sequences is parsed and missing sequences are name
 }
 
 TEST_CASE("spec and cycle evaluations sharded within sequences merge to the single-process data", "[cluster]") {
-    jobs::EvalJob j = standin_job({"02", "03"}, "spec", true);
+    eval::EvalJob j = standin_job({"02", "03"}, "spec", true);
     for (const char* source : {"spec", "cycle"}) {
         j.source = source;
         const auto [single, sharded] = single_and_sharded(j, 5);
@@ -308,20 +310,20 @@ TEST_CASE("spec and cycle evaluations sharded within sequences merge to the sing
         REQUIRE(sharded.shards.size() == 5);
         if (std::string(source) == "cycle") CHECK_FALSE(sharded.shards[1].at("start").is_null());
         check_sharded_equals_single(sharded, single, cluster::RunnerKind::local, std::string("local-") + source);
-        const eval::Report r = jobs::eval_report(cluster::run_in_process(jobs::registry(), single));
+        const eval::Report r = eval::eval_report(cluster::run_in_process(tools::registry(), single));
         CHECK(r.frames.size() == 24);
         CHECK(r.sequences.size() == 2);
     }
 }
 
 TEST_CASE("a sharded cycle run checks its chain at every boundary and refuses a checkpoint from too short a warm-up", "[cluster]") {
-    jobs::EvalJob j = standin_job({"02"}, "cycle", false);
+    eval::EvalJob j = standin_job({"02"}, "cycle", false);
     j.shards = 3;
-    cluster::Manifest m = jobs::eval_manifest(j);
+    cluster::Manifest m = eval::eval_manifest(j);
     REQUIRE(m.shards.size() == 3);
     // the good chain: two boundaries checked, and the report says so
     {
-        const eval::Report r = jobs::eval_report(cluster::run_in_process(jobs::registry(), m));
+        const eval::Report r = eval::eval_report(cluster::run_in_process(tools::registry(), m));
         CHECK(std::count(r.notes.begin(), r.notes.end(),
                          "Sharded cycle run: chain checked at 2 boundaries (at each, the cycle model's registers, the "
                          "host driver's position and the recent writes where a part stopped equal the next part's "
@@ -336,7 +338,7 @@ TEST_CASE("a sharded cycle run checks its chain at every boundary and refuses a 
     REQUIRE(eval::to_json(bad) != m.shards[2].at("start"));   // the short warm-up does give another state
     m.shards[2]["start"] = eval::to_json(bad);
     try {
-        cluster::run_in_process(jobs::registry(), m);
+        cluster::run_in_process(tools::registry(), m);
         FAIL("the merge accepted a part started from a wrong checkpoint");
     } catch (const SimulatorError& e) {
         const std::string what = e.what();
@@ -349,23 +351,23 @@ TEST_CASE("a sharded cycle run checks its chain at every boundary and refuses a 
 }
 
 TEST_CASE("rtl evaluations and verilate runs sharded by sequence merge to the single-process data", "[cluster][rtl]") {
-    const cluster::Manifest m = jobs::eval_manifest(standin_job({"02", "03"}, "rtl", false));
+    const cluster::Manifest m = eval::eval_manifest(standin_job({"02", "03"}, "rtl", false));
     REQUIRE(m.shards.size() == 2);
-    jobs::prepare_rtl(m);
+    vl::prepare_rtl(m);
     check_sharded_equals_single(m, m, cluster::RunnerKind::local, "local-rtl");
-    jobs::VerilateJob v;
+    vl::VerilateJob v;
     v.kitti = standin();
     v.sequences = {"02", "03"};
-    const cluster::Manifest vm = jobs::verilate_manifest(v);
-    jobs::prepare_rtl(vm);
-    const json once = cluster::run_in_process(jobs::registry(), vm);
+    const cluster::Manifest vm = vl::verilate_manifest(v);
+    vl::prepare_rtl(vm);
+    const json once = cluster::run_in_process(tools::registry(), vm);
     CHECK(once.at("status") == "pass");
     CHECK(once.at("totals").at("frames") == 24);
     check_sharded_equals_single(vm, vm, cluster::RunnerKind::local, "local-verilate");
 }
 
 TEST_CASE("a Slurm array of cycle shards within KITTI 01 merges to the single-process data", "[slurm][kitti]") {
-    jobs::EvalJob j;
+    eval::EvalJob j;
     j.kitti = g_kitti;
     j.sequences = {"01"};
     j.pairs = {0, 8};
@@ -378,8 +380,8 @@ TEST_CASE("a Slurm array of cycle shards within KITTI 01 merges to the single-pr
 }
 
 TEST_CASE("a Slurm array of rtl shards, one per sequence, merges to the single-process data", "[slurm]") {
-    const cluster::Manifest m = jobs::eval_manifest(standin_job({"02", "03"}, "rtl", false));
-    jobs::prepare_rtl(m);
+    const cluster::Manifest m = eval::eval_manifest(standin_job({"02", "03"}, "rtl", false));
+    vl::prepare_rtl(m);
     check_sharded_equals_single(m, m, cluster::RunnerKind::slurm, "slurm-rtl");
 }
 

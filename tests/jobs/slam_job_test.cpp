@@ -1,13 +1,15 @@
 // slam_job_test: Monte-Carlo seeds run in shards by `harris-cosim shard run` and folded by
-// jobs::slam_result give slam::monte_carlo's statistics bit for bit.
+// slam::slam_result give slam::monte_carlo's statistics bit for bit.
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <unistd.h>
 
 #include <cstring>
+#include <filesystem>
 
-#include "tools/jobs/jobs.hpp"
+#include "slam/slam_job.hpp"
+#include "tools/registry.hpp"
 
 using namespace hc;
 
@@ -35,22 +37,22 @@ bool same_bits(const std::vector<M>& a, const std::vector<M>& b) {
 TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo statistics bit for bit", "[cluster]") {
     slam::SimConfig c;
     c.steps = 60;
-    jobs::SlamShards p;
+    slam::SlamShards p;
     p.config = c;
     p.runs = 7;
     p.first_seed = 3;
     p.shards = 3;
-    const cluster::Manifest m = jobs::slam_manifest(p);
+    const cluster::Manifest m = slam::slam_manifest(p);
     REQUIRE(m.shards.size() == 3);
-    const jobs::fs::path dir = jobs::fs::temp_directory_path() / ("hc-slam-job-test-" + std::to_string(::getpid()));
-    jobs::fs::remove_all(dir);
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("hc-slam-job-test-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
     cluster::RunOptions o;
     o.jobs = 2;
     o.worker = {HC_CLI, "shard", "run"};
-    const jobs::json merged = jobs::run_and_merge(dir, m, o);
-    CHECK(merged == cluster::run_in_process(jobs::registry(), m));
+    const nlohmann::json merged = cluster::run_and_merge(tools::registry(), dir, m, o);
+    CHECK(merged == cluster::run_in_process(tools::registry(), m));
 
-    const slam::MonteCarlo a = jobs::slam_result(m, merged);
+    const slam::MonteCarlo a = slam::slam_result(m, merged);
     const slam::MonteCarlo b = slam::monte_carlo(c, 7, 3);
     CHECK(a.runs == 7);
     CHECK(a.pose_nees.size() == 61);
@@ -80,11 +82,11 @@ TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo st
     CHECK(same_bits(a.first.world.landmarks, b.first.world.landmarks));
     CHECK(same_bits(a.first.final_map, b.first.final_map));
     CHECK(same_bits(a.first.final_map_cov, b.first.final_map_cov));
-    jobs::fs::remove_all(dir);
+    std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("a slam manifest refuses a bad run count with the input named", "[cluster]") {
-    jobs::SlamShards p;
+    slam::SlamShards p;
     p.runs = 0;
-    CHECK_THROWS_WITH(jobs::slam_manifest(p), Catch::Contains("--runs must be at least 1"));
+    CHECK_THROWS_WITH(slam::slam_manifest(p), Catch::Contains("--runs must be at least 1"));
 }

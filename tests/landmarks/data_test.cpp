@@ -80,6 +80,22 @@ TEST_CASE("a Middlebury folder without disp1.png is refused, naming the file", "
     CHECK_NOTHROW(load_middlebury(third, false));
 }
 
+TEST_CASE("the landmarks command's default datasets are the half-size Middlebury scenes and KITTI under the data directory",
+          "[landmarks][data]") {
+    DatasetChoice c;
+    c.data = g_data.string();
+    fs::path root;
+    const Dataset m = open_dataset(c, root);
+    CHECK(root == half());
+    CHECK(m.pairs.size() == middlebury_dataset(half()).pairs.size());
+    c.dataset = "kitti";
+    c.pairs = "3:5";
+    const Dataset k = open_dataset(c, root);
+    CHECK(root == g_data / "kitti");
+    CHECK(k.pairs.size() == 2);
+    CHECK(k.name == kitti_dataset(g_data / "kitti", "01", {3, 5}).name);
+}
+
 TEST_CASE("grid and SIFT on OpenCV corners of the six half-size scenes: ground truth confirms most correct matches",
           "[landmarks][data]") {
     const Dataset ds = middlebury_dataset(half());

@@ -7,11 +7,12 @@
 #include <algorithm>
 
 #include "io/frames/frames.hpp"
-#include "tools/jobs/jobs.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/harris/find_max.hpp"
 #include "model/harris/harris_top.hpp"
+#include "mutation/mutants_job.hpp"
 #include "mutation/mutation.hpp"
+#include "tools/registry.hpp"
 
 using namespace hc;
 
@@ -136,15 +137,15 @@ TEST_CASE("a verdict's proof has one key a field, only its assumptions may be ab
 }
 
 TEST_CASE("the mutants job splits the named mutants into shards in order", "[mutants]") {
-    jobs::MutantsJob j;
+    mutation::MutantsJob j;
     for (int i = 0; i < 10; ++i) j.names.push_back("m" + std::to_string(i));
     j.per_shard = 4;
-    const cluster::Manifest m = jobs::mutants_manifest(j);
+    const cluster::Manifest m = mutation::mutants_manifest(j);
     CHECK(m.job == "mutants");
     REQUIRE(m.shards.size() == 3);
     CHECK(m.shards[0]["names"].size() == 4);
     CHECK(m.shards[2]["names"].back() == "m9");
-    const auto kinds = jobs::registry().names();
+    const auto kinds = tools::registry().names();
     CHECK(std::find(kinds.begin(), kinds.end(), "mutants") != kinds.end());
 }
 

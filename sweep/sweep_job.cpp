@@ -1,5 +1,5 @@
-// sweep_job.cpp: the "sweep" job kind, configurations of a bit-width sweep in shards.
-#include "tools/jobs/jobs.hpp"
+// sweep_job.cpp: the job kinds "sweep" and "sweep-check" (sweep_job.hpp).
+#include "sweep/sweep_job.hpp"
 
 #include <cstdio>
 #include <string>
@@ -7,7 +7,10 @@
 #include "model/harris/formats_json.hpp"
 #include "io/util/util.hpp"
 
-namespace hc::jobs {
+namespace hc::sweep {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
 
 namespace {
 
@@ -22,7 +25,7 @@ void array_from(const json& j, A& a) {
     for (std::size_t k = 0; k < a.size(); ++k) a[k] = j.at(k).get<std::uint64_t>();
 }
 
-json point_json(const sweep::PointResult& p) {
+json point_json(const PointResult& p) {
     json j = {{"name", p.config.name},
               {"formats", json::parse(formats_to_json(p.config.formats))},
               {"overflow", {{"wrapped", array_json(p.overflow.wrapped)}, {"sign_lost", array_json(p.overflow.sign_lost)},
@@ -34,19 +37,14 @@ json point_json(const sweep::PointResult& p) {
               {"eval_seconds", p.eval_seconds},
               {"overflow_seconds", p.overflow_seconds}};
     if (p.has_cost_ghdl) j["cost_ghdl"] = json(p.cost_ghdl);
-    if (p.has_ranges) j["ranges"] = sweep::range_report_to_json(p.ranges);
-    if (p.has_landmarks) {
-        const landmarks::Totals& l = p.landmarks;
-        j["landmarks"] = {{"keypoints", l.keypoints}, {"all", l.all}, {"correct", l.correct},
-                          {"truth_known", l.truth_known}, {"truth_correct", l.truth_correct},
-                          {"seconds", l.seconds}, {"pairs", l.pairs}};
-    }
+    if (p.has_ranges) j["ranges"] = range_report_to_json(p.ranges);
+    if (p.has_landmarks) j["landmarks"] = p.landmarks;
     if (p.has_trajectory) j["trajectory"] = json(p.trajectory);
     return j;
 }
 
-sweep::PointResult point_from(const json& j) {
-    sweep::PointResult p;
+PointResult point_from(const json& j) {
+    PointResult p;
     p.config.name = j.at("name");
     p.config.formats = formats_from_json(j.at("formats"), "sweep shard result, configuration " + p.config.name);
     array_from(j.at("overflow").at("wrapped"), p.overflow.wrapped);
@@ -57,56 +55,49 @@ sweep::PointResult point_from(const json& j) {
     p.accuracy.tn = c.at("tn");
     p.accuracy.fp = c.at("fp");
     p.accuracy.fn = c.at("fn");
-    p.cost = j.at("cost").get<sweep::Cost>();
+    p.cost = j.at("cost").get<Cost>();
     p.register_bits = j.at("register_bits");
     p.wraps = j.at("wraps");
     p.eval_seconds = j.at("eval_seconds");
     p.overflow_seconds = j.at("overflow_seconds");
     if (j.contains("cost_ghdl")) {
-        p.cost_ghdl = j.at("cost_ghdl").get<sweep::Cost>();
+        p.cost_ghdl = j.at("cost_ghdl").get<Cost>();
         p.has_cost_ghdl = true;
     }
     if (j.contains("ranges")) {
-        p.ranges = sweep::range_report_from_json(j.at("ranges"));
+        p.ranges = range_report_from_json(j.at("ranges"));
         p.ranges.formats = p.config.formats;
         p.has_ranges = true;
     }
     if (j.contains("landmarks")) {
-        const json& l = j.at("landmarks");
-        p.landmarks.keypoints = l.at("keypoints");
-        p.landmarks.all = l.at("all");
-        p.landmarks.correct = l.at("correct");
-        p.landmarks.truth_known = l.at("truth_known");
-        p.landmarks.truth_correct = l.at("truth_correct");
-        p.landmarks.seconds = l.at("seconds");
-        p.landmarks.pairs = l.at("pairs");
+        p.landmarks = j.at("landmarks").get<landmarks::Totals>();
         p.has_landmarks = true;
     }
     if (j.contains("trajectory")) {
-        p.trajectory = j.at("trajectory").get<sweep::Trajectory>();
+        p.trajectory = j.at("trajectory").get<Trajectory>();
         p.has_trajectory = true;
     }
     return p;
 }
 
-json outcome_json(const sweep::CheckTask& t, const sweep::CheckOutcome& c) {
-    return {{"point", t.point}, {"kind", sweep::check_kind_name(t.kind)}, {"stream", t.stream},
+json outcome_json(const CheckTask& t, const CheckOutcome& c) {
+    return {{"point", t.point}, {"kind", check_kind_name(t.kind)}, {"stream", t.stream},
             {"status", c.status}, {"log", c.log.string()}, {"gate_cached", c.gate_cached},
-            {"result", sweep::trust_to_json(c.one)}};
+            {"result", trust_to_json(c.one)}};
 }
 
-sweep::CheckOutcome outcome_from(const json& j) {
-    sweep::CheckOutcome c;
+CheckOutcome outcome_from(const json& j) {
+    CheckOutcome c;
     c.status = j.at("status");
     c.log = j.at("log").get<std::string>();
     c.gate_cached = j.at("gate_cached");
-    c.one = sweep::trust_from_json(j.at("result"));
+    c.one = trust_from_json(j.at("result"));
     return c;
 }
 
 // The options both sweep kinds' shards share: the KITTI root, the cache, accuracy threads.
-sweep::SweepOptions shard_options(const json& common) {
-    sweep::SweepOptions o;
+SweepOptions shard_options(const json& common) {
+    SweepOptions o;
     o.kitti = common.at("kitti").get<std::string>();
     o.cache = common.at("cache").get<std::string>();
     o.threads = common.at("threads");
@@ -133,8 +124,8 @@ util::RegressionStream stream_from(const json& j) {
 }  // namespace
 
 cluster::Manifest sweep_check_manifest(const std::string& spec_text, const std::string& spec_name,
-                                       const sweep::SweepResult& r, const sweep::CheckPlan& plan,
-                                       const sweep::SweepOptions& o) {
+                                       const SweepResult& r, const CheckPlan& plan,
+                                       const SweepOptions& o) {
     cluster::Manifest m;
     m.job = "sweep-check";
     json streams = json::array();
@@ -148,37 +139,37 @@ cluster::Manifest sweep_check_manifest(const std::string& spec_text, const std::
                 {"backend", o.ghdl_backend},
                 {"threads", o.threads},
                 {"streams", streams}};
-    for (const sweep::CheckTask& t : plan.tasks) {
-        const sweep::PointResult& p = r.points.at(t.point);
+    for (const CheckTask& t : plan.tasks) {
+        const PointResult& p = r.points.at(t.point);
         m.shards.push_back({{"point", t.point},
                             {"name", p.config.name},
                             {"formats", json::parse(formats_to_json(p.config.formats))},
                             {"key", plan.keys.at(t.point)},
-                            {"kind", sweep::check_kind_name(t.kind)},
+                            {"kind", check_kind_name(t.kind)},
                             {"stream", t.stream}});
     }
     return m;
 }
 
-void apply_sweep_checks(sweep::SweepResult& r, const sweep::CheckPlan& plan, const json& merged,
-                        const sweep::SweepOptions& o) {
+void apply_sweep_checks(SweepResult& r, const CheckPlan& plan, const json& merged,
+                        const SweepOptions& o) {
     const json& outs = merged.at("outcomes");
     if (outs.size() != plan.tasks.size())
         throw cluster::ClusterInputError("sweep-check: the merged data holds " + std::to_string(outs.size()) +
                                          " outcomes, the plan " + std::to_string(plan.tasks.size()) + " checks");
     for (std::size_t k = 0; k < outs.size(); ++k) {
-        const sweep::CheckTask& t = plan.tasks[k];
+        const CheckTask& t = plan.tasks[k];
         const json& j = outs[k];
-        if (j.at("point").get<std::size_t>() != t.point || j.at("kind") != sweep::check_kind_name(t.kind) ||
+        if (j.at("point").get<std::size_t>() != t.point || j.at("kind") != check_kind_name(t.kind) ||
             j.at("stream").get<int>() != t.stream)
             throw cluster::ClusterInputError("sweep-check: outcome " + std::to_string(k) + " answers another check than the plan's");
-        sweep::apply_check(r, plan, t, outcome_from(j), o);
+        apply_check(r, plan, t, outcome_from(j), o);
     }
-    sweep::finish_checks(r);
+    finish_checks(r);
 }
 
 cluster::Manifest sweep_manifest(const SweepShards& p) {
-    const sweep::SweepSpec spec = sweep::parse_sweep_spec(p.spec_text, p.spec_name);
+    const SweepSpec spec = parse_sweep_spec(p.spec_text, p.spec_name);
     cluster::Manifest m;
     m.job = "sweep";
     m.common = {{"spec", p.spec_text},
@@ -189,14 +180,14 @@ cluster::Manifest sweep_manifest(const SweepShards& p) {
                 {"cache", fs::absolute(p.cache).string()},
                 {"threads", p.threads},
                 {"jobs", p.jobs}};
-    for (auto [a, b] : detail::groups(static_cast<long>(spec.configs.size()), p.shards))
+    for (auto [a, b] : cluster::split_items(static_cast<long>(spec.configs.size()), p.shards))
         m.shards.push_back({{"first", a}, {"last", b}});
     return m;
 }
 
-sweep::SweepResult sweep_result(const cluster::Manifest& m, const json& merged) {
-    sweep::SweepResult r;
-    r.spec = sweep::parse_sweep_spec(m.common.at("spec"), m.common.at("spec_name"));
+SweepResult sweep_result(const cluster::Manifest& m, const json& merged) {
+    SweepResult r;
+    r.spec = parse_sweep_spec(m.common.at("spec"), m.common.at("spec_name"));
     for (const auto& j : merged.at("points")) r.points.push_back(point_from(j));
     if (r.points.size() != r.spec.configs.size())
         throw cluster::ClusterInputError("sweep: the merged data holds " + std::to_string(r.points.size()) +
@@ -213,7 +204,7 @@ sweep::SweepResult sweep_result(const cluster::Manifest& m, const json& merged) 
     r.trajectory_run = merged.at("trajectory_run");
     r.seconds_trajectory = merged.at("seconds").at("trajectory");
     for (const auto& p : r.points)
-        for (const sweep::Cost* c : {&p.cost, p.has_cost_ghdl ? &p.cost_ghdl : nullptr}) {
+        for (const Cost* c : {&p.cost, p.has_cost_ghdl ? &p.cost_ghdl : nullptr}) {
             if (!c) continue;
             if (c->cached) ++r.synth_cached;
             else {
@@ -221,23 +212,21 @@ sweep::SweepResult sweep_result(const cluster::Manifest& m, const json& merged) 
                 r.synth_seconds_sum += c->seconds;
             }
         }
-    sweep::mark_pareto(r.points);
-    sweep::mark_verify(r);
+    mark_pareto(r.points);
+    mark_verify(r);
     return r;
 }
 
-namespace detail {
-
-cluster::ShardJob sweep_job() {
-    return {"sweep",
+void add_sweep_job(cluster::JobRegistry& reg) {
+    reg.add({"sweep",
             [](const json& common, const json& shard, std::size_t) {
-                const sweep::SweepSpec spec = sweep::parse_sweep_spec(common.at("spec"), common.at("spec_name"));
-                sweep::SweepOptions o = shard_options(common);
+                const SweepSpec spec = parse_sweep_spec(common.at("spec"), common.at("spec_name"));
+                SweepOptions o = shard_options(common);
                 o.middlebury = common.at("middlebury").get<std::string>();
                 o.jobs = common.at("jobs");
                 std::vector<std::size_t> which;
                 for (long i = shard.at("first"); i < shard.at("last").get<long>(); ++i) which.push_back(i);
-                const sweep::PointsRun pr = sweep::evaluate_points(spec, which, o);
+                const PointsRun pr = evaluate_points(spec, which, o);
                 json points = json::array();
                 for (const auto& p : pr.points) points.push_back(point_json(p));
                 return json{{"stream", pr.stream},
@@ -268,29 +257,29 @@ cluster::ShardJob sweep_job() {
                             {"trajectory_run", data.empty() ? json("") : data.front().at("trajectory_run")},
                             {"points", points},
                             {"seconds", seconds}};
-            }};
+            }});
 }
 
-cluster::ShardJob sweep_check_job() {
-    return {"sweep-check",
+void add_sweep_check_job(cluster::JobRegistry& reg) {
+    reg.add({"sweep-check",
             [](const json& common, const json& shard, std::size_t) {
-                const sweep::SweepSpec spec = sweep::parse_sweep_spec(common.at("spec"), common.at("spec_name"));
-                sweep::SweepOptions o = shard_options(common);
+                const SweepSpec spec = parse_sweep_spec(common.at("spec"), common.at("spec_name"));
+                SweepOptions o = shard_options(common);
                 o.out = common.at("out").get<std::string>();
                 o.ghdl_backend = common.at("backend");
                 std::vector<util::RegressionStream> streams;
                 for (const auto& s : common.at("streams")) streams.push_back(stream_from(s));
-                sweep::CheckTask t;
+                CheckTask t;
                 t.point = shard.at("point");
-                t.kind = sweep::check_kind_from_name(shard.at("kind"));
+                t.kind = check_kind_from_name(shard.at("kind"));
                 t.stream = shard.at("stream");
-                sweep::Config config;
+                Config config;
                 config.name = shard.at("name");
                 config.formats = formats_from_json(shard.at("formats"), "sweep-check manifest, configuration " + config.name);
-                sweep::CheckRunner runner(spec, o);
-                const sweep::CheckOutcome c = runner.run(t, config, shard.at("key"), streams);
-                std::printf("sweep-check: %s %s%s: %s (%.0f s%s)\n", config.name.c_str(), sweep::check_kind_name(t.kind),
-                            t.kind == sweep::CheckKind::ghdl ? (" " + streams.at(t.stream).stem()).c_str() : "",
+                CheckRunner runner(spec, o);
+                const CheckOutcome c = runner.run(t, config, shard.at("key"), streams);
+                std::printf("sweep-check: %s %s%s: %s (%.0f s%s)\n", config.name.c_str(), check_kind_name(t.kind),
+                            t.kind == CheckKind::ghdl ? (" " + streams.at(t.stream).stem()).c_str() : "",
                             c.status.c_str(), c.one.seconds, c.one.cached ? ", cached" : "");
                 return json{{"outcomes", json::array({outcome_json(t, c)})}};
             },
@@ -299,9 +288,7 @@ cluster::ShardJob sweep_check_job() {
                 for (const auto& d : data)
                     for (const auto& o : d.at("outcomes")) outs.push_back(o);
                 return json{{"outcomes", outs}};
-            }};
+            }});
 }
 
-}  // namespace detail
-
-}  // namespace hc::jobs
+}  // namespace hc::sweep

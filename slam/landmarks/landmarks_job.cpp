@@ -1,6 +1,6 @@
-// landmarks_job.cpp: the "landmarks" job kind, the descriptor comparison in shards of one
-// detector over a range of a dataset's pairs (every descriptor on those corners).
-#include "tools/jobs/jobs.hpp"
+// landmarks_job.cpp: the job kind "landmarks" (landmarks_job.hpp): the descriptor comparison
+// in shards of one detector over a range of a dataset's pairs (every descriptor on those corners).
+#include "slam/landmarks/landmarks_job.hpp"
 
 #include <map>
 #include <string>
@@ -8,30 +8,31 @@
 #include "model/harris/formats_json.hpp"
 #include "io/util/util.hpp"
 
-namespace hc::jobs {
+namespace hc::landmarks {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
 
 namespace {
 
-namespace lm = hc::landmarks;
-
-std::string norm_name(lm::Norm n) {
-    return n == lm::Norm::hamming ? "hamming" : n == lm::Norm::l2 ? "l2" : "auto";
+std::string norm_name(Norm n) {
+    return n == Norm::hamming ? "hamming" : n == Norm::l2 ? "l2" : "auto";
 }
 
-lm::Dataset load_pairs(const json& common, long first, long last) {
+Dataset load_pairs(const json& common, long first, long last) {
     const fs::path root = common.at("root").get<std::string>();
     if (common.at("dataset") == "kitti") {
         const int f = common.at("first");
-        return lm::kitti_dataset(root, common.at("sequence"), {f + static_cast<int>(first), f + static_cast<int>(last)});
+        return kitti_dataset(root, common.at("sequence"), {f + static_cast<int>(first), f + static_cast<int>(last)});
     }
     // the shard's scenes only, each loaded as middlebury_dataset loads it
-    const auto scenes = lm::middlebury_scenes(root);
+    const auto scenes = middlebury_scenes(root);
     if (last > static_cast<long>(scenes.size()))
         throw cluster::ClusterInputError("landmarks: " + root.string() + " holds " + std::to_string(scenes.size()) +
                                          " scenes, the run expects at least " + std::to_string(last));
-    lm::Dataset ds;
+    Dataset ds;
     for (long k = first; k < last; ++k) {
-        lm::Dataset one = lm::middlebury_dataset(scenes[k], common.at("need_truth"));
+        Dataset one = middlebury_dataset(scenes[k], common.at("need_truth"));
         ds.pairs.push_back(std::move(one.pairs.at(0)));
         ds.disparity.push_back(std::move(one.disparity.at(0)));
         ds.calib.push_back(one.calib.at(0));
@@ -44,85 +45,9 @@ std::string mat_hash(const cv::Mat& m) {
     return util::hex64(util::fnv1a(std::string_view(reinterpret_cast<const char*>(c.data), c.total() * c.elemSize())));
 }
 
-json keypoints_json(const std::vector<cv::KeyPoint>& v) {
-    json a = json::array();
-    for (const auto& k : v) a.push_back({k.pt.x, k.pt.y, k.size, k.angle, k.response, k.octave, k.class_id});
-    return a;
-}
-
-std::vector<cv::KeyPoint> keypoints_from(const json& a) {
-    std::vector<cv::KeyPoint> v;
-    for (const auto& k : a)
-        v.emplace_back(cv::Point2f(k.at(0).get<float>(), k.at(1).get<float>()), k.at(2).get<float>(), k.at(3).get<float>(),
-                       k.at(4).get<float>(), k.at(5).get<int>(), k.at(6).get<int>());
-    return v;
-}
-
-json mat_json(const cv::Mat& m) {
-    static const char* hex = "0123456789abcdef";
-    const cv::Mat c = m.isContinuous() ? m : m.clone();
-    std::string s;
-    const auto* p = c.data;
-    for (std::size_t i = 0; i < c.total() * c.elemSize(); ++i) {
-        s += hex[p[i] >> 4];
-        s += hex[p[i] & 15];
-    }
-    return {{"type", m.type()}, {"rows", m.rows}, {"cols", m.cols}, {"hex", s}};
-}
-
-cv::Mat mat_from(const json& j) {
-    cv::Mat m(j.at("rows").get<int>(), j.at("cols").get<int>(), j.at("type").get<int>());
-    const std::string& s = j.at("hex").get_ref<const std::string&>();
-    if (s.size() != 2 * m.total() * m.elemSize()) throw cluster::ClusterInputError("landmarks: a descriptor matrix has the wrong size");
-    auto nib = [](char c) { return c <= '9' ? c - '0' : c - 'a' + 10; };
-    for (std::size_t i = 0; i < m.total() * m.elemSize(); ++i) m.data[i] = static_cast<uchar>(nib(s[2 * i]) * 16 + nib(s[2 * i + 1]));
-    return m;
-}
-
-json pair_json(const lm::PairResult& r) {
-    json matches = json::array();
-    for (const auto& m : r.matches)
-        matches.push_back({m.left.x, m.left.y, m.right.x, m.right.y, m.distance, m.left_index, m.right_index, m.epipolar, m.truth});
-    return {{"name", r.name},
-            {"keypoints_left", r.keypoints_left},
-            {"keypoints_right", r.keypoints_right},
-            {"matches", matches},
-            {"has_truth", r.has_truth},
-            {"descriptor_bytes", r.descriptor_bytes},
-            {"seconds", r.seconds},
-            {"desc_left", mat_json(r.desc_left)},
-            {"kp_left", keypoints_json(r.kp_left)},
-            {"kp_right", keypoints_json(r.kp_right)}};
-}
-
-lm::PairResult pair_from(const json& j) {
-    lm::PairResult r;
-    r.name = j.at("name");
-    r.keypoints_left = j.at("keypoints_left");
-    r.keypoints_right = j.at("keypoints_right");
-    for (const auto& a : j.at("matches")) {
-        lm::StereoMatch m;
-        m.left = {a.at(0).get<float>(), a.at(1).get<float>()};
-        m.right = {a.at(2).get<float>(), a.at(3).get<float>()};
-        m.distance = a.at(4);
-        m.left_index = a.at(5);
-        m.right_index = a.at(6);
-        m.epipolar = a.at(7);
-        m.truth = a.at(8);
-        r.matches.push_back(m);
-    }
-    r.has_truth = j.at("has_truth");
-    r.descriptor_bytes = j.at("descriptor_bytes");
-    r.seconds = j.at("seconds");
-    r.desc_left = mat_from(j.at("desc_left"));
-    r.kp_left = keypoints_from(j.at("kp_left"));
-    r.kp_right = keypoints_from(j.at("kp_right"));
-    return r;
-}
-
 /// Keypoints detected on a sub-dataset starting at pair `first` carry the frame numbers of
 /// the whole dataset (2k left, 2k+1 right of pair k), as compare() numbers them.
-void renumber(lm::FrameKeypoints& f, int offset) {
+void renumber(FrameKeypoints& f, int offset) {
     f.frame += offset;
     for (auto& k : f.points) k.class_id += offset;
 }
@@ -132,14 +57,14 @@ void renumber(lm::FrameKeypoints& f, int offset) {
 cluster::Manifest landmarks_manifest(const LandmarksShards& p) {
     const auto& o = p.options;
     if (o.detectors.empty() || o.descriptors.empty())
-        throw lm::InputError("the comparison needs at least one detector and one descriptor");
-    lm::validate(o.grid);
+        throw InputError("the comparison needs at least one detector and one descriptor");
+    validate(o.grid);
     for (auto det : o.detectors)
-        for (auto d : o.descriptors) lm::check_combination(d, det, o.match.norm);
+        for (auto d : o.descriptors) check_combination(d, det, o.match.norm);
     cluster::Manifest m;
     m.job = "landmarks";
     json descriptors = json::array();
-    for (auto d : o.descriptors) descriptors.push_back(lm::descriptor_name(d));
+    for (auto d : o.descriptors) descriptors.push_back(descriptor_name(d));
     m.common = {{"dataset", p.dataset},
                 {"root", fs::absolute(p.root).string()},
                 {"need_truth", p.need_truth},
@@ -157,22 +82,22 @@ cluster::Manifest landmarks_manifest(const LandmarksShards& p) {
     // pair chunks per software detector, so that the shards number about p.shards
     const int per_detector = p.shards <= 0 ? 0 : std::max(1, p.shards / static_cast<int>(o.detectors.size()));
     for (auto det : o.detectors) {
-        const auto chunks = lm::is_hardware(det) ? detail::groups(static_cast<long>(p.pairs), 1)
-                                                 : detail::groups(static_cast<long>(p.pairs), per_detector);
-        for (auto [a, b] : chunks) m.shards.push_back({{"detector", lm::detector_name(det)}, {"first", a}, {"last", b}});
+        const auto chunks = is_hardware(det) ? cluster::split_items(static_cast<long>(p.pairs), 1)
+                                                 : cluster::split_items(static_cast<long>(p.pairs), per_detector);
+        for (auto [a, b] : chunks) m.shards.push_back({{"detector", detector_name(det)}, {"first", a}, {"last", b}});
     }
     return m;
 }
 
-std::vector<lm::ComparisonRow> landmarks_rows(const json& merged) {
-    std::vector<lm::ComparisonRow> rows;
+std::vector<ComparisonRow> landmarks_rows(const json& merged) {
+    std::vector<ComparisonRow> rows;
     for (const auto& j : merged.at("rows")) {
-        lm::ComparisonRow row;
-        row.detector = lm::parse_detector(j.at("detector"));
-        row.descriptor = lm::parse_descriptor(j.at("descriptor"));
+        ComparisonRow row;
+        row.detector = parse_detector(j.at("detector"));
+        row.descriptor = parse_descriptor(j.at("descriptor"));
         row.grid = {j.at("grid").at(0).get<int>(), j.at("grid").at(1).get<int>()};
         for (const auto& pj : j.at("pairs")) {
-            row.pairs.push_back(pair_from(pj));
+            row.pairs.push_back(pj.get<PairResult>());
             row.totals.add(row.pairs.back());
         }
         row.descriptor_bytes = row.pairs.empty() ? 0 : row.pairs.front().descriptor_bytes;
@@ -181,25 +106,23 @@ std::vector<lm::ComparisonRow> landmarks_rows(const json& merged) {
     return rows;
 }
 
-namespace detail {
-
-cluster::ShardJob landmarks_job() {
-    return {"landmarks",
+void add_landmarks_job(cluster::JobRegistry& r) {
+    r.add({"landmarks",
             [](const json& common, const json& shard, std::size_t) {
                 const long first = shard.at("first"), last = shard.at("last");
-                const lm::Detector det = lm::parse_detector(shard.at("detector"));
-                const lm::Dataset ds = load_pairs(common, first, last);
-                lm::CornerOptions co;
+                const Detector det = parse_detector(shard.at("detector"));
+                const Dataset ds = load_pairs(common, first, last);
+                CornerOptions co;
                 co.formats = formats_from_json(common.at("corners").at("formats"), "landmarks run formats");
                 co.keypoint_size = common.at("corners").at("keypoint_size");
                 co.orb_features = common.at("corners").at("orb_features");
-                lm::MatchParams mp;
-                mp.norm = lm::parse_norm(common.at("match").at("norm"));
+                MatchParams mp;
+                mp.norm = parse_norm(common.at("match").at("norm"));
                 mp.ratio = common.at("match").at("ratio");
                 mp.drop_ties = common.at("match").at("drop_ties");
                 mp.epipolar_px = common.at("match").at("epipolar_px");
-                const lm::GridParams gp{common.at("grid").at(0).get<int>(), common.at("grid").at(1).get<int>()};
-                auto kp = lm::detect_dataset(ds, det, co);
+                const GridParams gp{common.at("grid").at(0).get<int>(), common.at("grid").at(1).get<int>()};
+                auto kp = detect_dataset(ds, det, co);
                 for (auto& p : kp) {
                     renumber(p.left, static_cast<int>(2 * first));
                     renumber(p.right, static_cast<int>(2 * first));
@@ -210,17 +133,17 @@ cluster::ShardJob landmarks_job() {
                 cv::setNumThreads(1);   // extraction and matching timed on one thread, as compare() does
                 json rows = json::array();
                 for (const auto& dn : common.at("descriptors")) {
-                    const lm::Descriptor d = lm::parse_descriptor(dn);
+                    const Descriptor d = parse_descriptor(dn);
                     json pairs = json::array();
                     for (std::size_t k = 0; k < ds.pairs.size(); ++k) {
                         const cv::Mat none;
-                        json pj = pair_json(lm::match_pair(ds.pairs[k], kp[k], d, gp, mp,
+                        json pj = json(match_pair(ds.pairs[k], kp[k], d, gp, mp,
                                                            k < ds.disparity.size() ? ds.disparity[k] : none));
                         pj["index"] = first + static_cast<long>(k);
                         pj["input_hash"] = inputs[k];
                         pairs.push_back(std::move(pj));
                     }
-                    rows.push_back({{"detector", lm::detector_name(det)}, {"descriptor", dn}, {"grid", common.at("grid")},
+                    rows.push_back({{"detector", detector_name(det)}, {"descriptor", dn}, {"grid", common.at("grid")},
                                     {"pairs", std::move(pairs)}});
                 }
                 cv::setNumThreads(threads);
@@ -254,9 +177,7 @@ cluster::ShardJob landmarks_job() {
                     out["rows"].push_back(std::move(rows[k]));
                 }
                 return out;
-            }};
+            }});
 }
 
-}  // namespace detail
-
-}  // namespace hc::jobs
+}  // namespace hc::landmarks

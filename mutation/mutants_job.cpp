@@ -1,23 +1,23 @@
-// mutants_job.cpp: the job kind "mutants": shards of generated mutants, each judged by
-// mutation::run_mutant (co-simulation, then a proof of the survivors).
-#include <cstdio>
-
-#include "cosim/cosim.hpp"
-#include "tools/jobs/jobs.hpp"
+// mutants_job.cpp: the job kind "mutants" (mutants_job.hpp): shards of generated mutants,
+// each judged by run_mutant (co-simulation, then a proof of the survivors).
+#include "mutation/mutants_job.hpp"
 
 #include <algorithm>
 #include <chrono>
-#include "io/util/util.hpp"
+#include <cstdio>
 
-namespace hc::jobs {
+#include "mutation/vhdl_mutants.hpp"
+
+namespace hc::mutation {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
 
 namespace {
 
-using mutation::rtl_hash;
-
-json stimuli_json(const std::vector<mutation::Stimulus>& v) {
+json stimuli_json(const std::vector<Stimulus>& v) {
     json a = json::array();
-    for (const auto& s : v) a.push_back(mutation::to_json(s));
+    for (const auto& s : v) a.push_back(to_json(s));
     return a;
 }
 
@@ -25,29 +25,29 @@ json run_shard_mutants(const json& common, const json& shard, std::size_t index)
     if (common.at("rtl_hash").get<std::string>() != rtl_hash())
         throw cluster::ClusterInputError("shard " + std::to_string(index) +
                                          ": rtl/ changed since this run's manifest was written; start a new run");
-    mutation::Options o;
-    o.quick = mutation::stimulus_from_json(common.at("quick"));
-    for (const auto& s : common.at("longer")) o.longer.push_back(mutation::stimulus_from_json(s));
+    Options o;
+    o.quick = stimulus_from_json(common.at("quick"));
+    for (const auto& s : common.at("longer")) o.longer.push_back(stimulus_from_json(s));
     o.prove = common.at("prove").get<bool>();
     o.proof_timeout_s = common.at("proof_timeout_s").get<int>();
     o.progress = [](const std::string& s) { std::fprintf(stderr, "[mutants] %s\n", s.c_str()); };
     // each shard first runs the unmutated rtl/ the same way (on whatever node it runs), so
     // that a broken environment fails the shard instead of judging every mutant stillborn
-    mutation::check_unmutated(o);
-    const auto all = mutation::generate_all();
+    check_unmutated(o);
+    const auto all = generate_all();
     json out = json::array();
     for (const auto& n : shard.at("names")) {
         const std::string name = n.get<std::string>();
-        const mutation::Mutant* m = nullptr;
+        const Mutant* m = nullptr;
         for (const auto& c : all)
             if (c.name() == name) m = &c;
         if (!m) throw cluster::ClusterInputError("shard " + std::to_string(index) + ": no generated mutant '" + name + "'");
         std::fprintf(stderr, "[mutants] %s ...\n", name.c_str());
-        const mutation::Result r = mutation::run_mutant(*m, o);
-        std::fprintf(stderr, "[mutants] %s: %s%s%s (%.1f s)\n", name.c_str(), mutation::fate_name(r.fate).c_str(),
+        const Result r = run_mutant(*m, o);
+        std::fprintf(stderr, "[mutants] %s: %s%s%s (%.1f s)\n", name.c_str(), fate_name(r.fate).c_str(),
                      r.killed_by.empty() ? "" : (" by " + r.killed_by).c_str(),
                      r.detail.empty() ? "" : (", " + r.detail).c_str(), r.seconds);
-        out.push_back(mutation::to_json(r));
+        out.push_back(to_json(r));
     }
     return out;
 }
@@ -65,7 +65,7 @@ cluster::Manifest mutants_manifest(const MutantsJob& p) {
     cluster::Manifest m;
     m.job = "mutants";
     m.common = {{"rtl_hash", rtl_hash()},
-                {"quick", mutation::to_json(p.quick)},
+                {"quick", to_json(p.quick)},
                 {"longer", stimuli_json(p.longer)},
                 {"prove", p.prove},
                 {"proof_timeout_s", p.proof_timeout_s}};
@@ -81,11 +81,11 @@ cluster::Manifest mutants_manifest(const MutantsJob& p) {
     return m;
 }
 
-std::vector<mutation::Result> mutants_results(const json& merged) {
-    std::vector<mutation::Result> v;
+std::vector<Result> mutants_results(const json& merged) {
+    std::vector<Result> v;
     if (!merged.contains("results") || !merged["results"].is_array())
         throw cluster::ClusterInputError("merged data of a mutants run has no 'results' list");
-    for (const auto& r : merged["results"]) v.push_back(mutation::result_from_json(r));
+    for (const auto& r : merged["results"]) v.push_back(result_from_json(r));
     return v;
 }
 
@@ -96,8 +96,8 @@ MutantsProgress mutants_finished(const fs::path& dir) {
     if (m.job != "mutants")
         throw cluster::ClusterInputError("run directory " + dir.string() + " holds a '" + m.job + "' run, not 'mutants'");
     MutantsProgress p;
-    p.quick = mutation::stimulus_from_json(m.common.at("quick"));
-    for (const auto& s : m.common.at("longer")) p.longer.push_back(mutation::stimulus_from_json(s));
+    p.quick = stimulus_from_json(m.common.at("quick"));
+    for (const auto& s : m.common.at("longer")) p.longer.push_back(stimulus_from_json(s));
     p.shards = m.shards.size();
     std::vector<json> data;
     const auto start = fs::last_write_time(cluster::manifest_path(dir));
@@ -108,8 +108,8 @@ MutantsProgress mutants_finished(const fs::path& dir) {
             last = std::max(last, fs::last_write_time(cluster::result_path(dir, i)));
         }
     p.wall_seconds = std::chrono::duration<double>(last - start).count();
-    p.results = mutants_results(registry().at("mutants").merge(m.common, data));
+    p.results = mutants_results(merge_mutants(m.common, data));
     return p;
 }
 
-}  // namespace hc::jobs
+}  // namespace hc::mutation

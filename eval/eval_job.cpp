@@ -1,6 +1,6 @@
-// eval_job.cpp: the "eval" job kind: an evaluation over KITTI-layout sequences in parts
-// (eval/sequences.hpp), whole sequences or ranges of stereo pairs, the cycle source's
-// parts starting at checkpoints of a serial pre-pass; the merge folds the parts per sequence.
+// eval_job.cpp: the "eval" job kind (eval_job.hpp).
+#include "eval/eval_job.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
@@ -10,16 +10,18 @@
 
 #include "eval/sequences.hpp"
 #include "io/frames/frames.hpp"
-#include "tools/jobs/jobs.hpp"
 
-namespace hc::jobs {
+namespace hc::eval {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
 
 namespace {
 
 /// Frames of warm-up before a cycle checkpoint, tried in order: find-max publishes a little
 /// less than once per frame (the drift) and needs three publications after the pipeline has
 /// flushed, which the shortest warm-up sees unless its period counter starts just past a
-/// publication; a warm-up that sees fewer (eval::warm_checkpoint refuses it) is repeated
+/// publication; a warm-up that sees fewer (warm_checkpoint refuses it) is repeated
 /// with the next one.
 constexpr int kWarmFrames[] = {3, 4, 8};
 constexpr int kWarmFramesMax = 8;
@@ -73,10 +75,10 @@ json run_eval_shard(const json& common, const json& shard, std::size_t) {
     const int lo = std::max(p0, a - 1), hi = std::min(p1, b + 1);
     const std::string what = fmt::format("pairs {}:{} of sequence {}", lo, hi, seq);
     frames::FrameFeed s = frames::open_kitti_feed(kitti, seq, {lo, hi}, what, 1);
-    std::optional<eval::CycleCheckpoint> start;
-    if (!shard.at("start").is_null()) start = eval::checkpoint_from_json(shard.at("start"));
-    eval::PartInput in;
-    in.source = eval::parse_source(common.at("source"));
+    std::optional<CycleCheckpoint> start;
+    if (!shard.at("start").is_null()) start = checkpoint_from_json(shard.at("start"));
+    PartInput in;
+    in.source = parse_source(common.at("source"));
     in.feed = &s;
     in.offset = 2 * (lo - p0);
     in.first = 2 * (a - p0);
@@ -88,27 +90,27 @@ json run_eval_shard(const json& common, const json& shard, std::size_t) {
     in.end_write = shard.at("end_write");
     in.ablation = common.at("ablation");
     in.threads = common.at("threads");
-    std::fprintf(stderr, "eval shard: %s source, sequence %s, pairs %d..%d%s\n", in.source == eval::Source::spec ? "spec"
-                 : in.source == eval::Source::cycle ? "cycle" : "rtl", seq.c_str(), a, b - 1,
+    std::fprintf(stderr, "eval shard: %s source, sequence %s, pairs %d..%d%s\n", in.source == Source::spec ? "spec"
+                 : in.source == Source::cycle ? "cycle" : "rtl", seq.c_str(), a, b - 1,
                  start ? fmt::format(" from the checkpoint after {} writes", start->writes).c_str() : "");
-    return eval::evaluate_part(in).to_json();
+    return evaluate_part(in).to_json();
 }
 
 json merge_eval(const json& common, const std::vector<json>& data) {
-    const eval::Source source = eval::parse_source(common.at("source"));
-    std::vector<eval::Part> parts;
-    for (const auto& d : data) parts.push_back(eval::Part::from_json(d));
+    const Source source = parse_source(common.at("source"));
+    std::vector<Part> parts;
+    for (const auto& d : data) parts.push_back(Part::from_json(d));
     json seqs = json::array();
-    for (const auto& p : eval::fold_sequences(parts, source)) seqs.push_back(p.to_json());
+    for (const auto& p : fold_sequences(parts, source)) seqs.push_back(p.to_json());
     return {{"source", common.at("source")}, {"ablation", common.at("ablation")}, {"sequences", seqs}};
 }
 
 }  // namespace
 
 cluster::Manifest eval_manifest(const EvalJob& j) {
-    const eval::Source source = eval::parse_source(j.source);
+    const Source source = parse_source(j.source);
     if (j.sequences.empty()) throw InputError("eval: no sequence given");
-    eval::check_sequences(j.kitti, j.sequences);
+    frames::check_kitti_sequences(j.kitti, j.sequences);
     std::vector<util::Range> ranges;
     std::vector<int> pairs;
     for (const auto& q : j.sequences) {
@@ -116,35 +118,35 @@ cluster::Manifest eval_manifest(const EvalJob& j) {
         pairs.push_back(ranges.back().last - ranges.back().first);
     }
     const int n = static_cast<int>(j.sequences.size());
-    const std::vector<int> k = source == eval::Source::rtl ? std::vector<int>(n, 1)
+    const std::vector<int> k = source == Source::rtl ? std::vector<int>(n, 1)
                                                            : parts_per_sequence(pairs, std::max(j.shards, n));
     cluster::Manifest m;
     m.job = "eval";
-    m.common = {{"source", eval::source_name(source)}, {"kitti", fs::absolute(j.kitti).lexically_normal().string()},
+    m.common = {{"source", source_name(source)}, {"kitti", fs::absolute(j.kitti).lexically_normal().string()},
                 {"ablation", j.ablation}, {"threads", j.threads}};
     for (int s = 0; s < n; ++s) {
         const auto [p0, p1] = ranges[s];
         const auto parts = cluster::split_range(p0, p1, k[s]);
         // the pre-pass: each part's checkpoint from a warm-up over the frames before it
-        // (eval::warm_checkpoint), or from reset for a part starting within the first frames
+        // (warm_checkpoint), or from reset for a part starting within the first frames
         std::vector<json> starts(parts.size());
         std::vector<long> end_writes(parts.size(), 0);
-        if (source == eval::Source::cycle && parts.size() > 1) {
+        if (source == Source::cycle && parts.size() > 1) {
             const int total = 2 * (p1 - p0);
             const auto load = [&](int a, int b) {   // pairs [a, b) of the sequence
                 return frames::load_kitti_stream(j.kitti, j.sequences[s], {a, b}, j.pairs_flag, j.threads, 1);
             };
-            std::optional<eval::CheckpointBase> base;
+            std::optional<CheckpointBase> base;
             for (std::size_t t = 1; t < parts.size(); ++t) {
                 const int to_pair = static_cast<int>(parts[t].first), to = 2 * (to_pair - p0);
-                eval::CycleCheckpoint c;
+                CycleCheckpoint c;
                 if (to - kWarmFramesMax < 1) {
                     std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (from reset)\n", j.sequences[s].c_str(), to_pair);
-                    c = eval::cycle_checkpoint(load(p0, to_pair + 1), Formats{}, 0, total, nullptr, to);
+                    c = cycle_checkpoint(load(p0, to_pair + 1), Formats{}, 0, total, nullptr, to);
                 } else {
-                    if (!base) base = eval::checkpoint_base(load(p0, p0 + 2), Formats{}, total);
+                    if (!base) base = checkpoint_base(load(p0, p0 + 2), Formats{}, total);
                     int held_from = -1;   // the first pair of `held`, which ends at pair to_pair
-                    eval::Stream held;
+                    Stream held;
                     for (const int warm : kWarmFrames) {
                         const int from_pair = p0 + (to - warm) / 2;
                         if (held_from != from_pair) {
@@ -154,7 +156,7 @@ cluster::Manifest eval_manifest(const EvalJob& j) {
                         std::fprintf(stderr, "eval: checkpoint of sequence %s at pair %d (warm-up of %d frames)\n",
                                      j.sequences[s].c_str(), to_pair, warm);
                         try {
-                            c = eval::warm_checkpoint(held, Formats{}, 2 * (from_pair - p0), total, *base, to, warm);
+                            c = warm_checkpoint(held, Formats{}, 2 * (from_pair - p0), total, *base, to, warm);
                             break;
                         } catch (const InternalError& e) {
                             if (warm == kWarmFramesMax) throw;
@@ -162,7 +164,7 @@ cluster::Manifest eval_manifest(const EvalJob& j) {
                         }
                     }
                 }
-                starts[t] = eval::to_json(c);
+                starts[t] = to_json(c);
                 end_writes[t - 1] = c.writes;
             }
         }
@@ -179,12 +181,12 @@ cluster::Manifest eval_manifest(const EvalJob& j) {
     return m;
 }
 
-eval::Report eval_report(const json& merged) {
-    std::vector<eval::Part> parts;
-    for (const auto& p : merged.at("sequences")) parts.push_back(eval::Part::from_json(p));
-    return eval::merge_parts(parts, eval::parse_source(merged.at("source")), merged.at("ablation"));
+Report eval_report(const json& merged) {
+    std::vector<Part> parts;
+    for (const auto& p : merged.at("sequences")) parts.push_back(Part::from_json(p));
+    return merge_parts(parts, parse_source(merged.at("source")), merged.at("ablation"));
 }
 
 void add_eval_job(cluster::JobRegistry& r) { r.add({"eval", run_eval_shard, merge_eval}); }
 
-}  // namespace hc::jobs
+}  // namespace hc::eval

@@ -1,6 +1,6 @@
-// verilate_job.cpp: the "verilate" job kind: the netlist against the cycle model in lock
-// step over KITTI-layout sequences, one shard per sequence from its own reset; the merge
-// lists the sequences and adds their counts. Also the RTL preparation both RTL kinds share.
+// verilate_job.cpp: the "verilate" job kind and the RTL preparation (verilate_job.hpp).
+#include "cosim/verilator/verilate_job.hpp"
+
 #include <cstdio>
 #include <iostream>
 #include <set>
@@ -8,12 +8,13 @@
 #include <fmt/format.h>
 
 #include "cosim/verilator/verilate.hpp"
-#include "eval/sequences.hpp"
 #include "io/frames/frames.hpp"
-#include "tools/jobs/jobs.hpp"
 #include "model/harris/formats_json.hpp"
 
-namespace hc::jobs {
+namespace hc::vl {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
 
 namespace {
 
@@ -23,38 +24,38 @@ Formats formats_of(const json& common) {
 
 fs::path cache_of(const json& common) {
     const std::string c = common.at("cache");
-    return c.empty() ? vl::default_cache_dir() : fs::path(c);
+    return c.empty() ? default_cache_dir() : fs::path(c);
 }
 
 json run_verilate_shard(const json& common, const json& shard, std::size_t) {
     const fs::path kitti = common.at("kitti").get<std::string>();
     const std::string seq = shard.at("sequence");
     const int p0 = shard.at("pairs").at(0), p1 = shard.at("pairs").at(1);
-    const eval::Stream s = frames::load_kitti_stream(kitti, seq, {p0, p1}, fmt::format("pairs {}:{} of sequence {}", p0, p1, seq), 1, 1);
-    vl::VerilateRun run;
+    const frames::Stream s = frames::load_kitti_stream(kitti, seq, {p0, p1}, fmt::format("pairs {}:{} of sequence {}", p0, p1, seq), 1, 1);
+    VerilateRun run;
     run.frames = s.frames;
     run.frame_names = s.names;
     run.formats = formats_of(common);
     run.cache = cache_of(common);
     run.keep_going = common.at("keep_going");
     const int n = static_cast<int>(run.frames.size());
-    run.on_frame = [&](const vl::FrameStats& f) {
+    run.on_frame = [&](const FrameStats& f) {
         std::fprintf(stderr, "verilate shard: sequence %s frame %d/%d: %ld writes, %ld reads, %ld mismatches\n",
                      seq.c_str(), f.index + 1, n, f.writes, f.reads, f.mismatches);
     };
-    const vl::VerilateResult res = vl::run_verilate(run, std::cerr);
+    const VerilateResult res = run_verilate(run, std::cerr);
     json d = {{"sequence", seq},
               {"pairs", {p0, p1}},
               {"frames", n},
               {"geometry", {run.frames[0].width, run.frames[0].height}},
-              {"gate", res.gate ? vl::verdict_name(res.gate->verdict) : "skipped"},
+              {"gate", res.gate ? verdict_name(res.gate->verdict) : "skipped"},
               {"status", res.status()}};
     if (res.gate && !res.gate->first.empty()) d["gate_first"] = res.gate->first;
     if (res.run) {
-        const vl::RunResult& r = *res.run;
+        const RunResult& r = *res.run;
         json reported = json::array();
         for (const auto& m : r.reported) reported.push_back(m.describe());
-        d.update(vl::run_counts_json(r));
+        d.update(run_counts_json(r));
         d["mismatches"] = r.mismatches;
         d["reported"] = reported;
     }
@@ -88,7 +89,7 @@ json merge_verilate(const json&, const std::vector<json>& data) {
 
 cluster::Manifest verilate_manifest(const VerilateJob& j) {
     if (j.sequences.empty()) throw InputError("verilate: no sequence given");
-    eval::check_sequences(j.kitti, j.sequences);
+    frames::check_kitti_sequences(j.kitti, j.sequences);
     cluster::Manifest m;
     m.job = "verilate";
     m.common = {{"kitti", fs::absolute(j.kitti).lexically_normal().string()},
@@ -109,13 +110,13 @@ cluster::Manifest verilate_manifest(const VerilateJob& j) {
 
 void prepare_rtl(const cluster::Manifest& m) {
     std::string why;
-    if (!vl::toolchain_available(&why)) throw InputError("the RTL needs GHDL and Verilator: " + why);
+    if (!toolchain_available(&why)) throw InputError("the RTL needs GHDL and Verilator: " + why);
     const bool verilate = m.job == "verilate";
     std::set<std::pair<int, int>> geometries;
     for (const auto& s : m.shards)
         geometries.insert(std::make_pair(s.at("geometry").at(0).get<int>(), s.at("geometry").at(1).get<int>()));
     for (auto [w, h] : geometries) {
-        vl::VerilateRun run;
+        VerilateRun run;
         run.frames.emplace_back(w, h);
         run.build_only = true;
         if (verilate) {
@@ -123,13 +124,13 @@ void prepare_rtl(const cluster::Manifest& m) {
             run.cache = cache_of(m.common);
         }
         std::fprintf(stderr, "%s: gate and netlist for %dx%d before the shards start\n", m.job.c_str(), w, h);
-        const vl::VerilateResult res = vl::run_verilate(run, std::cerr);
-        if (res.gate && res.gate->verdict != vl::GateVerdict::pass)
+        const VerilateResult res = run_verilate(run, std::cerr);
+        if (res.gate && res.gate->verdict != GateVerdict::pass)
             throw MismatchError("the GHDL/Verilator/model gate did not pass (" +
-                                std::string(vl::verdict_name(res.gate->verdict)) + "): " + res.gate->first);
+                                std::string(verdict_name(res.gate->verdict)) + "): " + res.gate->first);
     }
 }
 
 void add_verilate_job(cluster::JobRegistry& r) { r.add({"verilate", run_verilate_shard, merge_verilate}); }
 
-}  // namespace hc::jobs
+}  // namespace hc::vl

@@ -1,0 +1,46 @@
+// model_run.cpp: see model_run.hpp.
+#include "model/driver/model_run.hpp"
+
+#include <chrono>
+#include <numeric>
+#include <sstream>
+
+#include "model/driver/host_driver.hpp"
+#include "model/harris/harris_top.hpp"
+
+namespace hc {
+
+long ModelRun::corners() const { return std::accumulate(corners_per_frame.begin(), corners_per_frame.end(), 0L); }
+
+ModelRun run_cycle_model(const std::vector<Image>& frames, const Formats& f, bool record_reads) {
+    const Geometry g{frames.at(0).width, frames.at(0).height};
+    std::vector<const Image*> ptrs;
+    for (const auto& im : frames) ptrs.push_back(&im);
+    HostDriver drv(g, ptrs);
+    HarrisTop top(g, f);
+    ModelRun run;
+    run.corners_per_frame.assign(frames.size(), 0);
+    std::ostringstream reads;
+    if (record_reads) reads << "write,frame,x,y,value\n";
+    std::vector<Corner> cs;
+    BusEvent ev;
+    const auto t0 = std::chrono::steady_clock::now();
+    while (drv.next(ev)) {
+        top.write(ev.data);
+        if (ev.read) {
+            ++run.reads;
+            cs.clear();
+            drv.decode(*ev.read, top.corner(), cs);
+            run.corners_per_frame[ev.read->frame] += static_cast<long>(cs.size());
+            if (record_reads)
+                reads << top.writes() << ',' << ev.read->frame << ',' << ev.read->x << ',' << ev.read->y << ','
+                      << top.corner() << '\n';
+        }
+    }
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    run.writes = top.writes();
+    run.reads_csv = reads.str();
+    return run;
+}
+
+}  // namespace hc
