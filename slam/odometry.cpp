@@ -503,7 +503,8 @@ SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const st
     if (cfg.residual == OdometryResidual::pixels && cfg.estimate_disparity_offset) {
         std::vector<StereoFrame> seen;
         seen.reserve(frames.size());
-        for (size_t k = 0; k < frames.size(); ++k) seen.push_back(with_disparity_offset(frames[k], *cfg.rig, vo.disparity_offset[k]));
+        for (size_t k = 0; k < frames.size(); ++k)   // a frame given no correction is seen as measured
+            seen.push_back(vo.disparity_offset[k] == 0 ? frames[k] : with_disparity_offset(frames[k], *cfg.rig, vo.disparity_offset[k]));
         run = run_filter(seen, vo.motions, vo.covariances, Pose::Zero(), association, truth);
         run.disparity_offset = vo.disparity_offset;
     } else {
