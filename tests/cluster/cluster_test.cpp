@@ -26,13 +26,9 @@ using namespace hc::cluster;
 using hc::cluster::test::squares_manifest;
 using hc::cluster::test::squares_registry;
 
-namespace {
+using hc::cluster::test::scratch;
 
-fs::path scratch(const std::string& name) {
-    fs::path d = fs::temp_directory_path() / ("hc-cluster-test-" + std::to_string(::getpid())) / name;
-    fs::remove_all(d);
-    return d;
-}
+namespace {
 
 RunOptions local_options(int jobs) {
     RunOptions o;

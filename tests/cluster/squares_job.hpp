@@ -1,9 +1,18 @@
 // squares_job.hpp: the "squares" job kind of the runner tests (see cluster_test_worker.cpp).
 #pragma once
 
+#include <unistd.h>
+
 #include "io/cluster/cluster.hpp"
 
 namespace hc::cluster::test {
+
+/// A fresh (removed, not created) scratch path <tmp>/hc-cluster-test-<pid>/<name>.
+inline fs::path scratch(const std::string& name) {
+    fs::path d = fs::temp_directory_path() / ("hc-cluster-test-" + std::to_string(::getpid())) / name;
+    fs::remove_all(d);
+    return d;
+}
 
 inline JobRegistry squares_registry() {
     JobRegistry reg;
