@@ -477,8 +477,9 @@ Report evaluate(const Request& o) {
     std::fprintf(stderr, "eval: opening the frames...\n");
     const fs::path& kitti_dir = o.kitti;
     Stream small;   // the default stream, in memory (12 pairs at most)
-    frames::FrameFeed feed = kitti_dir.empty() ? frames::FrameFeed::of(small = default_stream(first, last))
-                                               : frames::open_kitti_feed(kitti_dir, o.sequence, o.pairs, o.pairs_flag, 2);
+    frames::FrameFeed feed = o.frames        ? frames::open_feed(*o.frames)
+                             : kitti_dir.empty() ? frames::FrameFeed::of(small = default_stream(first, last))
+                                                 : frames::open_kitti_feed(kitti_dir, o.sequence, o.pairs, o.pairs_flag, 2);
     const int n = feed.size();
     for (int f : overlays)
         if (f < 0 || f >= n) throw InputError(fmt::format("--overlay frame {} is not in the stream (0..{})", f, n - 1));

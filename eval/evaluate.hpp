@@ -16,6 +16,7 @@ namespace hc::eval {
 
 struct Request {
     Source source = Source::spec;
+    std::optional<frames::FrameSource> frames;   ///< images, a video or a pattern (else KITTI or the default stream)
     std::filesystem::path kitti;        ///< KITTI root (holds sequences/NN); empty: the default stream
     std::string sequence = "01";
     util::Range pairs{0, 1 << 30};      ///< stereo pairs [first, last); an open end takes them all

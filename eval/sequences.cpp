@@ -85,29 +85,6 @@ void add_cycle_deviations(Report& rep, const Part& sum, const std::set<std::pair
 
 }  // namespace
 
-std::vector<std::string> parse_sequences(const std::string& s) {
-    const auto bad = [&](const std::string& why) {
-        return InputError("--sequences '" + s + "': " + why + " (give a range like 00-21 or a list like 00,01,05)");
-    };
-    std::vector<std::string> out;
-    const auto dash = s.find('-');
-    if (dash != std::string::npos) {
-        const std::string a = s.substr(0, dash), b = s.substr(dash + 1);
-        if (!all_digits(a) || !all_digits(b) || a.size() != b.size()) throw bad("not a range of sequence numbers");
-        const int x = std::stoi(a), y = std::stoi(b);
-        if (x > y) throw bad("the range is empty");
-        for (int k = x; k <= y; ++k) out.push_back(fmt::format("{:0{}}", k, a.size()));
-        return out;
-    }
-    for (const auto& t : util::split_csv(s)) {
-        if (!all_digits(t)) throw bad("'" + t + "' is not a sequence number");
-        if (std::find(out.begin(), out.end(), t) != out.end()) throw bad("'" + t + "' is listed twice");
-        out.push_back(t);
-    }
-    if (out.empty()) throw bad("no sequence");
-    return out;
-}
-
 json Part::to_json() const {
     json rows_j = json::array();
     for (const auto& r : rows)

@@ -22,9 +22,8 @@
 
 namespace hc::eval {
 
-/// `00-21` (a range, both ends included) or `00,01,05` (a list), each two digits or more
-/// as KITTI names them. InputError naming the flag value otherwise.
-std::vector<std::string> parse_sequences(const std::string& s);
+/// The KITTI sequence list of --sequences (io/frames: frames::parse_sequences).
+using frames::parse_sequences;
 
 /// One part of a sequence's evaluation.
 struct PartInput {

@@ -36,4 +36,9 @@ std::vector<GoldenFile> golden_files(const std::vector<util::RegressionStream>& 
 /// Throws InputError when the committed file is missing.
 std::string compare_golden(const GoldenFile& now);
 
+/// `harris-cosim golden`: writes every golden file of the regression set `set` (default
+/// <dir>/regression-set.txt) into `dir`, or with `check` compares each with the committed one
+/// (each difference on stderr). Prints a summary line; MismatchError when a file differs.
+void run_golden_command(const std::filesystem::path& dir, const std::string& set, bool check);
+
 }  // namespace hc::regress

@@ -38,7 +38,7 @@ json outcome_json(const std::string& id, const SmokeOutcome& o) {
 
 }  // namespace
 
-cluster::Manifest mutate_manifest(const MutateShards& p) {
+cluster::Manifest mutate_manifest(const MutateJob& p) {
     const SmokeList c = load_smoke_list(p.list);
     std::vector<std::string> ids;
     for (const auto& m : c.mutants)

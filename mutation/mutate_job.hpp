@@ -15,12 +15,12 @@
 
 namespace hc::mutation {
 
-struct MutateShards {
+struct MutateJob {
     std::filesystem::path list;   ///< the mutation list (mutation/mutations.json)
     std::string only;             ///< only this mutant id ("" all)
     int shards = 0;               ///< 0: one per mutant (the baseline with the first)
 };
-cluster::Manifest mutate_manifest(const MutateShards& p);
+cluster::Manifest mutate_manifest(const MutateJob& p);
 /// The campaign the manifest ran (the list file read again and checked against its hash).
 SmokeList mutate_campaign(const cluster::Manifest& m);
 /// The verdicts in list order and the counts (tally_smoke).

@@ -8,7 +8,7 @@ namespace hc::slam {
 
 using nlohmann::json;
 
-cluster::Manifest slam_manifest(const SlamShards& p) {
+cluster::Manifest slam_manifest(const SlamJob& p) {
     p.config.validate();
     if (p.runs < 1) throw InputError("--runs must be at least 1, got " + std::to_string(p.runs));
     if (!(p.confidence > 0 && p.confidence < 1)) throw InputError("the confidence must be in (0, 1)");

@@ -13,7 +13,7 @@
 
 namespace hc::slam {
 
-struct SlamShards {
+struct SlamJob {
     SimConfig config;
     int runs = 50;
     std::uint64_t first_seed = 1;
@@ -21,7 +21,7 @@ struct SlamShards {
     int shards = 0;               ///< 0: one per seed
 };
 /// InputError (slam's) for a bad configuration or run count.
-cluster::Manifest slam_manifest(const SlamShards& p);
+cluster::Manifest slam_manifest(const SlamJob& p);
 MonteCarlo slam_result(const cluster::Manifest& m, const nlohmann::json& merged);
 /// Adds the kind "slam" to `r`.
 void add_slam_job(cluster::JobRegistry& r);

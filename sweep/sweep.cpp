@@ -293,7 +293,7 @@ void trajectory_phase(PointsRun& res, const SweepSpec& spec, const SweepOptions&
     const auto t = Clock::now();
     if (!spec.trajectory.enabled)
         res.trajectory_run = "not scored (the spec has no \"trajectory\")";
-    else if (!fs::is_directory(o.kitti / "sequences" / spec.trajectory.sequence / "image_1"))
+    else if (!frames::is_kitti_sequence(o.kitti, spec.trajectory.sequence))
         res.trajectory_run = "not scored (no stereo pairs of KITTI " + spec.trajectory.sequence + " under " + o.kitti.string() + ")";
     else
         res.trajectory_run = score_trajectories(res.points, o.kitti, spec.trajectory, o.progress);

@@ -168,7 +168,7 @@ void apply_sweep_checks(SweepResult& r, const CheckPlan& plan, const json& merge
     finish_checks(r);
 }
 
-cluster::Manifest sweep_manifest(const SweepShards& p) {
+cluster::Manifest sweep_manifest(const SweepJob& p) {
     const SweepSpec spec = parse_sweep_spec(p.spec_text, p.spec_name);
     cluster::Manifest m;
     m.job = "sweep";

@@ -15,7 +15,7 @@
 
 namespace hc::sweep {
 
-struct SweepShards {
+struct SweepJob {
     std::string spec_text;        ///< the spec file's contents (the manifest carries them)
     std::string spec_name;        ///< the spec file, for messages
     std::filesystem::path kitti, cache;   ///< as SweepOptions
@@ -25,7 +25,7 @@ struct SweepShards {
     int shards = 0;               ///< 0: one per configuration
 };
 /// InputError (sweep's) for a bad spec.
-cluster::Manifest sweep_manifest(const SweepShards& p);
+cluster::Manifest sweep_manifest(const SweepJob& p);
 /// The merged points as a result: spec, points in spec order, stream, Pareto front and the
 /// points to verify marked, synthesis counts, the phases' times summed over the shards; no
 /// RTL checks run.

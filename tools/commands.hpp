@@ -1,8 +1,8 @@
-// commands.hpp: the subcommands of harris-cosim. Each lives in its own cmd_*.cpp and adds
-// itself to the app with add_X_command; its callback parses nothing itself beyond its flags,
-// calls a library through its typed API and prints. A failure is an exception of the kind
-// io/util/errors.hpp lists (MismatchError, InputError, SimulatorError, TranslationFault,
-// InternalError); main (harris_cosim.cpp) maps each kind to its exit status.
+// commands.hpp: the subcommands of harris-cosim and the flags they share. Each command lives in
+// its own cmd_*.cpp: it binds its flags to its library's command settings and calls that
+// library's run function once; every check, file and printed figure is the library's. A
+// failure is an exception of the kind io/util/errors.hpp lists; main (harris_cosim.cpp) maps
+// each kind to its exit status.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -11,39 +11,57 @@
 #include <string>
 #include <utility>
 
+#include "io/cluster/runner.hpp"
+#include "io/frames/frames.hpp"
+
 namespace hc::tools {
 
 /// A flag check for whole numbers >= `min` whose message is short ("--frames: '-1' is not a
 /// whole number >= 0"); CLI11's NonNegativeNumber and PositiveNumber print their bound as a
 /// 300-digit double.
-inline CLI::Validator whole_number(long min) {
-    return CLI::Validator(
-        [min](std::string& s) -> std::string {
-            std::size_t used = 0;
-            long v = 0;
-            try {
-                v = std::stol(s, &used);
-            } catch (const std::exception&) {
-                used = 0;
-            }
-            if (s.empty() || used != s.size() || v < min)
-                return "'" + s + "' is not a whole number >= " + std::to_string(min);
-            return {};
-        },
-        "N >= " + std::to_string(min));
+CLI::Validator whole_number(long min);
+
+/// A subcommand `name` of `app` with its help, and the settings its flags fill, which its
+/// callback shares.
+template <class Settings>
+std::pair<CLI::App*, std::shared_ptr<Settings>> add_command(CLI::App& app, const std::string& name, const std::string& help) {
+    return {app.add_subcommand(name, help), std::make_shared<Settings>()};
 }
 
-/// A subcommand `name` of `app` with its help, and the options its flags fill, which its
-/// callback shares.
-template <class Options>
-std::pair<CLI::App*, std::shared_ptr<Options>> add_command(CLI::App& app, const std::string& name, const std::string& help) {
-    return {app.add_subcommand(name, help), std::make_shared<Options>()};
-}
+/// A command's settings with the sharding flags' values beside them.
+template <class Command>
+struct Sharded : Command {
+    cluster::RunnerSettings runner;
+};
+
+/// The frame-source flags of every command that streams images, bound to `o`: image files,
+/// globs, folders or a video (positional), --pattern, --size, --frames N, --kitti,
+/// --sequence, --pairs a:b, --data, --seed. `--frames a:b` is the older spelling of --pairs
+/// and says so in the help.
+void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o);
+
+/// `--pairs a:b`, a range of a stereo dataset's pairs (b excluded), bound to `range`; and
+/// `--frames` as its older spelling (its help says so; giving both is an error).
+void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string& help);
+
+/// The sharding flags (in an option group "Sharding"), bound to `s`.
+void add_runner_flags(CLI::App* cmd, cluster::RunnerSettings& s);
+
+/// The runner of a command, with every job kind of the executable. The one sharding rule:
+/// a command runs in shards when one of cluster::kShardingFlags is given on `cmd`, in one
+/// process otherwise. --jobs is how many processes run at once: a sharded run's shards, or
+/// those a command's single run starts itself (`single_jobs`: the sweep's syntheses and GHDL
+/// runs, the generated campaign's pool). A command whose single run starts none refuses
+/// --jobs without a sharding flag (InputError), so that no flag is silently ignored.
+cluster::JobRunner job_runner(const CLI::App* cmd, cluster::RunnerSettings s, bool single_jobs = false);
+
+/// The path of this executable (main's argv[0], resolved), the runner's worker program.
+void set_program_path(const char* argv0);
 
 void add_rtl_command(CLI::App& app);        // GHDL co-simulation (cmd_rtl.cpp)
 void add_model_command(CLI::App& app);      // cycle model alone (cmd_rtl.cpp)
 void add_golden_command(CLI::App& app);     // golden reference files (cmd_golden.cpp)
-void add_mutate_command(CLI::App& app);     // mutation campaign (cmd_mutate.cpp)
+void add_mutate_command(CLI::App& app);     // mutation campaigns (cmd_mutate.cpp)
 void add_verilate_command(CLI::App& app);   // Verilator full-frame verification (cmd_verilate.cpp)
 void add_eval_command(CLI::App& app);       // precision/recall against OpenCV (cmd_eval.cpp)
 void add_sweep_command(CLI::App& app);      // bit-width exploration (cmd_sweep.cpp)

@@ -7,7 +7,6 @@
 #include <exception>
 
 #include "tools/commands.hpp"
-#include "tools/runner_flags.hpp"
 #include "io/util/errors.hpp"
 
 namespace {

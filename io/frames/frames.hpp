@@ -52,6 +52,9 @@ bool is_kitti_sequence(const std::filesystem::path& kitti_root, const std::strin
 /// InputError (naming the flag --sequences) listing every sequence of `seqs` that is not a
 /// KITTI sequence under kitti_root/sequences/.
 void check_kitti_sequences(const std::filesystem::path& kitti_root, const std::vector<std::string>& seqs);
+/// `00-21` (a range, both ends included) or `00,01,05` (a list), each two digits or more
+/// as KITTI names them. InputError naming the flag value (--sequences) otherwise.
+std::vector<std::string> parse_sequences(const std::string& s);
 /// <kitti_root>/poses/NN.txt, the ground-truth poses of sequence NN.
 std::filesystem::path kitti_poses_file(const std::filesystem::path& kitti_root, const std::string& sequence);
 
@@ -142,9 +145,12 @@ private:
 FrameFeed open_kitti_feed(const std::filesystem::path& kitti_dir, const std::string& sequence, util::Range r,
                           const std::string& what, int min_pairs = 1);
 
-/// Which frames a command streams (the command line's frame-source flags).
+/// Which frames a command streams (the command line's frame-source flags, the same on every
+/// command that reads a stream of images).
 struct FrameSource {
-    std::vector<std::string> images;   ///< image files, streamed in order
+    /// image files, glob patterns ('left*.png') and folders (their image files, sorted by
+    /// name), streamed in order; or one video file (.avi, .mp4, ...), its frames in order
+    std::vector<std::string> images;
     std::string pattern;               ///< synthetic pattern name
     std::string size;                  ///< WxH: pattern size, or centred crop of images
     int frames = 0;                    ///< number of frames (patterns; first N images or pairs)
@@ -160,6 +166,20 @@ struct LoadedFrames {
     std::vector<std::string> names;
     std::string description;
 };
+
+/// True when `p` names a video file by its extension (.avi, .mp4, .mkv, .mov, ...).
+bool is_video_file(const std::filesystem::path& p);
+
+/// Image files, glob patterns and folders (their image files, sorted by name) as one list of
+/// files, in the order given. InputError naming `what` for a missing file, a pattern that
+/// matches nothing, a folder without images, or no item at all.
+std::vector<std::filesystem::path> expand_image_list(const std::vector<std::string>& items, const std::string& what);
+
+/// The frames `o` names as a feed, each read (cropped, converted to grey) when the run
+/// reaches it: image files, globs, folders, a video, a KITTI sequence's stereo stream or a
+/// synthetic pattern. Frames of images, a video or a pattern pair up in order (0 1, 2 3, ...)
+/// as a KITTI stream's L R do. InputError naming the input (as load_frames).
+FrameFeed open_feed(const FrameSource& o);
 
 /// Loads the frames; throws InputError naming the bad input (including a stream the design
 /// cannot be built for). With nothing chosen, three 64x36 frames of the `blocks` pattern.

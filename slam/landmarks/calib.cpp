@@ -34,31 +34,6 @@ Board parse_board(const std::string& spec, double square) {
     return Board{cv::Size(w, h), square};
 }
 
-std::vector<fs::path> expand_image_list(const std::vector<std::string>& items,
-                                        const std::string& what) {
-    std::vector<fs::path> out;
-    for (const auto& item : items) {
-        if (item.find_first_of("*?[") == std::string::npos) {
-            if (!fs::is_regular_file(item))
-                throw InputError(fmt::format("{}: no such image file '{}'", what, item));
-            out.emplace_back(item);
-            continue;
-        }
-        glob_t g{};
-        const int rc = ::glob(item.c_str(), 0, nullptr, &g);
-        std::vector<fs::path> found;
-        if (rc == 0)
-            for (size_t i = 0; i < g.gl_pathc; ++i) found.emplace_back(g.gl_pathv[i]);
-        ::globfree(&g);
-        if (found.empty())
-            throw InputError(fmt::format("{}: pattern '{}' matches no file", what, item));
-        std::sort(found.begin(), found.end());
-        out.insert(out.end(), found.begin(), found.end());
-    }
-    if (out.empty()) throw InputError(fmt::format("{}: no image given", what));
-    return out;
-}
-
 std::vector<cv::Point2f> find_board(const cv::Mat& grey, const Board& board, int subpix_half,
                                     int* used_half) {
     std::vector<cv::Point2f> corners;

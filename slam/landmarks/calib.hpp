@@ -46,11 +46,6 @@ struct Board {
 /// InputError naming the specification otherwise.
 Board parse_board(const std::string& spec, double square);
 
-/// The image files named by `items`: each item is a file, or a glob pattern (*, ?, [..]),
-/// expanded and sorted by name. Throws InputError naming a file that does not exist or a
-/// pattern that matches nothing; `what` ("--left") prefixes the message.
-std::vector<std::filesystem::path> expand_image_list(const std::vector<std::string>& items,
-                                                     const std::string& what);
 
 /// The board's inner corners in `grey` (8-bit, one channel), row by row, refined to
 /// sub-pixel accuracy by cv::cornerSubPix with a (2 subpix_half + 1)^2 window, or empty when

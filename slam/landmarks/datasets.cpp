@@ -153,7 +153,7 @@ Dataset rig_dataset(const std::vector<fs::path>& left, const std::vector<fs::pat
 Dataset open_dataset(const DatasetChoice& c, fs::path& root) {
     if (!c.calib.empty()) {
         if (c.left.empty() || c.right.empty()) throw InputError("--calib needs the rig's images: --left and --right");
-        return rig_dataset(calib::expand_image_list(c.left, "--left"), calib::expand_image_list(c.right, "--right"),
+        return rig_dataset(frames::expand_image_list(c.left, "--left"), frames::expand_image_list(c.right, "--right"),
                            read_rig_calibration(c.calib));
     }
     if (!c.left.empty() || !c.right.empty()) throw InputError("--left and --right are the images of a rig: give its --calib");

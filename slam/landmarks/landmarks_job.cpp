@@ -54,7 +54,7 @@ void renumber(FrameKeypoints& f, int offset) {
 
 }  // namespace
 
-cluster::Manifest landmarks_manifest(const LandmarksShards& p) {
+cluster::Manifest landmarks_manifest(const LandmarksJob& p) {
     const auto& o = p.options;
     if (o.detectors.empty() || o.descriptors.empty())
         throw InputError("the comparison needs at least one detector and one descriptor");

@@ -16,7 +16,7 @@
 
 namespace hc::landmarks {
 
-struct LandmarksShards {
+struct LandmarksJob {
     std::string dataset = "middlebury";   ///< middlebury or kitti
     std::filesystem::path root;           ///< Middlebury folder of scenes, or the KITTI root
     bool need_truth = true;               ///< Middlebury: require disp1.png
@@ -27,7 +27,7 @@ struct LandmarksShards {
     int shards = 0;                       ///< 0: one per detector and pair
 };
 /// InputError (landmarks') for an impossible detector/descriptor combination.
-cluster::Manifest landmarks_manifest(const LandmarksShards& p);
+cluster::Manifest landmarks_manifest(const LandmarksJob& p);
 /// The rows of the comparison (detectors x descriptors, in the options' order), each pair's
 /// result as match_pair returned it (its time included).
 std::vector<ComparisonRow> landmarks_rows(const nlohmann::json& merged);

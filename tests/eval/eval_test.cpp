@@ -8,8 +8,10 @@
 #include <thread>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "eval/eval.hpp"
+#include "eval/evaluate.hpp"
 #include "eval/report.hpp"
 #include "io/frames/frames.hpp"
 #include "io/util/errors.hpp"
@@ -211,4 +213,37 @@ TEST_CASE("a failed load fetched ahead is reported by the frame's reader, naming
         feed.prefetch(3);           // still loading when the feed is destroyed: waited for
     }
     CHECK(calls == 3);   // frames 0, 2 and 3 ended before the feed was gone
+}
+
+TEST_CASE("eval scores a folder of images exactly as the same frames made by their pattern", "[eval]") {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hc_eval_folder_test";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir / "frames");
+    for (int k = 0; k < 4; ++k) {
+        const Image im = make_pattern(Pattern::blocks, 64, 48, k);
+        cv::Mat m(im.height, im.width, CV_8UC1, const_cast<std::uint8_t*>(im.pixels.data()));
+        cv::imwrite((dir / "frames" / ("f" + std::to_string(k) + ".png")).string(), m);
+    }
+    eval::Request folder, pattern;
+    folder.frames = frames::FrameSource{};
+    folder.frames->images = {(dir / "frames").string()};
+    pattern.frames = frames::FrameSource{};
+    pattern.frames->pattern = "blocks";
+    pattern.frames->size = "64x48";
+    pattern.frames->frames = 4;
+    for (eval::Request* r : {&folder, &pattern}) {
+        r->out = dir / (r == &folder ? "folder" : "pattern");
+        r->ablation = false;
+        r->threads = 1;
+    }
+    const eval::Report a = eval::evaluate(folder), b = eval::evaluate(pattern);
+    CHECK(a.stream == "4 image(s)");
+    CHECK(b.stream == "4 synthetic 'blocks' frame(s)");
+    CHECK(a.total.tp + a.total.fn > 0);
+    CHECK(a.total.tp == b.total.tp);
+    CHECK(a.total.fp == b.total.fp);
+    CHECK(a.total.fn == b.total.fn);
+    CHECK(a.total.tn == b.total.tn);
+    CHECK(std::filesystem::exists(dir / "folder" / "summary.md"));
+    std::filesystem::remove_all(dir);
 }

@@ -37,7 +37,7 @@ bool same_bits(const std::vector<M>& a, const std::vector<M>& b) {
 TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo statistics bit for bit", "[cluster]") {
     slam::SimConfig c;
     c.steps = 60;
-    slam::SlamShards p;
+    slam::SlamJob p;
     p.config = c;
     p.runs = 7;
     p.first_seed = 3;
@@ -86,7 +86,7 @@ TEST_CASE("seven seeds in three shards fold to the single-process Monte-Carlo st
 }
 
 TEST_CASE("a slam manifest refuses a bad run count with the input named", "[cluster]") {
-    slam::SlamShards p;
+    slam::SlamJob p;
     p.runs = 0;
     CHECK_THROWS_WITH(slam::slam_manifest(p), Catch::Contains("--runs must be at least 1"));
 }

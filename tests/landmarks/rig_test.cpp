@@ -18,6 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "io/frames/frames.hpp"
 #include "slam/landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
@@ -43,8 +44,8 @@ int main(int argc, char** argv) {
 TEST_CASE("on a calibrated rig's unrectified pair, the chessboard's landmarks are flat, one square apart, on one row",
           "[landmarks][calib]") {
     // the 13 pairs of the samples (there is no left10/right10)
-    const auto left = calib::expand_image_list({(g_samples / "left[0-9]*.jpg").string()}, "left");
-    const auto right = calib::expand_image_list({(g_samples / "right[0-9]*.jpg").string()}, "right");
+    const auto left = hc::frames::expand_image_list({(g_samples / "left[0-9]*.jpg").string()}, "left");
+    const auto right = hc::frames::expand_image_list({(g_samples / "right[0-9]*.jpg").string()}, "right");
     REQUIRE(left.size() == 13);
     const calib::Board board{{9, 6}, 1.0};   // unit: one square
     const calib::Detection det = calib::detect_boards(left, right, board);

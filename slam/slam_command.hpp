@@ -1,0 +1,52 @@
+// slam_command.hpp: `harris-cosim slam` as the command line hands it over: a Monte-Carlo
+// consistency run in the simulator (--simulate, in one process or its seeds in shards), or
+// KITTI sequences (--sequences) with stereo or synthetic landmarks and visual or synthetic
+// odometry, scored against the ground-truth poses (docs/slam.md).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "io/cluster/runner.hpp"
+#include "slam/landmark_frames.hpp"
+#include "slam/landmarks/landmarks.hpp"
+#include "slam/slam.hpp"
+
+namespace hc::slam {
+
+/// The command's settings, one field per flag. Every model default is its struct's
+/// (SimConfig, SensorModel, AssociationConfig, VisualOdometryConfig, SyntheticOdometry,
+/// KittiRunOptions); the angles are the command's, in degrees.
+struct SlamCommand {
+    bool simulate = false;
+    std::string sequences, kitti, data, out = "slam-report", world = "cloister",
+        landmarks_from = KittiRunOptions{}.stereo_landmarks ? "stereo" : "synthetic", odometry = "visual",
+        association = "jcbb", vo_residual = "pixels";
+    int landmarks = SimConfig{}.landmarks, steps = SimConfig{}.steps, runs = 50,
+        synthetic_count = KittiRunOptions{}.synthetic_count, flip_bits = KittiRunOptions{}.flip_bits,
+        forget_after = AssociationConfig{}.forget_after, max_observations = AssociationConfig{}.max_observations,
+        vo_min_inliers = VisualOdometryConfig{}.min_inliers;
+    std::uint64_t seed = 1;
+    bool seed_given = false;   ///< --seed was given (refused where nothing is drawn)
+    double half_size = SimConfig{}.half_size, radius = SimConfig{}.radius, step = SimConfig{}.step,
+           sigma_range = SensorModel{}.sigma_range, sigma_bearing_deg = 1, fov_deg = 180,
+           max_range = SensorModel{}.max_range, gate = AssociationConfig{}.gate_probability,
+           joint_gate = AssociationConfig{}.joint_probability,
+           max_hamming_fraction = AssociationConfig{}.max_hamming_fraction,
+           vo_hamming_fraction = VisualOdometryConfig{}.max_hamming_fraction,
+           vo_max_range = VisualOdometryConfig{}.max_range;
+    std::optional<double> sigma_dx, sigma_dtheta_deg;
+    double sigma_dy = SyntheticOdometry{}.sigma_dy;
+    bool descriptor = true, vo_disparity_offset = VisualOdometryConfig{}.estimate_disparity_offset;
+    // --landmarks-from stereo: the landmark pipeline's options
+    std::string corners = landmarks::detector_name(KittiRunOptions{}.pipeline.detector),
+                descriptor_name = landmarks::descriptor_name(KittiRunOptions{}.pipeline.descriptor), config;
+    int g = KittiRunOptions{}.pipeline.grid.g, h = KittiRunOptions{}.pipeline.grid.h;
+};
+
+/// Runs the simulation or the sequences, writes the reports into c.out and prints their
+/// figures. InputError for bad input (including sharding flags without --simulate).
+void run_slam_command(const SlamCommand& c, const cluster::JobRunner& runner);
+
+}  // namespace hc::slam

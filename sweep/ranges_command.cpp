@@ -1,0 +1,48 @@
+// ranges_command.cpp: see ranges_command.hpp.
+#include "sweep/ranges_command.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "io/util/util.hpp"
+#include "model/harris/formats_json.hpp"
+#include "sweep/sweep_config.hpp"
+
+namespace fs = std::filesystem;
+
+namespace hc::sweep {
+
+void run_ranges_command(const RangesCommand& c) {
+    if (!c.config.empty() && !c.spec.empty()) throw InputError("ranges: --config and --spec exclude each other");
+    if (c.pixel_max > 255) throw InputError("ranges: --pixel-max " + std::to_string(c.pixel_max) + " is above 255");
+    std::vector<Config> configs;
+    if (!c.spec.empty()) configs = load_sweep_spec(c.spec).configs;
+    else configs.push_back({c.config.empty() ? "thesis" : fs::path(c.config).stem().string(),
+                            c.config.empty() ? Formats{} : formats_from_file(c.config)});
+    RangeOptions ro = c.ro;
+    ro.pixel_max = c.pixel_max;
+    ro.netlist = !c.no_netlist;
+    std::string md;
+    nlohmann::json all = nlohmann::json::array();
+    std::vector<std::string> lines;
+    for (const auto& cfg : configs) {
+        if (!c.netlist_dir.empty()) ro.netlist_dir = fs::path(c.netlist_dir) / file_stem(cfg.name);
+        const RangeReport r = analyse_ranges(cfg.formats, ro);
+        std::fprintf(stderr, "ranges: %s: %s\n", cfg.name.c_str(), r.summary().c_str());
+        md += ranges_markdown(cfg.name, r) + "\n";
+        nlohmann::json j = range_report_to_json(r);
+        j["name"] = cfg.name;
+        all.push_back(j);
+        if (!c.witnesses.empty())
+            for (const auto& w : write_witnesses(cfg.name, r, c.witnesses))
+                lines.push_back(w.regression_line(c.set_dir.empty() ? fs::path("golden") : fs::path(c.set_dir)));
+    }
+    if (!c.json.empty()) util::write_file_atomic(c.json, all.dump(1) + "\n");
+    if (!c.out.empty()) util::write_file_atomic(c.out, md);
+    else std::fputs(md.c_str(), stdout);
+    for (const auto& l : lines) std::printf("regression-set line: %s\n", l.c_str());
+}
+
+}  // namespace hc::sweep

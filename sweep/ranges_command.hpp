@@ -1,0 +1,25 @@
+// ranges_command.hpp: `harris-cosim ranges` as the command line hands it over: the derived
+// range of every datapath register of one configuration or of every configuration of a
+// sweep spec (ranges.hpp), as Markdown, JSON and witness stimuli.
+#pragma once
+
+#include <string>
+
+#include "sweep/ranges.hpp"
+
+namespace hc::sweep {
+
+/// The command's settings, one field per flag.
+struct RangesCommand {
+    std::string config, spec, witnesses, set_dir, json, out;
+    int pixel_max = 255;
+    RangeOptions ro;   ///< the solver limits (--search-windows, --solver-rlimit, ...)
+    bool no_netlist = false;
+    std::string netlist_dir;
+};
+
+/// Analyses every configuration, writes --json, --out (else prints the Markdown) and the
+/// witnesses, and prints each witness's regression-set line. InputError for bad input.
+void run_ranges_command(const RangesCommand& c);
+
+}  // namespace hc::sweep

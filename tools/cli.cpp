@@ -1,0 +1,92 @@
+// cli.cpp: the flags several commands share (commands.hpp) and the runner they hand to
+// their libraries.
+#include <filesystem>
+
+#include "tools/commands.hpp"
+#include "tools/registry.hpp"
+
+namespace hc::tools {
+
+namespace {
+std::filesystem::path& program() {
+    static std::filesystem::path p;
+    return p;
+}
+}  // namespace
+
+void set_program_path(const char* argv0) { program() = cluster::resolve_program(argv0); }
+
+CLI::Validator whole_number(long min) {
+    return CLI::Validator(
+        [min](std::string& s) -> std::string {
+            std::size_t used = 0;
+            long v = 0;
+            try {
+                v = std::stol(s, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (s.empty() || used != s.size() || v < min)
+                return "'" + s + "' is not a whole number >= " + std::to_string(min);
+            return {};
+        },
+        "N >= " + std::to_string(min));
+}
+
+void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o) {
+    cmd->add_option("images", o.images,
+                    "8-bit images streamed as chained frames, in order: files, quoted glob patterns, folders (their "
+                    "images sorted by name), or one video file");
+    cmd->add_option("--pattern", o.pattern, "synthetic frames: " + pattern_names());
+    cmd->add_option("--size", o.size, "WxH: size of synthetic frames, or a centred crop of the frames read (eval scores KITTI frames whole)");
+    const CLI::Validator count = whole_number(1);
+    cmd->add_option_function<std::string>("--frames", [&o, cmd](const std::string& v) {
+           if (v.find(':') == std::string::npos) return void(o.frames = std::stoi(v));
+           if (cmd->count("--pairs")) throw InputError("--pairs excludes --frames (its older spelling when given a:b)");
+           o.pairs = v;
+       }, "number of chained frames (patterns: default 3; images, video, KITTI: the first N); a:b is the older "
+          "spelling of --pairs")
+        ->check(CLI::Validator([count](std::string& s) { return s.find(':') != std::string::npos ? std::string() : count(s); }, "N >= 1"));
+    cmd->add_option("--kitti", o.kitti, "KITTI odometry root (holds sequences/NN); default <data>/kitti");
+    cmd->add_option("--sequence", o.sequence, "KITTI sequence")->capture_default_str();
+    cmd->add_option("--pairs", o.pairs, "a:b stereo pairs of the KITTI sequence (b excluded), streamed L R L R ...");
+    cmd->add_option("--data", o.data, "data directory (default $HARRIS_COSIM_DATA, else ../shared/data)");
+    cmd->add_option("--seed", o.seed, "seed of random patterns")->capture_default_str();
+}
+
+void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string& help) {
+    CLI::Option* pairs = cmd->add_option("--pairs", range, help);
+    cmd->add_option("--frames", range, "the older name of --pairs (the same range a:b)")->excludes(pairs);
+}
+
+void add_runner_flags(CLI::App* cmd, cluster::RunnerSettings& f) {
+    const std::string g = "Sharding";
+    cmd->add_option("--runner", f.runner, "where shards run: local (a pool of processes) or slurm (a job array)")
+        ->check(CLI::IsMember({"local", "slurm"}))->capture_default_str()->group(g);
+    cmd->add_option("--jobs", f.jobs, "local runner: shards at once")->check(CLI::Range(1, 1024))->capture_default_str()->group(g);
+    cmd->add_option("--shards", f.shards, "number of shards (0: the command's default)")->check(CLI::Range(0, 100000))->group(g);
+    cmd->add_option("--retries", f.retries, "local runner: extra attempts of a failed shard")->check(CLI::Range(0, 100))->capture_default_str()->group(g);
+    cmd->add_option("--run-dir", f.run_dir, "directory of the run's manifest, shard results and logs (shared by all nodes for slurm)")->group(g);
+    cmd->add_flag("--resume", f.resume, "continue the run in --run-dir: run only the shards without a result")->group(g);
+    cmd->add_option("--partition", f.partition, "slurm: partition")->group(g);
+    cmd->add_option("--account", f.account, "slurm: account")->group(g);
+    cmd->add_option("--time", f.time, "slurm: time limit per shard (sbatch --time)")->group(g);
+    cmd->add_option("--mem", f.mem, "slurm: memory per shard (sbatch --mem)")->group(g);
+    cmd->add_flag("--no-wait", f.no_wait, "slurm: submit the array and the merge job and return")->group(g);
+}
+
+cluster::JobRunner job_runner(const CLI::App* cmd, cluster::RunnerSettings s, bool single_jobs) {
+    const auto given = [cmd](const char* flag) {   // a command without the flag (`shard run`) has not given it
+        const CLI::Option* o = cmd->get_option_no_throw(flag);
+        return o && o->count() > 0;
+    };
+    bool any = false;
+    for (const char* f : cluster::kShardingFlags) any = any || given(f);
+    if (!any && !single_jobs && given("--jobs"))
+        throw InputError("--jobs counts the shards run at once: give one of " + cluster::sharding_flags_named() +
+                         " to run " + cmd->get_name() + " in shards");
+    s.sharded = any;
+    return cluster::JobRunner(registry(), std::move(s), program(), HC_VERSION);
+}
+
+}  // namespace hc::tools
