@@ -225,6 +225,26 @@ TEST_CASE("visual odometry estimates a disparity offset common to the rig from t
     CHECK(fixed.disparity_offset == std::vector<double>(21, 0.0));
 }
 
+TEST_CASE("a stereo observation's noise carried to another point is the triangulation's covariance there",
+          "[slam]") {
+    const hc::stereo::RectifiedRig rig = synthetic_rig();
+    const hc::stereo::PixelNoise noise;
+    for (const Eigen::Vector3d& a : {Eigen::Vector3d(-4, 1, 8), Eigen::Vector3d(12, -2, 35)})
+        for (const Eigen::Vector3d& b : {Eigen::Vector3d(6, 0.5, 50), Eigen::Vector3d(-3, -1, 5)}) {
+            const double pa[3] = {a.x(), a.y(), a.z()}, pb[3] = {b.x(), b.y(), b.z()};
+            const StereoLandmarkObs at_a = to_observation(hc::stereo::triangulate(rig, hc::stereo::project(rig, pa), noise));
+            const StereoLandmarkObs at_b = to_observation(hc::stereo::triangulate(rig, hc::stereo::project(rig, pb), noise));
+            const Vec2 q(b.z(), -b.x());   // b in the robot frame
+            const Mat2 carried = observation_noise_at(at_a, q), direct = camera_to_range_bearing(at_b.p_cam, at_b.cov).R;
+            INFO("from " << a.transpose() << " to " << b.transpose());
+            CHECK((carried - direct).norm() < 1e-9 * direct.norm());
+        }
+    // not in front: the observation's own covariance
+    const double p[3] = {1, 0, 10};
+    const StereoLandmarkObs o = to_observation(hc::stereo::triangulate(rig, hc::stereo::project(rig, p), noise));
+    CHECK(observation_noise_at(o, Vec2(-1, 0)) == camera_to_range_bearing(o.p_cam, o.cov).R);
+}
+
 TEST_CASE("the descriptor threshold is a fraction of the descriptor's bits", "[slam]") {
     CHECK(hamming_threshold(0.25, 32) == 64);    // ORB, BRIEF: 256 bits
     CHECK(hamming_threshold(0.25, 64) == 128);   // BRISK, FREAK: 512 bits
