@@ -43,6 +43,9 @@ RangeBearing camera_to_range_bearing(const Eigen::Vector3d& p_cam, const Eigen::
 /// so their covariance is the same at every point, and the first-order covariance at q follows
 /// from the one at the measurement without the rig: C_q = T C Tᵀ with T = ∂(x, z)/∂(a, w) at q
 /// times ∂(a, w)/∂(x, z) at the measurement. q not in front (x ≤ 0): o's own covariance.
+/// Exact in the camera's frame; in a levelled frame (odometry.hpp: levelled) the tilt mixes
+/// the height into x and z, and the carried covariance is an approximation of the order of
+/// the tilt.
 Mat2 observation_noise_at(const StereoLandmarkObs& o, const Vec2& q);
 
 /// Reads a KITTI poses file (12 numbers a line: the 3×4 [R|t] of camera 0 in the first
