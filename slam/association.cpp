@@ -27,6 +27,7 @@ struct Pairing {
     Mat2 Hl;
     double d2 = 0;                  ///< individual Mahalanobis distance
     Mat23 HPr;                      ///< H · P_sub's robot columns
+    Mat2 R;                         ///< the observation's noise covariance in this pairing
 };
 
 /// Columns c..c+C-1 of a pairing's H · P_sub = Hr P_sub[0:3, :] + Hl P_sub[sub:sub+2, :].
@@ -44,7 +45,13 @@ struct Gated {
     int count = 0;          ///< pairings over all observations
 };
 
-Gated gate(const Ekf& ekf, const std::vector<RangeBearing>& obs, const std::vector<std::vector<int>>& candidates) {
+/// The noise of observation i paired with its c-th candidate.
+const Mat2& pairing_noise(const std::vector<RangeBearing>& obs, const PairingNoise& noise, int i, size_t c) {
+    return noise.empty() ? obs[i].R : noise.at(i).at(c);
+}
+
+Gated gate(const Ekf& ekf, const std::vector<RangeBearing>& obs, const std::vector<std::vector<int>>& candidates,
+           const PairingNoise& noise) {
     const int N = static_cast<int>(obs.size());
     Gated gd;
     gd.idx = {0, 1, 2};
@@ -63,16 +70,18 @@ Gated gate(const Ekf& ekf, const std::vector<RangeBearing>& obs, const std::vect
     const Pose r = x.head<3>();
     gd.pairings.resize(N);
     for (int i = 0; i < N; ++i) {
-        for (int id : candidates[i]) {
+        for (size_t c = 0; c < candidates[i].size(); ++c) {
+            const int id = candidates[i][c];
             Pairing p;
             p.obs = i;
             p.id = id;
+            p.R = pairing_noise(obs, noise, i, c);
             p.sub = sub_of[id];
             const Vec2 yh = observe(r, x.segment<2>(ekf.state_index(id)), &p.Hr, &p.Hl);
             p.z = obs[i].y - yh;
             p.z(1) = wrap_angle(p.z(1));
             p.HPr = HP_cols<3>(P, p, 0);
-            const Mat2 S = p.HPr * p.Hr.transpose() + HP_cols<2>(P, p, p.sub) * p.Hl.transpose() + obs[i].R;
+            const Mat2 S = p.HPr * p.Hr.transpose() + HP_cols<2>(P, p, p.sub) * p.Hl.transpose() + p.R;
             p.d2 = p.z.dot(S.ldlt().solve(p.z));
             gd.pairings[i].push_back(std::move(p));
         }
@@ -201,7 +210,7 @@ private:
     /// when S22 is not positive definite or the joint distance fails the joint gate.
     bool joint_step(const Pairing& p, int k, double d2, Step& s) {
         const std::array<double, 5>& sm = joint_row(p, k);
-        Mat2 S22 = S_between(p, p) + obs_[p.obs].R;
+        Mat2 S22 = S_between(p, p) + p.R;
         Vec2 r2 = p.z;
         if (k > 0) {
             S22(0, 0) -= sm[0];
@@ -269,14 +278,17 @@ private:
 }  // namespace
 
 Association associate_nearest(const Ekf& ekf, const std::vector<RangeBearing>& obs,
-                              const std::vector<std::vector<int>>& candidates) {
+                              const std::vector<std::vector<int>>& candidates, const PairingNoise& noise) {
     struct Pair {
         double d2;
         int obs, id;
     };
     std::vector<Pair> pairs;
     for (int i = 0; i < static_cast<int>(obs.size()); ++i)
-        for (int id : candidates.at(i)) pairs.push_back({ekf.innovation(id, obs[i].y, obs[i].R).mahalanobis2, i, id});
+        for (size_t c = 0; c < candidates.at(i).size(); ++c) {
+            const int id = candidates[i][c];
+            pairs.push_back({ekf.innovation(id, obs[i].y, pairing_noise(obs, noise, i, c)).mahalanobis2, i, id});
+        }
     std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.d2 < b.d2; });
     Association a;
     a.landmark.assign(obs.size(), -1);
@@ -292,8 +304,8 @@ Association associate_nearest(const Ekf& ekf, const std::vector<RangeBearing>& o
 
 Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
                            const std::vector<std::vector<int>>& candidates, double joint_probability,
-                           long max_nodes) {
-    return JointSearch(obs, gate(ekf, obs, candidates), joint_probability, max_nodes).run();
+                           long max_nodes, const PairingNoise& noise) {
+    return JointSearch(obs, gate(ekf, obs, candidates, noise), joint_probability, max_nodes).run();
 }
 
 }  // namespace hc::slam

@@ -19,11 +19,15 @@ struct Association {
     bool complete = true;            ///< JCBB: false when it stopped at the node limit
 };
 
+/// The observation noise of each candidate pairing, parallel to the candidates: noise[i][c] is
+/// the covariance of observation i if it is landmark candidates[i][c]; empty: obs[i].R for all.
+using PairingNoise = std::vector<std::vector<Mat2>>;
+
 /// Individual gating + nearest neighbour: pairs (observation, candidate) taken greedily by
 /// increasing Mahalanobis distance, one landmark per observation and one observation per
 /// landmark. candidates[i] lists the landmark ids observation i may be paired with.
 Association associate_nearest(const Ekf& ekf, const std::vector<RangeBearing>& obs,
-                              const std::vector<std::vector<int>>& candidates);
+                              const std::vector<std::vector<int>>& candidates, const PairingNoise& noise = {});
 
 /// JCBB: among the hypotheses pairing observations with their candidates (each landmark at
 /// most once), the one with the most pairings whose joint innovation passes the χ²(2k,
@@ -32,6 +36,6 @@ Association associate_nearest(const Ekf& ekf, const std::vector<RangeBearing>& o
 /// when it cannot reach more pairings than the best found; at most `max_nodes` nodes.
 Association associate_jcbb(const Ekf& ekf, const std::vector<RangeBearing>& obs,
                            const std::vector<std::vector<int>>& candidates, double joint_probability,
-                           long max_nodes);
+                           long max_nodes, const PairingNoise& noise = {});
 
 }  // namespace hc::slam

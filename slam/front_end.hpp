@@ -36,6 +36,18 @@ struct RangeBearing {
 RangeBearing camera_to_range_bearing(const Eigen::Vector3d& p_cam, const Eigen::Matrix3d& cov,
                                      Eigen::Matrix<double, 2, 3>* Y_p = nullptr);
 
+/// The noise covariance of observation o's (range, bearing) if the point were at q (robot
+/// frame: x forward, y left) instead of where o was measured. The triangulation's covariance of
+/// (x_cam, z_cam) is carried through (a, w) = (x_cam / z_cam, 1 / z_cam): a rectified rig
+/// measures a = (u_l − cx) / fx and w = (u_l − u_r) / (fx · baseline) linearly in its pixels,
+/// so their covariance is the same at every point, and the first-order covariance at q follows
+/// from the one at the measurement without the rig: C_q = T C Tᵀ with T = ∂(x, z)/∂(a, w) at q
+/// times ∂(a, w)/∂(x, z) at the measurement. q not in front (x ≤ 0): o's own covariance.
+/// Exact in the camera's frame; in a levelled frame (odometry.hpp: levelled) the tilt mixes
+/// the height into x and z, and the carried covariance is an approximation of the order of
+/// the tilt.
+Mat2 observation_noise_at(const StereoLandmarkObs& o, const Vec2& q);
+
 /// Reads a KITTI poses file (12 numbers a line: the 3×4 [R|t] of camera 0 in the first
 /// camera's frame). Throws InputError naming the file and line when absent, unreadable,
 /// malformed or empty.
@@ -107,6 +119,10 @@ struct AssociationConfig {
     /// Observations used per frame (0 = all): the most precise ones (smallest det R), as
     /// each costs an O(n²) update or adds a landmark.
     int max_observations = 60;
+    /// true: an observation of a mapped landmark is gated, associated and corrected with its
+    /// noise at the landmark's prediction (observation_noise_at; LandmarkSlam); false: at its
+    /// measurement (the covariance the frame carries).
+    bool noise_at_prediction = true;
     void validate() const;
 };
 
@@ -129,7 +145,12 @@ struct FrameStats {
 /// association of the frame's observations to mapped landmarks (individual Mahalanobis gate
 /// and descriptor check give the candidates; JCBB or nearest neighbour picks among them),
 /// correction with the matched ones, initialisation of the unmatched ones, removal of
-/// landmarks unseen for `forget_after` frames.
+/// landmarks unseen for `forget_after` frames. An observation of a mapped landmark is gated,
+/// associated and corrected with its noise where the filter predicts the landmark
+/// (observation_noise_at), not where it was measured: a stereo point's covariance grows with
+/// its depth to the fourth power, so evaluated at the measurement it gives the points whose
+/// noise put them too near the most weight, and the fused map and poses come out biased. A new
+/// landmark is initialised with the covariance at its measurement (there is no prediction).
 class LandmarkSlam {
 public:
     LandmarkSlam(const Pose& start, const AssociationConfig& association);
@@ -147,8 +168,13 @@ private:
     FrameStats observe(const StereoFrame& frame);
     /// The landmarks each observation may be paired with: inside the individual gate, and the
     /// descriptor check passed; descriptor_failed[i] set when a gated landmark failed that check.
+    /// The noise of observation o (rb, its range-bearing form) as landmark `id`: at the landmark's
+    /// prediction with noise_at_prediction, else rb.R.
+    Mat2 noise_of(const StereoLandmarkObs& o, const RangeBearing& rb, int id) const;
+    /// noise[i][c]: the noise of observation i paired with its c-th candidate (observation_noise_at).
     std::vector<std::vector<int>> gate_candidates(const StereoFrame& frame, const std::vector<RangeBearing>& obs,
-                                                  const std::vector<int>& src, std::vector<char>& descriptor_failed);
+                                                  const std::vector<int>& src, std::vector<char>& descriptor_failed,
+                                                  std::vector<std::vector<Mat2>>& noise);
     /// Corrections with the observations paired with landmark[i] >= 0; the frame's matches and
     /// the id-hint counts of `st`.
     void correct_matched(const StereoFrame& frame, const std::vector<RangeBearing>& obs, const std::vector<int>& src,

@@ -29,6 +29,26 @@ RangeBearing camera_to_range_bearing(const Eigen::Vector3d& p, const Eigen::Matr
     return rb;
 }
 
+Mat2 observation_noise_at(const StereoLandmarkObs& o, const Vec2& q) {
+    const Eigen::Vector3d p(-q.y(), 0, q.x());   // the camera's x and z
+    if (!(q.x() > 0) || !(o.p_cam.z() > 0)) return camera_to_range_bearing(o.p_cam, o.cov).R;
+    // ∂(a, w)/∂(x, z) at the measurement, and its inverse ∂(x, z)/∂(a, w) at q
+    const double xm = o.p_cam.x(), zm = o.p_cam.z();
+    Mat2 K_m, Kinv_q;
+    K_m << 1 / zm, -xm / (zm * zm), 0, -1 / (zm * zm);
+    Kinv_q << p.z(), -p.x() * p.z(), 0, -p.z() * p.z();
+    const Mat2 T = Kinv_q * K_m;
+    Mat2 C;
+    C << o.cov(0, 0), o.cov(0, 2), o.cov(2, 0), o.cov(2, 2);
+    const Mat2 Cq = T * C * T.transpose();
+    Eigen::Matrix3d C3 = Eigen::Matrix3d::Zero();   // the height does not enter the top view
+    C3(0, 0) = Cq(0, 0);
+    C3(0, 2) = Cq(0, 1);
+    C3(2, 0) = Cq(1, 0);
+    C3(2, 2) = Cq(1, 1);
+    return camera_to_range_bearing(p, C3).R;
+}
+
 std::vector<Mat34> read_kitti_poses(const std::filesystem::path& file) {
     std::ifstream f(file);
     if (!f) throw InputError("cannot read the poses file '" + file.string() + "'");
@@ -203,10 +223,11 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
     const std::vector<RangeBearing> obs = select_observations(frame, cfg_, src);
     st.observed = static_cast<int>(obs.size());
     std::vector<char> descriptor_failed(obs.size(), 0);
-    const std::vector<std::vector<int>> candidates = gate_candidates(frame, obs, src, descriptor_failed);
+    std::vector<std::vector<Mat2>> noise;
+    const std::vector<std::vector<int>> candidates = gate_candidates(frame, obs, src, descriptor_failed, noise);
     const Association a = cfg_.method == AssociationMethod::Jcbb
-                              ? associate_jcbb(ekf_, obs, candidates, cfg_.joint_probability, cfg_.max_nodes)
-                              : associate_nearest(ekf_, obs, candidates);
+                              ? associate_jcbb(ekf_, obs, candidates, cfg_.joint_probability, cfg_.max_nodes, noise)
+                              : associate_nearest(ekf_, obs, candidates, noise);
     st.jcbb_complete = a.complete;
     correct_matched(frame, obs, src, a.landmark, st);
     st.matched = a.pairings;
@@ -216,15 +237,22 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
     return st;
 }
 
+Mat2 LandmarkSlam::noise_of(const StereoLandmarkObs& o, const RangeBearing& rb, int id) const {
+    return cfg_.noise_at_prediction ? observation_noise_at(o, to_frame(ekf_.pose(), ekf_.landmark(id))) : rb.R;
+}
+
 std::vector<std::vector<int>> LandmarkSlam::gate_candidates(const StereoFrame& frame,
                                                             const std::vector<RangeBearing>& obs,
                                                             const std::vector<int>& src,
-                                                            std::vector<char>& descriptor_failed) {
+                                                            std::vector<char>& descriptor_failed,
+                                                            std::vector<std::vector<Mat2>>& noise) {
     std::vector<std::vector<int>> candidates(obs.size());
+    noise.assign(obs.size(), {});
     for (int i = 0; i < static_cast<int>(obs.size()); ++i) {
         const auto& desc = frame[src[i]].descriptor;
         for (int id : ekf_.landmark_ids()) {
-            const double d2 = ekf_.innovation(id, obs[i].y, obs[i].R).mahalanobis2;
+            const Mat2 R = noise_of(frame[src[i]], obs[i], id);
+            const double d2 = ekf_.innovation(id, obs[i].y, R).mahalanobis2;
             if (!(d2 <= gate_)) continue;
             const auto& stored = descriptors_[id];
             if (cfg_.check_descriptor && !stored.empty() && !desc.empty() &&
@@ -234,6 +262,7 @@ std::vector<std::vector<int>> LandmarkSlam::gate_candidates(const StereoFrame& f
                 continue;
             }
             candidates[i].push_back(id);
+            noise[i].push_back(R);
         }
     }
     return candidates;
@@ -245,7 +274,8 @@ void LandmarkSlam::correct_matched(const StereoFrame& frame, const std::vector<R
     for (int i = 0; i < static_cast<int>(obs.size()); ++i) {
         const int id = landmark[i];
         if (id < 0) continue;
-        ekf_.correct(id, obs[i].y, obs[i].R);
+        // the noise where the filter now predicts the landmark (earlier corrections moved it)
+        ekf_.correct(id, obs[i].y, noise_of(frame[src[i]], obs[i], id));
         last_seen_[id] = frame_;
         last_matches_.emplace_back(src[i], id);
         const int hint = frame[src[i]].id_hint;

@@ -157,6 +157,9 @@ struct Solved {
     Mat3 cov = Mat3::Identity();
     bool ok = false;
     double disparity_offset = 0, disparity_offset_sigma = 0;   // pixels with the offset estimated
+    Mat3 rotation = Mat3::Identity();                           // pixels: the 6-DoF motion and the
+    Vec3 translation = Vec3::Zero();                            // covariance of (ω, δt)
+    Eigen::Matrix<double, 6, 6> cov6 = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 /// A hypothesis's support: the matches within `gate` of it (`distance2(m)`, a Mahalanobis
@@ -258,12 +261,6 @@ Rigid perturbed(const Rigid& T, const Vec7& d) {
 Vec3 rig_point(const stereo::RectifiedRig& g, const Vec3& m) {
     const double D = m(0) - m(2) - (g.cx0 - g.cx1), Z = (g.tx0 - g.tx1) / D;
     return Vec3(((m(0) - g.cx0) * Z - g.tx0) / g.fx, ((m(1) - g.cy) * Z - g.ty) / g.fy, Z);
-}
-
-Motion planar_motion(const Rigid& T) {
-    Mat34 M;
-    M << T.R, T.t;
-    return planar_pose(M);
 }
 
 /// Where the current frame saw match m's point, minus where the previous frame's point lands in
@@ -401,16 +398,11 @@ Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfi
         H = refine_pixels(out.inliers, g, T, false);
         if (same) break;
     }
-    // the top view of T and its covariance: Jacobian of planar_motion in (ω, δt), central differences
-    out.u = planar_motion(T);
-    Eigen::Matrix<double, 3, 7> J = Eigen::Matrix<double, 3, 7>::Zero();
-    constexpr double h = 1e-7;
-    for (int k = 0; k < 6; ++k) {
-        Motion d = planar_motion(perturbed(T, Vec7::Unit(k) * h)) - planar_motion(perturbed(T, -Vec7::Unit(k) * h));
-        d(2) = wrap_angle(d(2));
-        J.col(k) = d / (2 * h);
-    }
-    out.cov = J * H.inverse() * J.transpose();
+    // the top view of T in the previous camera's frame, and its covariance
+    out.rotation = T.R;
+    out.translation = T.t;
+    out.cov6 = H.inverse().topLeftCorner<6, 6>();
+    out.u = levelled_motion(Mat3::Identity(), T.R, T.t, out.cov6, &out.cov);
     if (cfg.estimate_disparity_offset) {   // the correction's estimate with this step's inliers
         Rigid T7 = T;
         const Mat7 H7 = refine_pixels(out.inliers, g, T7, true, prior);
@@ -422,6 +414,45 @@ Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfi
 }
 
 }  // namespace
+
+Mat3 tilt_of(const Mat3& M) {
+    const double psi = std::atan2(-M(0, 2), M(2, 2)), c = std::cos(psi), s = std::sin(psi);
+    Mat3 Y;   // kitti_pose's rotation of heading ψ
+    Y << c, 0, -s, 0, 1, 0, s, 0, c;
+    return Y.transpose() * M;
+}
+
+Motion levelled_motion(const Mat3& A, const Mat3& R, const Vec3& t, const Eigen::Matrix<double, 6, 6>& cov6,
+                       Mat3* cov) {
+    const auto top = [&](const Rigid& T) {
+        Mat34 M;
+        M << A * T.R, A * T.t;
+        return planar_pose(M);
+    };
+    const Rigid T{R, t, 0};
+    if (cov) {   // Jacobian in (ω, δt) by central differences
+        Eigen::Matrix<double, 3, 6> J;
+        constexpr double h = 1e-7;
+        for (int k = 0; k < 6; ++k) {
+            Motion d = top(perturbed(T, Vec7::Unit(k) * h)) - top(perturbed(T, -Vec7::Unit(k) * h));
+            d(2) = wrap_angle(d(2));
+            J.col(k) = d / (2 * h);
+        }
+        *cov = J * cov6 * J.transpose();
+        *cov = (*cov + cov->transpose()) / 2;
+    }
+    return top(T);
+}
+
+StereoFrame levelled(const StereoFrame& frame, const Mat3& A) {
+    StereoFrame out = frame;
+    for (StereoLandmarkObs& o : out) {
+        o.p_cam = A * o.p_cam;
+        o.cov = A * o.cov * A.transpose();
+        o.cov = (o.cov + o.cov.transpose()) / 2;
+    }
+    return out;
+}
 
 MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& current,
                                const VisualOdometryConfig& cfg, const DisparityPrior& prior) {
@@ -438,6 +469,9 @@ MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& c
     est.cov = (s.cov + s.cov.transpose()) / 2;
     est.disparity_offset = s.disparity_offset;
     est.disparity_offset_sigma = s.disparity_offset_sigma;
+    est.rotation = s.rotation;
+    est.translation = s.translation;
+    est.cov6 = s.cov6;
     est.ok = true;
     for (const Match* m : s.inliers) est.matches.emplace_back(m->p->index, m->c->index);
     return est;
@@ -451,12 +485,17 @@ VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const Vis
                                       cfg.fail_sigma_theta * cfg.fail_sigma_theta)
                           .asDiagonal();
     DisparityPrior offset;   // the posterior of the last step that estimated c
+    const bool level = cfg.level && cfg.residual == OdometryResidual::pixels;
+    Mat3 A = Mat3::Identity();   // the tilt of the camera before the step
+    vo.tilt.push_back(A);
     for (size_t k = 1; k < frames.size(); ++k) {
         MotionEstimate e = estimate_motion(frames[k - 1], frames[k], cfg, offset);
         if (e.ok) {
-            last = e.u;
-            vo.motions.push_back(e.u);
-            vo.covariances.push_back(e.cov);
+            Mat3 Q = e.cov;
+            last = level ? levelled_motion(A, e.rotation, e.translation, e.cov6, &Q) : e.u;
+            if (level) A = tilt_of(A * e.rotation);
+            vo.motions.push_back(last);
+            vo.covariances.push_back(Q);
             if (e.disparity_offset_sigma > 0) offset = {e.disparity_offset, e.disparity_offset_sigma};
         } else {
             ++vo.failures;
@@ -464,6 +503,7 @@ VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const Vis
             vo.covariances.push_back(fail);
         }
         vo.disparity_offset.push_back(applied_offset(offset, cfg));
+        vo.tilt.push_back(A);
         vo.estimates.push_back(std::move(e));
     }
     // frame 0 takes step 1's correction, frame k step k's
@@ -499,17 +539,22 @@ SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const st
         throw InputError("a sequence needs one pose per frame to score: " + std::to_string(frames.size()) +
                          " frames, " + std::to_string(truth.size()) + " poses");
     VisualOdometry vo = visual_odometry(frames, cfg);
+    const bool pixels = cfg.residual == OdometryResidual::pixels;
+    const bool offset = pixels && cfg.estimate_disparity_offset, level = pixels && cfg.level;
     SequenceRun run;
-    if (cfg.residual == OdometryResidual::pixels && cfg.estimate_disparity_offset) {
+    if (offset || level) {
         std::vector<StereoFrame> seen;
         seen.reserve(frames.size());
-        for (size_t k = 0; k < frames.size(); ++k)   // a frame given no correction is seen as measured
-            seen.push_back(vo.disparity_offset[k] == 0 ? frames[k] : with_disparity_offset(frames[k], *cfg.rig, vo.disparity_offset[k]));
+        for (size_t k = 0; k < frames.size(); ++k) {   // a frame given no correction is seen as measured
+            const bool corrected = offset && vo.disparity_offset[k] != 0;
+            StereoFrame f = corrected ? with_disparity_offset(frames[k], *cfg.rig, vo.disparity_offset[k]) : frames[k];
+            seen.push_back(level ? levelled(f, vo.tilt[k]) : std::move(f));
+        }
         run = run_filter(seen, vo.motions, vo.covariances, Pose::Zero(), association, truth);
-        run.disparity_offset = vo.disparity_offset;
     } else {
         run = run_filter(frames, vo.motions, vo.covariances, Pose::Zero(), association, truth);
     }
+    if (offset) run.disparity_offset = vo.disparity_offset;
     if (odometry) *odometry = std::move(vo);
     return run;
 }

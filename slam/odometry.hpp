@@ -40,6 +40,10 @@ struct VisualOdometryConfig {
     /// The correction is applied (to the motions and the filter's frames) once its estimate
     /// differs from 0 by more than this many standard deviations (a 3σ test).
     double disparity_offset_significance = 3.0;
+    /// Pixels only: the motions and the filter's frames are taken in the levelled frame of each
+    /// camera (VisualOdometry::tilt), so that a camera that pitches and rolls relative to the
+    /// first one still moves and sees in one plane; false: in each camera's own frame.
+    bool level = true;
     double max_hamming_fraction = 0.25;   ///< temporal matches: Hamming ≤ this fraction of the bits
     double min_range = 1.0, max_range = 60.0;   ///< m: top-view range of the points used
     int ransac_iterations = 300;
@@ -63,6 +67,12 @@ struct MotionEstimate {
     /// its standard deviation; 0 and 0 without.
     double disparity_offset = 0, disparity_offset_sigma = 0;
     std::vector<std::pair<int, int>> matches;   ///< inliers: (index in previous, index in current)
+    /// Pixels: the 6-DoF motion, X_prev = rotation · X_cur + translation, and the covariance of
+    /// its perturbation (ω, δt) (rotation · Exp(ω), translation + δt); u is its top view in the
+    /// previous camera's frame. Top view: identity, zero, zero.
+    Mat3 rotation = Mat3::Identity();
+    Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+    Eigen::Matrix<double, 6, 6> cov6 = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 /// The top view of a camera-frame point (x = z_cam forward, y = −x_cam left) and its 2×2
@@ -80,8 +90,25 @@ struct DisparityPrior {
 MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& current,
                                const VisualOdometryConfig& config = {}, const DisparityPrior& prior = {});
 
+/// The tilt of a camera orientation M (camera axes in the first camera's frame): the rotation
+/// A with M = Y(ψ) · A, Y(ψ) the rotation about the first camera's y axis by the heading
+/// ψ = atan2(−M(0,2), M(2,2)) (planar_pose's), so that A's optical axis has no x component.
+/// A carries camera coordinates into the camera's levelled frame: the frame of heading ψ whose
+/// x-z plane is the first camera's, where the 2-D filter's top view belongs.
+Mat3 tilt_of(const Mat3& M);
+/// The top-view motion of the 6-DoF step (rotation R, translation t: X_prev = R X_cur + t) taken
+/// from a camera of tilt A: planar_pose of A · [R | t], the step between the two cameras'
+/// levelled frames; with `cov6` (of the perturbation (ω, δt), MotionEstimate::cov6) its covariance
+/// into `cov`.
+Motion levelled_motion(const Mat3& A, const Mat3& R, const Eigen::Vector3d& t,
+                       const Eigen::Matrix<double, 6, 6>& cov6, Mat3* cov = nullptr);
+/// `frame` in the levelled frame of a camera of tilt A: every p_cam ← A p_cam, cov ← A cov Aᵀ.
+StereoFrame levelled(const StereoFrame& frame, const Mat3& A);
+
 /// Visual odometry over a sequence: one estimate per consecutive pair; a failed one is
 /// replaced by the previous motion (zero at the start) with the failure covariance.
+/// On pixel residuals, the camera's tilt is tracked through the 6-DoF steps (the first camera
+/// level), and each motion is the step between levelled frames (levelled_motion).
 struct VisualOdometry {
     std::vector<Motion> motions;
     std::vector<Mat3> covariances;
@@ -91,6 +118,9 @@ struct VisualOdometry {
     /// last step up to max(k, 1) that succeeded, each step's estimate taking the one before as
     /// its prior (a recursive estimate of one constant), when significant; else 0.
     std::vector<double> disparity_offset;
+    /// Per frame, the camera's tilt (tilt_of) after the 6-DoF steps so far: identity for frame 0,
+    /// on the top view and without levelling; a failed step keeps the tilt before it.
+    std::vector<Mat3> tilt;
 };
 VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const VisualOdometryConfig& config = {});
 
@@ -102,7 +132,8 @@ StereoFrame with_disparity_offset(const StereoFrame& frame, const stereo::Rectif
 /// Visual odometry and EKF-SLAM on stereo frames alone, started at the origin (KITTI's
 /// first pose is the identity); `truth` (one pose per frame) is read after the run only, to
 /// score. With the disparity correction estimated, the filter sees each frame corrected by
-/// VisualOdometry::disparity_offset. Throws InputError on fewer than 2 frames or a truth of
+/// VisualOdometry::disparity_offset; with levelling, in the camera's levelled frame
+/// (VisualOdometry::tilt). Throws InputError on fewer than 2 frames or a truth of
 /// another length.
 SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const std::vector<Pose>& truth,
                                 const VisualOdometryConfig& vo, const AssociationConfig& association,
