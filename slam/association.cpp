@@ -103,7 +103,7 @@ struct Step {
 class JointSearch {
 public:
     JointSearch(const std::vector<RangeBearing>& obs, Gated gated, double joint_probability, long max_nodes)
-        : obs_(obs), N_(static_cast<int>(obs.size())), W_(2 * N_), gd_(std::move(gated)), max_nodes_(max_nodes),
+        : N_(static_cast<int>(obs.size())), W_(2 * N_), gd_(std::move(gated)), max_nodes_(max_nodes),
           rem_(N_ + 1, 0), chi2_(N_ + 1, 0), L_(RowMajor::Zero(W_, W_)), w_(Eigen::VectorXd::Zero(W_)),
           Xc_(new double[static_cast<size_t>(gd_.count) * 2 * W_]),
           sums_(new std::array<double, 5>[static_cast<size_t>(gd_.count) * (N_ + 1)]),
@@ -251,7 +251,6 @@ private:
         used_sub_[p.sub] = 1;
     }
 
-    const std::vector<RangeBearing>& obs_;
     const int N_, W_;
     const Gated gd_;
     const long max_nodes_;

@@ -92,12 +92,14 @@ KittiRunOptions kitti_options(const SlamCommand& o) {
     ac.check_descriptor = o.descriptor;
     ac.forget_after = o.forget_after;
     ac.max_observations = o.max_observations;
+    ac.noise_at_prediction = o.noise_at_prediction;
     VisualOdometryConfig& vc = k.vo;
     vc.max_hamming_fraction = o.vo_hamming_fraction;
     vc.min_inliers = o.vo_min_inliers;
     vc.max_range = o.vo_max_range;
     vc.residual = o.vo_residual == "top-view" ? OdometryResidual::top_view : OdometryResidual::pixels;
     vc.estimate_disparity_offset = o.vo_disparity_offset;
+    vc.level = o.vo_level;
     SyntheticOdometry& so = k.synthetic;
     if (o.sigma_dx) so.sigma_dx = *o.sigma_dx;
     so.sigma_dy = o.sigma_dy;
@@ -130,14 +132,14 @@ std::string sequence_command(const SlamCommand& o, const KittiRunOptions& k, con
     const std::string odo_args = k.visual_odometry
         ? " --vo-hamming-fraction " + num(vc.max_hamming_fraction) + " --vo-min-inliers " + std::to_string(vc.min_inliers) +
               " --vo-max-range " + num(vc.max_range) + " --vo-residual " + o.vo_residual +
-              (o.vo_disparity_offset ? "" : " --no-vo-disparity-offset")
+              (o.vo_disparity_offset ? "" : " --no-vo-disparity-offset") + (o.vo_level ? "" : " --no-vo-level")
         : " --sigma-dx " + num(so.sigma_dx) + " --sigma-dy " + num(so.sigma_dy) + " --sigma-dtheta " +
               num(so.sigma_dtheta / deg);
     const bool seeded = o.odometry == "synthetic" || o.landmarks_from == "synthetic";
     return "harris-cosim slam --sequences " + sequence + " --landmarks-from " + o.landmarks_from + source_args +
            " --odometry " + o.odometry + odo_args + " --association " + o.association + " --gate " + num(o.gate) +
            " --joint-gate " + num(o.joint_gate) + " --max-hamming-fraction " + num(o.max_hamming_fraction) +
-           (o.descriptor ? "" : " --no-descriptor") + " --forget-after " + std::to_string(o.forget_after) +
+           (o.descriptor ? "" : " --no-descriptor") + (o.noise_at_prediction ? "" : " --noise-at-measurement") + " --forget-after " + std::to_string(o.forget_after) +
            " --max-observations " + std::to_string(o.max_observations) +
            (seeded ? " --seed " + std::to_string(o.seed) : std::string()) + " --out " + out.string();
 }

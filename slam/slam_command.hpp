@@ -39,6 +39,7 @@ struct SlamCommand {
     std::optional<double> sigma_dx, sigma_dtheta_deg;
     double sigma_dy = SyntheticOdometry{}.sigma_dy;
     bool descriptor = true, vo_disparity_offset = VisualOdometryConfig{}.estimate_disparity_offset;
+    bool noise_at_prediction = AssociationConfig{}.noise_at_prediction, vo_level = VisualOdometryConfig{}.level;
     // --landmarks-from stereo: the landmark pipeline's options
     std::string corners = landmarks::detector_name(KittiRunOptions{}.pipeline.detector),
                 descriptor_name = landmarks::descriptor_name(KittiRunOptions{}.pipeline.descriptor), config;

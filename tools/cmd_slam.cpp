@@ -61,6 +61,9 @@ void add_odometry_flags(CLI::App* cmd, slam::SlamCommand& o) {
     cmd->add_flag("!--no-vo-disparity-offset", o.vo_disparity_offset,
                   "visual odometry on pixels: do not estimate a disparity correction common to the rig's "
                   "measurements (estimated by default, with each motion)");
+    cmd->add_flag("!--no-vo-level", o.vo_level,
+                  "visual odometry on pixels: motions and the filter's frames in each camera's own frame, not levelled "
+                  "by the tilt of the 6-DoF steps");
 }
 
 /// The landmark source and data association flags of a KITTI run.
@@ -88,6 +91,9 @@ void add_landmark_flags(CLI::App* cmd, slam::SlamCommand& o) {
         ->capture_default_str();
     cmd->add_flag("!--no-descriptor", o.descriptor,
                   "associate by the Mahalanobis gates alone (visual odometry still matches descriptors)");
+    cmd->add_flag("!--noise-at-measurement", o.noise_at_prediction,
+                  "gate, associate and correct each observation with its noise where it was measured, not at the "
+                  "landmark's prediction");
     cmd->add_option("--forget-after", o.forget_after, "remove landmarks unseen for this many frames (0: keep)")->capture_default_str();
     cmd->add_option("--max-observations", o.max_observations, "observations used per frame, the most precise first (0: all)")
         ->capture_default_str();
