@@ -37,13 +37,10 @@ Stream default_stream(int first, int last) {
     if (pairs <= 0) throw InputError("--pairs selects no pair of the default 12-pair stream");
     cv::VideoCapture cap;
     if (!video.empty() && fs::exists(video) && cap.open(video)) {
-        cv::Mat f, g;
+        cv::Mat f;
         for (int k = 0; k < 2 * std::min(last, 12) && cap.read(f); ++k) {
             if (k < 2 * first) continue;
-            cv::cvtColor(f, g, cv::COLOR_BGR2GRAY);
-            Image im(g.cols, g.rows);
-            for (int r = 0; r < g.rows; ++r) std::copy_n(g.ptr<std::uint8_t>(r), g.cols, &im.at(r, 0));
-            s.frames.push_back(frames::crop(im, 640, 360, video));
+            s.frames.push_back(frames::crop(frames::image_of(f), 640, 360, video));
             s.names.push_back(fmt::format("vtest/{}{:03}", k % 2 ? 'R' : 'L', k / 2));
             s.pair_index.push_back(k / 2);
         }

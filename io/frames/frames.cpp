@@ -24,13 +24,9 @@ Image load_image(const fs::path& p) {
     if (m.depth() != CV_8U)
         throw InputError("image '" + p.string() + "' is not 8-bit (depth code " + std::to_string(m.depth()) +
                          "); the co-processor takes 8-bit grey pixels");
-    if (m.channels() == 3) cv::cvtColor(m, m, cv::COLOR_BGR2GRAY);
-    else if (m.channels() == 4) cv::cvtColor(m, m, cv::COLOR_BGRA2GRAY);
-    else if (m.channels() != 1)
+    if (m.channels() != 1 && m.channels() != 3 && m.channels() != 4)
         throw InputError("image '" + p.string() + "' has " + std::to_string(m.channels()) + " channels");
-    Image img(m.cols, m.rows);
-    for (int r = 0; r < m.rows; ++r) std::copy_n(m.ptr<std::uint8_t>(r), m.cols, &img.at(r, 0));
-    return img;
+    return image_of(m);
 }
 
 Image crop(const Image& img, int width, int height, const std::string& what) {
@@ -63,19 +59,6 @@ std::optional<fs::path> data_dir(const std::string& flag_value) {
     return std::nullopt;
 }
 
-namespace {
-std::vector<fs::path> sorted_images(const fs::path& dir) {
-    std::vector<fs::path> v;
-    if (!fs::is_directory(dir)) return v;
-    for (const auto& e : fs::directory_iterator(dir)) {
-        const auto ext = e.path().extension().string();
-        if (e.is_regular_file() && (ext == ".png" || ext == ".jpg" || ext == ".pgm")) v.push_back(e.path());
-    }
-    std::sort(v.begin(), v.end());
-    return v;
-}
-}  // namespace
-
 fs::path kitti_sequences_dir(const fs::path& kitti_root) { return kitti_root / "sequences"; }
 
 fs::path kitti_sequence_dir(const fs::path& kitti_root, const std::string& sequence) {
@@ -106,8 +89,8 @@ KittiSequence open_kitti(const fs::path& kitti_dir, const std::string& sequence)
     s.root = kitti_sequence_dir(kitti_dir, sequence);
     if (!fs::is_directory(s.root))
         throw InputError("KITTI sequence directory '" + s.root.string() + "' does not exist");
-    s.left = sorted_images(s.root / "image_0");
-    s.right = sorted_images(s.root / "image_1");
+    s.left = image_files_in(s.root / "image_0");
+    s.right = image_files_in(s.root / "image_1");
     if (s.left.empty()) throw InputError("'" + (s.root / "image_0").string() + "' holds no images");
     return s;
 }

@@ -18,7 +18,19 @@
 #include "model/image/image.hpp"
 #include "io/util/util.hpp"
 
+namespace cv {
+class Mat;
+}
+
 namespace hc::frames {
+
+/// An 8-bit OpenCV image as a grey Image (colour converted as cv::COLOR_BGR2GRAY or
+/// COLOR_BGRA2GRAY does); the caller has checked its depth.
+Image image_of(const cv::Mat& m);
+
+/// The image files of a folder (.png, .pgm, .ppm, .pbm, .jpg, .jpeg, .bmp, .tif, .tiff, .webp,
+/// any case), sorted by name; none when `dir` is not a folder.
+std::vector<std::filesystem::path> image_files_in(const std::filesystem::path& dir);
 
 /// Reads an 8-bit image (grey, or colour converted to grey). Throws InputError naming the
 /// file when it is missing, unreadable or not 8-bit.

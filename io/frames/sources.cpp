@@ -28,27 +28,13 @@ std::string lower_extension(const fs::path& p) {
     return e;
 }
 
-bool is_image_file(const fs::path& p) {
-    static const std::set<std::string> ext{".png", ".pgm", ".ppm", ".pbm", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"};
-    return ext.count(lower_extension(p)) > 0;
-}
-
-/// The image files of a folder, sorted by name.
-std::vector<fs::path> folder_images(const fs::path& dir) {
-    std::vector<fs::path> v;
-    for (const auto& e : fs::directory_iterator(dir))
-        if (e.is_regular_file() && is_image_file(e.path())) v.push_back(e.path());
-    std::sort(v.begin(), v.end());
-    return v;
-}
-
 /// Files, glob patterns and folders as a list of paths; `check_files`: a plain name must be
 /// an existing file (else its loader names it when it is read).
 std::vector<fs::path> expand(const std::vector<std::string>& items, const std::string& what, bool check_files) {
     std::vector<fs::path> out;
     for (const auto& item : items) {
         if (fs::is_directory(item)) {
-            const auto found = folder_images(item);
+            const auto found = image_files_in(item);
             if (found.empty())
                 throw InputError(what + ": folder '" + item + "' holds no image file (.png, .pgm, .jpg, .bmp, .tif, ...)");
             out.insert(out.end(), found.begin(), found.end());
@@ -69,16 +55,6 @@ std::vector<fs::path> expand(const std::vector<std::string>& items, const std::s
     }
     if (out.empty()) throw InputError(what + ": no image given");
     return out;
-}
-
-Image grey_image(const cv::Mat& m) {
-    cv::Mat g;
-    if (m.channels() == 3) cv::cvtColor(m, g, cv::COLOR_BGR2GRAY);
-    else if (m.channels() == 4) cv::cvtColor(m, g, cv::COLOR_BGRA2GRAY);
-    else g = m;
-    Image im(g.cols, g.rows);
-    for (int r = 0; r < g.rows; ++r) std::copy_n(g.ptr<std::uint8_t>(r), g.cols, &im.at(r, 0));
-    return im;
 }
 
 /// A video read in order, shared by the feed's loading threads: asking for an earlier frame
@@ -105,7 +81,7 @@ public:
         if (!cap_.read(m) || m.empty()) throw ended(k);
         ++next_;
         if (m.depth() != CV_8U) throw InputError("video '" + file_.string() + "' is not 8-bit");
-        return grey_image(m);
+        return image_of(m);
     }
 
 private:
@@ -192,6 +168,26 @@ bool all_digits(const std::string& s) {
 }
 
 }  // namespace
+
+Image image_of(const cv::Mat& m) {
+    cv::Mat g;
+    if (m.channels() == 3) cv::cvtColor(m, g, cv::COLOR_BGR2GRAY);
+    else if (m.channels() == 4) cv::cvtColor(m, g, cv::COLOR_BGRA2GRAY);
+    else g = m;
+    Image im(g.cols, g.rows);
+    for (int r = 0; r < g.rows; ++r) std::copy_n(g.ptr<std::uint8_t>(r), g.cols, &im.at(r, 0));
+    return im;
+}
+
+std::vector<fs::path> image_files_in(const fs::path& dir) {
+    static const std::set<std::string> ext{".png", ".pgm", ".ppm", ".pbm", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"};
+    std::vector<fs::path> v;
+    if (!fs::is_directory(dir)) return v;
+    for (const auto& e : fs::directory_iterator(dir))
+        if (e.is_regular_file() && ext.count(lower_extension(e.path()))) v.push_back(e.path());
+    std::sort(v.begin(), v.end());
+    return v;
+}
 
 std::vector<std::string> parse_sequences(const std::string& s) {
     const auto bad = [&](const std::string& why) {
