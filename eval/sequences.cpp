@@ -3,7 +3,6 @@
 #include "eval/sequences.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <set>
 
 #include <fmt/format.h>
@@ -14,10 +13,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-bool all_digits(const std::string& s) {
-    return !s.empty() && std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
-}
 
 json confusion_json(const Confusion& c) { return json::array({c.tp, c.tn, c.fp, c.fn}); }
 Confusion confusion_of(const json& j) {

@@ -22,8 +22,6 @@
 
 namespace hc::eval {
 
-/// The KITTI sequence list of --sequences (io/frames: frames::parse_sequences).
-using frames::parse_sequences;
 
 /// One part of a sequence's evaluation.
 struct PartInput {

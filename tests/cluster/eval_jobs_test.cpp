@@ -287,12 +287,7 @@ TEST_CASE("the spec model after a frame given for its maximum only equals the ru
     }
 }
 
-TEST_CASE("a list or range of sequences is parsed and missing sequences are named", "[cluster]") {
-    CHECK(eval::parse_sequences("00-03") == std::vector<std::string>{"00", "01", "02", "03"});
-    CHECK(eval::parse_sequences("00,01,05") == std::vector<std::string>{"00", "01", "05"});
-    CHECK_THROWS_AS(eval::parse_sequences("03-01"), InputError);
-    CHECK_THROWS_AS(eval::parse_sequences("0a"), InputError);
-    CHECK_THROWS_AS(eval::parse_sequences("01,01"), InputError);
+TEST_CASE("missing sequences are named", "[cluster]") {
     try {
         frames::check_kitti_sequences(standin(), {"02", "04", "03", "09"});
         FAIL("missing sequences were not reported");

@@ -176,5 +176,7 @@ TEST_CASE("a pattern feed is the pattern's frames, each made when reached", "[fr
 TEST_CASE("KITTI sequence lists are ranges or lists of two-digit names", "[frames]") {
     CHECK(frames::parse_sequences("00-03") == std::vector<std::string>{"00", "01", "02", "03"});
     CHECK(frames::parse_sequences("00,01,05") == std::vector<std::string>{"00", "01", "05"});
+    CHECK_THROWS_AS(frames::parse_sequences("03-01"), InputError);
+    CHECK_THROWS_AS(frames::parse_sequences("0a"), InputError);
     CHECK_THROWS_AS(frames::parse_sequences("01,01"), InputError);
 }
