@@ -172,18 +172,28 @@ Eigen::MatrixXd Ekf::covariance_of(const std::vector<int>& idx) const {
 }
 
 Innovation Ekf::innovation(int id, const Vec2& y, const Mat2& R) const {
+    return innovation(predicted_observation(id), y, R);
+}
+
+PredictedObservation Ekf::predicted_observation(int id) const {
     const int l = state_index(id);
     Mat23 H_r;
     Mat2 H_l;
-    const Vec2 yh = observe(x_.head<3>(), x_.segment<2>(l), &H_r, &H_l);
-    Innovation inn;
-    inn.z = y - yh;
-    inn.z(1) = wrap_angle(inn.z(1));
+    PredictedObservation p;
+    p.y = observe(x_.head<3>(), x_.segment<2>(l), &H_r, &H_l);
     const Mat3 Prr = pose_covariance();
     const Mat23 Plr = P_.block<2, 3>(l, 0);
     const Mat2 Pll = P_.block<2, 2>(l, l).selfadjointView<Eigen::Lower>();
     const Mat2 cross = H_l * Plr * H_r.transpose();
-    inn.Z = H_r * Prr * H_r.transpose() + cross + cross.transpose() + H_l * Pll * H_l.transpose() + R;
+    p.HPHt = H_r * Prr * H_r.transpose() + cross + cross.transpose() + H_l * Pll * H_l.transpose();
+    return p;
+}
+
+Innovation Ekf::innovation(const PredictedObservation& p, const Vec2& y, const Mat2& R) {
+    Innovation inn;
+    inn.z = y - p.y;
+    inn.z(1) = wrap_angle(inn.z(1));
+    inn.Z = p.HPHt + R;
     inn.Z = (inn.Z + inn.Z.transpose()) / 2;
     inn.mahalanobis2 = inn.z.dot(inn.Z.ldlt().solve(inn.z));
     return inn;

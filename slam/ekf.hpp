@@ -88,6 +88,13 @@ struct Innovation {
     double mahalanobis2 = 0;
 };
 
+/// What a landmark's innovation owes to the filter alone, not to the observation: its
+/// predicted measurement h(x̂) and H·P·Hᵀ (the innovation covariance without the noise).
+struct PredictedObservation {
+    Vec2 y = Vec2::Zero();
+    Mat2 HPHt = Mat2::Zero();
+};
+
 /// EKF-SLAM: state x = (r, p_1, ..., p_m), joint covariance P (thesis eq. 2.10).
 class Ekf {
 public:
@@ -105,6 +112,12 @@ public:
     /// The innovation of observing landmark `id` at y with noise covariance R, without
     /// changing the filter (for gating). Throws std::out_of_range for an unknown id.
     Innovation innovation(int id, const Vec2& y, const Mat2& R) const;
+    /// Landmark `id`'s predicted observation, computed once for many observations (gating).
+    /// Throws std::out_of_range for an unknown id.
+    PredictedObservation predicted_observation(int id) const;
+    /// The innovation of observing y with noise R against `p`: the same value, to the bit, as
+    /// innovation(id, y, R) with p = predicted_observation(id).
+    static Innovation innovation(const PredictedObservation& p, const Vec2& y, const Mat2& R);
 
     /// Correction with the observation y of landmark `id` (eqs. 2.14-2.18). Returns the
     /// innovation used. Throws std::out_of_range for an unknown id.

@@ -166,12 +166,15 @@ public:
 
 private:
     FrameStats observe(const StereoFrame& frame);
+    /// The noise of observation o (rb, its range-bearing form) as a landmark the filter
+    /// predicts at `at` (predicted_point): there with noise_at_prediction, else rb.R.
+    Mat2 noise_of(const StereoLandmarkObs& o, const RangeBearing& rb, const Vec2& at) const;
+    /// Where the filter predicts landmark `id`, in the robot's frame.
+    Vec2 predicted_point(int id) const;
     /// The landmarks each observation may be paired with: inside the individual gate, and the
     /// descriptor check passed; descriptor_failed[i] set when a gated landmark failed that check.
-    /// The noise of observation o (rb, its range-bearing form) as landmark `id`: at the landmark's
-    /// prediction with noise_at_prediction, else rb.R.
-    Mat2 noise_of(const StereoLandmarkObs& o, const RangeBearing& rb, int id) const;
-    /// noise[i][c]: the noise of observation i paired with its c-th candidate (observation_noise_at).
+    /// noise[i][c]: the noise of observation i paired with its c-th candidate (noise_of).
+    /// Each landmark's prediction is computed once for all observations.
     std::vector<std::vector<int>> gate_candidates(const StereoFrame& frame, const std::vector<RangeBearing>& obs,
                                                   const std::vector<int>& src, std::vector<char>& descriptor_failed,
                                                   std::vector<std::vector<Mat2>>& noise);

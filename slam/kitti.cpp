@@ -237,9 +237,11 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
     return st;
 }
 
-Mat2 LandmarkSlam::noise_of(const StereoLandmarkObs& o, const RangeBearing& rb, int id) const {
-    return cfg_.noise_at_prediction ? observation_noise_at(o, to_frame(ekf_.pose(), ekf_.landmark(id))) : rb.R;
+Mat2 LandmarkSlam::noise_of(const StereoLandmarkObs& o, const RangeBearing& rb, const Vec2& at) const {
+    return cfg_.noise_at_prediction ? observation_noise_at(o, at) : rb.R;
 }
+
+Vec2 LandmarkSlam::predicted_point(int id) const { return to_frame(ekf_.pose(), ekf_.landmark(id)); }
 
 std::vector<std::vector<int>> LandmarkSlam::gate_candidates(const StereoFrame& frame,
                                                             const std::vector<RangeBearing>& obs,
@@ -248,16 +250,27 @@ std::vector<std::vector<int>> LandmarkSlam::gate_candidates(const StereoFrame& f
                                                             std::vector<std::vector<Mat2>>& noise) {
     std::vector<std::vector<int>> candidates(obs.size());
     noise.assign(obs.size(), {});
+    // what each landmark's innovation and noise owe to the filter alone, once per frame
+    const std::vector<int> ids = ekf_.landmark_ids();
+    std::vector<PredictedObservation> predicted;
+    std::vector<Vec2> at;   // where the filter predicts each landmark, in the robot's frame
+    predicted.reserve(ids.size());
+    at.reserve(ids.size());
+    for (int id : ids) {
+        predicted.push_back(ekf_.predicted_observation(id));
+        at.push_back(predicted_point(id));
+    }
     for (int i = 0; i < static_cast<int>(obs.size()); ++i) {
-        const auto& desc = frame[src[i]].descriptor;
-        for (int id : ekf_.landmark_ids()) {
-            const Mat2 R = noise_of(frame[src[i]], obs[i], id);
-            const double d2 = ekf_.innovation(id, obs[i].y, R).mahalanobis2;
+        const StereoLandmarkObs& o = frame[src[i]];
+        for (size_t j = 0; j < ids.size(); ++j) {
+            const int id = ids[j];
+            const Mat2 R = noise_of(o, obs[i], at[j]);
+            const double d2 = Ekf::innovation(predicted[j], obs[i].y, R).mahalanobis2;
             if (!(d2 <= gate_)) continue;
             const auto& stored = descriptors_[id];
-            if (cfg_.check_descriptor && !stored.empty() && !desc.empty() &&
-                hamming_distance(stored, desc) >
-                    hamming_threshold(cfg_.max_hamming_fraction, std::max(stored.size(), desc.size()))) {
+            if (cfg_.check_descriptor && !stored.empty() && !o.descriptor.empty() &&
+                hamming_distance(stored, o.descriptor) >
+                    hamming_threshold(cfg_.max_hamming_fraction, std::max(stored.size(), o.descriptor.size()))) {
                 descriptor_failed[i] = 1;
                 continue;
             }
@@ -275,7 +288,7 @@ void LandmarkSlam::correct_matched(const StereoFrame& frame, const std::vector<R
         const int id = landmark[i];
         if (id < 0) continue;
         // the noise where the filter now predicts the landmark (earlier corrections moved it)
-        ekf_.correct(id, obs[i].y, noise_of(frame[src[i]], obs[i], id));
+        ekf_.correct(id, obs[i].y, noise_of(frame[src[i]], obs[i], predicted_point(id)));
         last_seen_[id] = frame_;
         last_matches_.emplace_back(src[i], id);
         const int hint = frame[src[i]].id_hint;

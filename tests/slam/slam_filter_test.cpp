@@ -130,6 +130,13 @@ TEST_CASE("a one-landmark scenario gives the values computed by hand", "[slam]")
         Mat3 Prr;
         Prr << 0.01, 0, 0, 0, 1e-4, 2e-4, 0, 2e-4, 4e-4;
         CHECK((ekf.pose_covariance() - Prr).norm() < 1e-15);
+        // before the correction, for gating: h = (1, 0), H P Hᵀ = Z − R = diag(0.02, 1.3e-3)
+        const PredictedObservation predicted = ekf.predicted_observation(7);
+        CHECK((predicted.y - Vec2(1, 0)).norm() < 1e-15);
+        CHECK((predicted.HPHt - Mat2(Eigen::Vector2d(0.02, 1.3e-3).asDiagonal())).norm() < 1e-15);
+        const Innovation gated = ekf.innovation(7, Vec2(1.1, 0), R);
+        CHECK(gated.mahalanobis2 == Approx(0.01 / 0.03));
+        CHECK(Ekf::innovation(predicted, Vec2(1.1, 0), R).mahalanobis2 == gated.mahalanobis2);
         const Innovation inn = ekf.correct(7, Vec2(1.1, 0), R, form);
         CHECK(inn.z(0) == Approx(0.1));
         CHECK(inn.Z(0, 0) == Approx(0.03));
