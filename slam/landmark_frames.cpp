@@ -47,14 +47,24 @@ std::vector<StereoFrame> stereo_frames(const std::filesystem::path& kitti, const
         throw InputError("--descriptor " + landmarks::descriptor_name(po.descriptor) +
                          " is not binary: visual odometry and the association compare Hamming distances");
     const int pairs = std::min(static_cast<int>(poses), frames::open_kitti(kitti, sequence).pairs());
-    const auto ds = landmarks::kitti_dataset(kitti, sequence, {0, pairs});
-    if (ds.pairs.size() < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
+    if (pairs < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
     if (o.progress)
-        o.progress("landmarks of " + std::to_string(ds.pairs.size()) + " stereo pairs of " + sequence + " (" +
+        o.progress("landmarks of " + std::to_string(pairs) + " stereo pairs of " + sequence + " (" +
                    landmarks::detector_name(po.detector) + " corners, " + landmarks::descriptor_name(po.descriptor) +
                    " descriptor)");
-    rig = ds.calib.front();
-    return landmark_frames(ds, po);
+    // The co-processor's sources stream the sequence as one (each frame's threshold comes from
+    // the frame before), so they take it whole; the others detect image by image, and take
+    // it kPairsAtOnce pairs at a time, so that the images held do not grow with its length.
+    constexpr int kPairsAtOnce = 32;
+    const int step = landmarks::is_hardware(po.detector) ? pairs : kPairsAtOnce;
+    std::vector<StereoFrame> frames;
+    frames.reserve(static_cast<size_t>(pairs));
+    for (int first = 0; first < pairs; first += step) {
+        const auto ds = landmarks::kitti_dataset(kitti, sequence, {first, std::min(first + step, pairs)});
+        if (first == 0) rig = ds.calib.front();
+        for (auto& f : landmark_frames(ds, po)) frames.push_back(std::move(f));
+    }
+    return frames;
 }
 
 }  // namespace

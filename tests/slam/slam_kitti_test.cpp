@@ -102,6 +102,27 @@ TEST_CASE("on KITTI 01 from the stereo camera alone EKF-SLAM ends closer to the 
     CHECK(r.disparity_offset.back() > 0.5);
 }
 
+TEST_CASE("a KITTI run that reads its pairs a few at a time equals the run on all of them at once",
+          "[slam][kitti][stereo]") {
+    if (!have_stereo_01()) {
+        WARN("SKIPPED: no KITTI 01 stereo pairs");
+        return;
+    }
+    int failures = 0;
+    const SequenceRun& whole = stereo_run_01(&failures);
+    KittiRunOptions o;   // OpenCV's corners detect image by image: the run reads its pairs in parts
+    o.pipeline.detector = hc::landmarks::Detector::opencv;
+    o.pipeline.descriptor = hc::landmarks::Descriptor::orb;
+    const KittiRun parts = run_kitti_sequence(g_kitti, "01", o);
+    REQUIRE(parts.run.estimate.size() == whole.estimate.size());
+    for (size_t k = 0; k < whole.estimate.size(); ++k) {
+        INFO("frame " << k);
+        CHECK(parts.run.estimate[k] == whole.estimate[k]);
+        CHECK(parts.run.frames[k].matched == whole.frames[k].matched);
+    }
+    CHECK(parts.run.dead_reckoning == whole.dead_reckoning);
+}
+
 int main(int argc, char** argv) {
     const auto d = hc::frames::data_dir("");
     if (!d || !std::filesystem::exists(*d / "kitti/poses/01.txt")) {
