@@ -55,8 +55,9 @@ TEST_CASE("on KITTI 01's trajectory with synthetic landmarks EKF-SLAM beats synt
 }
 
 namespace {
-/// Visual odometry and EKF-SLAM on KITTI 01's stereo pairs with the command's defaults
-/// (OpenCV Harris corners, ORB); computed once for the test cases below.
+/// Visual odometry and EKF-SLAM on KITTI 01's stereo pairs, all read at once: OpenCV's Harris
+/// corners and ORB (the test's descriptor, docs/slam.md), the other settings the command's
+/// defaults; computed once for the test cases below.
 const SequenceRun& stereo_run_01(int* failures) {
     static std::optional<SequenceRun> run;
     static int fails = 0;
