@@ -23,15 +23,26 @@ StereoLandmarkObs to_observation(const landmarks::Landmark& l) {
     return o;
 }
 
-std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const landmarks::PipelineOptions& o) {
+namespace {
+std::vector<StereoFrame> as_frames(const std::vector<std::vector<landmarks::Landmark>>& landmarks) {
     std::vector<StereoFrame> frames;
-    for (const auto& frame : landmarks::acquire_dataset(ds, o)) {
+    for (const auto& frame : landmarks) {
         StereoFrame f;
         f.reserve(frame.size());
         for (const auto& l : frame) f.push_back(to_observation(l));
         frames.push_back(std::move(f));
     }
     return frames;
+}
+}  // namespace
+
+std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const landmarks::PipelineOptions& o) {
+    return as_frames(landmarks::acquire_dataset(ds, o));
+}
+
+std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std::vector<landmarks::PairKeypoints>& kp,
+                                         const landmarks::PipelineOptions& o) {
+    return as_frames(landmarks::acquire_dataset(ds, kp, o));
 }
 
 namespace {

@@ -18,6 +18,9 @@ namespace hc::slam {
 StereoLandmarkObs to_observation(const landmarks::Landmark& l);
 /// The landmarks of every pair of `ds` (landmarks::acquire_dataset) as stereo frames.
 std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const landmarks::PipelineOptions& o);
+/// The same from the corners of every pair already detected (landmarks::detect_dataset's).
+std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std::vector<landmarks::PairKeypoints>& kp,
+                                         const landmarks::PipelineOptions& o);
 
 /// One KITTI odometry sequence through the filter (`harris-cosim slam --sequences`): where the
 /// landmarks come from, where the motion comes from, the association. Every default is the

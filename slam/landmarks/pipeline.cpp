@@ -264,7 +264,15 @@ std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const s
 
 std::vector<std::vector<Landmark>> acquire_dataset(const Dataset& ds, const PipelineOptions& o) {
     for (const auto& c : ds.calib) c.validate();
-    const auto kp = detect_dataset(ds, o.detector, o.corners);
+    return acquire_dataset(ds, detect_dataset(ds, o.detector, o.corners), o);
+}
+
+std::vector<std::vector<Landmark>> acquire_dataset(const Dataset& ds, const std::vector<PairKeypoints>& kp,
+                                                   const PipelineOptions& o) {
+    for (const auto& c : ds.calib) c.validate();
+    if (kp.size() != ds.pairs.size())
+        throw InputError("corners of " + std::to_string(kp.size()) + " pairs given for a dataset of " +
+                         std::to_string(ds.pairs.size()) + " pairs");
     std::vector<std::vector<Landmark>> out;
     out.reserve(ds.pairs.size());
     for (size_t i = 0; i < ds.pairs.size(); ++i) {

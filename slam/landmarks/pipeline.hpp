@@ -63,6 +63,10 @@ struct ComparisonRow {
 /// co-processor does, see detect_dataset), then description, matching and triangulation of
 /// each pair with its own calibration.
 std::vector<std::vector<Landmark>> acquire_dataset(const Dataset& ds, const PipelineOptions& o);
+/// The same from the corners of every pair already detected (`kp`, one per pair of `ds`:
+/// detect_dataset's); InputError when their counts differ.
+std::vector<std::vector<Landmark>> acquire_dataset(const Dataset& ds, const std::vector<PairKeypoints>& kp,
+                                                   const PipelineOptions& o);
 
 struct ComparisonOptions {
     std::vector<Detector> detectors{Detector::sift512, Detector::sift, Detector::opencv};

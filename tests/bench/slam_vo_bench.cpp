@@ -56,16 +56,9 @@ const Kitti* setup(benchmark::State& state) {
     return k;
 }
 
-/// Every pair described, matched and triangulated: the filter's frames.
+/// Every pair described, matched and triangulated from its corners: the filter's frames.
 std::vector<slam::StereoFrame> landmark_frames(const Kitti& k, const landmarks::PipelineOptions& po) {
-    std::vector<slam::StereoFrame> frames;
-    for (size_t f = 0; f < k.ds.pairs.size(); ++f) {
-        const auto r = landmarks::match_pair(k.ds.pairs[f], k.kp[f], po.descriptor, po.grid, po.match);
-        slam::StereoFrame cur;
-        for (const auto& l : landmarks::landmarks_from(r, k.ds.calib[f], po)) cur.push_back(slam::to_observation(l));
-        frames.push_back(std::move(cur));
-    }
-    return frames;
+    return slam::landmark_frames(k.ds, k.kp, po);
 }
 
 slam::AssociationConfig association(slam::AssociationMethod method) {
