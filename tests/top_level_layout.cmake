@@ -1,19 +1,43 @@
-# top_level_layout.cmake: the repository's top level holds at most MAX entries (dot-files and
-# build trees aside: names starting with "." or "build"), and README.md's table under
-# "## Layout" names each of them in its first column (`name/` or `name`), and nothing else.
-#   cmake -DSRC=<source tree> -DMAX=<n> -P top_level_layout.cmake
+# top_level_layout.cmake: the repository's top level holds at most MAX entries, and README.md's
+# table under "## Layout" names each of them in its first column (`name/` or `name`), and
+# nothing else. The top level is what the repository holds: in a git work tree, the first
+# component of every tracked path and of every untracked path that .gitignore does not ignore
+# (so the main job's out/ and the build trees are outputs, not layout); without git, the
+# folder's entries less dot-files and build trees (names starting with "." or "build").
+#   cmake -DSRC=<source tree> -DMAX=<n> [-DGIT=<git>] -P top_level_layout.cmake
 cmake_policy(VERSION 3.25)
 include(${CMAKE_CURRENT_LIST_DIR}/markdown_section.cmake)
-file(GLOB entries LIST_DIRECTORIES true RELATIVE ${SRC} ${SRC}/*)
+if(NOT DEFINED GIT)
+  find_program(GIT git)
+endif()
 set(tree "")
-foreach(e IN LISTS entries)
-  if(NOT e MATCHES "^(\\.|build)")
-    list(APPEND tree ${e})
+if(GIT AND EXISTS ${SRC}/.git)
+  execute_process(COMMAND ${GIT} -C ${SRC} ls-files --cached --others --exclude-standard
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE paths ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "git ls-files in ${SRC}: status ${rc}: ${err}")
   endif()
-endforeach()
+  string(REGEX MATCHALL "[^\n]+" paths "${paths}")
+  foreach(p IN LISTS paths)
+    string(REGEX REPLACE "/.*" "" e "${p}")
+    if(NOT e MATCHES "^\\.")
+      list(APPEND tree ${e})
+    endif()
+  endforeach()
+  list(REMOVE_DUPLICATES tree)
+  set(how "tracked or trackable by git")
+else()
+  file(GLOB entries LIST_DIRECTORIES true RELATIVE ${SRC} ${SRC}/*)
+  foreach(e IN LISTS entries)
+    if(NOT e MATCHES "^(\\.|build)")
+      list(APPEND tree ${e})
+    endif()
+  endforeach()
+  set(how "in the folder (no git work tree)")
+endif()
 list(LENGTH tree n)
 if(n GREATER MAX)
-  message(FATAL_ERROR "the top level holds ${n} entries (at most ${MAX}): ${tree}")
+  message(FATAL_ERROR "the top level holds ${n} entries ${how} (at most ${MAX}): ${tree}")
 endif()
 file(READ ${SRC}/README.md readme)
 hc_markdown_section("${readme}" "## Layout" "README.md" layout)

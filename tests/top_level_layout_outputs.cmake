@@ -1,0 +1,32 @@
+# top_level_layout_outputs.cmake: the layout rule of top_level_layout.cmake on a small git
+# work tree made here: the main job's output folder (out/, ignored by .gitignore) beside the
+# tracked entries leaves the layout as it is, and an untracked folder that .gitignore does not
+# ignore is counted and refused by name.
+#   cmake -DWORK=<scratch folder> -DSCRIPTS=<tests folder> -P top_level_layout_outputs.cmake
+cmake_policy(VERSION 3.25)
+include(${SCRIPTS}/run_expecting.cmake)
+find_program(GIT git REQUIRED)
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK}/src/rtl ${WORK}/src/out)
+file(WRITE ${WORK}/src/README.md "# t\n\n## Layout\n\n| entry | what |\n|---|---|\n| `README.md` | this page |\n| `rtl/` | the VHDL |\n")
+file(WRITE ${WORK}/src/.gitignore "/out/\nbuild/\n")
+file(WRITE ${WORK}/src/rtl/a.vhd "-- a\n")
+file(WRITE ${WORK}/src/out/report.md "# a report of the main job\n")
+file(MAKE_DIRECTORY ${WORK}/src/build)
+execute_process(COMMAND ${GIT} -C ${WORK}/src init -q RESULT_VARIABLE rc)
+execute_process(COMMAND ${GIT} -C ${WORK}/src add README.md .gitignore rtl RESULT_VARIABLE rc2)
+if(NOT rc EQUAL 0 OR NOT rc2 EQUAL 0)
+  message(FATAL_ERROR "git init/add in ${WORK}/src: status ${rc}/${rc2}")
+endif()
+set(layout ${CMAKE_COMMAND} -DSRC=${WORK}/src -DMAX=2 -DGIT=${GIT} -P ${SCRIPTS}/top_level_layout.cmake)
+hc_run_expecting(0 "README.md, rtl/ and an ignored out/" " (out/ is an output, not layout)" ${layout})
+if(NOT out MATCHES "holds 2 entries")
+  message(FATAL_ERROR "the layout counted other than README.md and rtl/: ${out}")
+endif()
+file(MAKE_DIRECTORY ${WORK}/src/extra)
+file(WRITE ${WORK}/src/extra/notes.txt "not ignored\n")
+hc_run_expecting(1 "an untracked extra/ that .gitignore does not ignore" " (it is trackable, so it is layout)" ${layout})
+if(NOT err MATCHES "extra")
+  message(FATAL_ERROR "the refusal does not name extra/: ${err}")
+endif()
+message(STATUS "an ignored output folder is not layout; an unignored one is, and is named")
