@@ -32,12 +32,13 @@ std::vector<int> parse_list(const std::string& s) {
     return v;
 }
 
-/// The stereo pairs of each KITTI sequence: --pairs, cut to the first --frames N frames.
+/// The stereo pairs of each KITTI sequence of a job: --pairs (--frames N is refused: a job
+/// splits whole stereo pairs into parts).
 util::Range pair_range(const frames::FrameSource& s) {
-    util::Range r{0, 1 << 30};
-    if (!s.pairs.empty()) r = util::parse_range(s.pairs, "--pairs");
-    if (s.frames > 0) r.last = std::min(r.last, r.first + (s.frames + 1) / 2);
-    return r;
+    if (s.frames > 0)
+        throw InputError("--frames " + std::to_string(s.frames) +
+                         " counts the frames of one stream; --sequences and sharded runs take stereo pairs: give --pairs a:b");
+    return s.pairs.empty() ? util::Range{0, 1 << 30} : util::parse_range(s.pairs, "--pairs");
 }
 
 std::string pairs_flag(const frames::FrameSource& s) {
@@ -77,9 +78,7 @@ void run_job(const EvalCommand& c, const cluster::JobRunner& runner) {
     const auto merged = runner.run(m, c.out, /*fork=*/true);
     if (!merged) return;
     Report rep = eval_report(*merged);
-    rep.command = fmt::format("harris-cosim eval --source {} --kitti {} --sequences {}{}{} --out {}", j.source,
-                              kitti.string(), c.sequences.empty() ? s.sequence : c.sequences,
-                              s.pairs.empty() ? "" : " --pairs " + s.pairs, c.ablation ? "" : " --no-ablation", c.out);
+    rep.command = c.command_line;
     fs::create_directories(c.out);
     write_plot(c.out, rep);
     write_reports(c.out, rep);
@@ -99,30 +98,14 @@ void run_eval_command(const EvalCommand& c, const cluster::JobRunner& runner) {
         run_job(c, runner);
         return;
     }
-    const frames::FrameSource& s = c.src;
     Request r;
     r.source = parse_source(c.source);
-    r.pairs = pair_range(s);
-    r.pairs_flag = pairs_flag(s);
+    r.frames = c.src;
     r.overlays = parse_list(c.overlay);
-    std::string input;
-    if (!s.images.empty() || !s.pattern.empty()) {
-        if (!s.kitti.empty() || !s.pairs.empty())
-            throw InputError("choose one frame source: image files, --pattern, or --kitti/--pairs");
-        r.frames = s;
-        for (const auto& i : s.images) input += " " + i;
-        if (!s.pattern.empty()) input += " --pattern " + s.pattern + (s.size.empty() ? "" : " --size " + s.size);
-        if (s.frames > 0) input += " --frames " + std::to_string(s.frames);
-    } else {
-        r.kitti = frames::kitti_root(s.kitti, s.data);   // none: the default stream
-        r.sequence = s.sequence;
-        if (!r.kitti.empty()) input = " --kitti " + r.kitti.string() + " --sequence " + s.sequence;
-        if (!s.pairs.empty()) input += " --pairs " + s.pairs;
-    }
     r.out = c.out;
     r.threads = c.threads;
     r.ablation = c.ablation;
-    r.command = fmt::format("harris-cosim eval --source {}{} --out {}", c.source, input, c.out);
+    r.command = c.command_line;
     const Report rep = evaluate(r);
     print_totals(rep, c.out, fmt::format(" in {:.2f} s", rep.seconds_total));
     require_rtl_agreement(rep, c.out);

@@ -18,11 +18,13 @@ struct EvalCommand {
     int threads = 0;
     bool threads_given = false;   ///< --threads was given (a shard otherwise runs on one)
     bool ablation = true;
+    std::string command_line;     ///< the command as the user typed it, for the report
 };
 
-/// Runs the evaluation, writes the report into c.out and prints its totals. Without a
-/// KITTI root, images or a pattern: the default stream (default_stream). InputError for bad
-/// input, MismatchError when the RTL source disagrees with the cycle model.
+/// Runs the evaluation, writes the report into c.out and prints its totals. Without images,
+/// a pattern or a KITTI root: the default stereo stream (frames::default_stereo_feed).
+/// InputError for bad input (--frames with --sequences or sharding, which split stereo
+/// pairs), MismatchError when the RTL source disagrees with the cycle model.
 void run_eval_command(const EvalCommand& c, const cluster::JobRunner& runner);
 
 }  // namespace hc::eval

@@ -12,7 +12,6 @@
 #include <fmt/format.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -26,38 +25,6 @@
 namespace fs = std::filesystem;
 
 namespace hc::eval {
-
-// The default stream of a machine without KITTI: pairs of consecutive frames of OpenCV's
-// sample video vtest.avi (opencv-doc), grey, centred 640x360 crop (the thesis's camera
-// size); without opencv-doc, the synthetic `blocks` pattern.
-Stream default_stream(int first, int last) {
-    Stream s;
-    const std::string video = HC_OPENCV_SAMPLE_VIDEO;
-    const int pairs = std::min(last, 12) - first;
-    if (pairs <= 0) throw InputError("--pairs selects no pair of the default 12-pair stream");
-    cv::VideoCapture cap;
-    if (!video.empty() && fs::exists(video) && cap.open(video)) {
-        cv::Mat f;
-        for (int k = 0; k < 2 * std::min(last, 12) && cap.read(f); ++k) {
-            if (k < 2 * first) continue;
-            s.frames.push_back(frames::crop(frames::image_of(f), 640, 360, video));
-            s.names.push_back(fmt::format("vtest/{}{:03}", k % 2 ? 'R' : 'L', k / 2));
-            s.pair_index.push_back(k / 2);
-        }
-        s.description = fmt::format("default stream: {} frame pairs of {} (grey, 640x360 centre crop); no KITTI data found",
-                                    s.frames.size() / 2, video);
-    }
-    if (s.frames.size() < 4) {
-        s = {};
-        for (int k = 2 * first; k < 2 * (first + pairs); ++k) {
-            s.frames.push_back(make_pattern(Pattern::blocks, 640, 360, k));
-            s.names.push_back(fmt::format("blocks/{}{:03}", k % 2 ? 'R' : 'L', k / 2));
-            s.pair_index.push_back(k / 2);
-        }
-        s.description = "default stream: generated 'blocks' pattern 640x360 (no KITTI data, no opencv-doc video)";
-    }
-    return s;
-}
 
 namespace {
 
@@ -467,16 +434,11 @@ Report evaluate(const Request& o) {
         std::string why;
         if (!vl::toolchain_available(&why)) throw InputError("--source rtl needs GHDL and Verilator: " + why);
     }
-    const int first = o.pairs.first, last = o.pairs.last;
     const std::vector<int>& overlays = o.overlays;
     cv::setNumThreads(1);   // frames run in parallel; OpenCV's own threads would oversubscribe
 
     std::fprintf(stderr, "eval: opening the frames...\n");
-    const fs::path& kitti_dir = o.kitti;
-    Stream small;   // the default stream, in memory (12 pairs at most)
-    frames::FrameFeed feed = o.frames        ? frames::open_feed(*o.frames)
-                             : kitti_dir.empty() ? frames::FrameFeed::of(small = default_stream(first, last))
-                                                 : frames::open_kitti_feed(kitti_dir, o.sequence, o.pairs, o.pairs_flag, 2);
+    frames::FrameFeed feed = frames::open_feed(o.frames, frames::WhenNone::stereo, 2);
     const int n = feed.size();
     for (int f : overlays)
         if (f < 0 || f >= n) throw InputError(fmt::format("--overlay frame {} is not in the stream (0..{})", f, n - 1));

@@ -16,11 +16,10 @@ namespace hc::eval {
 
 struct Request {
     Source source = Source::spec;
-    std::optional<frames::FrameSource> frames;   ///< images, a video or a pattern (else KITTI or the default stream)
-    std::filesystem::path kitti;        ///< KITTI root (holds sequences/NN); empty: the default stream
-    std::string sequence = "01";
-    util::Range pairs{0, 1 << 30};      ///< stereo pairs [first, last); an open end takes them all
-    std::string pairs_flag = "--pairs";    ///< how the range is named in errors
+    /// The frames (io/frames' one description, the command line's frame-source flags): with
+    /// no source named, KITTI's --sequence from the data directory, else the default stereo
+    /// stream (frames::open_feed with WhenNone::stereo); a KITTI stream spans two pairs at least.
+    frames::FrameSource frames;
     std::vector<int> overlays;          ///< stream frames to draw as overlay_NNN.png
     std::filesystem::path out;          ///< output directory
     int threads = 0;                    ///< 0: all cores
@@ -32,8 +31,5 @@ struct Request {
 /// overlay frame), MismatchError (the RTL source's gate fails), SimulatorError (a tool).
 Report evaluate(const Request& r);
 
-/// The stream used without KITTI data: pairs of consecutive frames of OpenCV's sample video
-/// vtest.avi (opencv-doc) when installed, else the synthetic `blocks` pattern, 640x360.
-Stream default_stream(int first, int last);
 
 }  // namespace hc::eval

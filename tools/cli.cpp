@@ -16,6 +16,19 @@ std::filesystem::path& program() {
 
 void set_program_path(const char* argv0) { program() = cluster::resolve_program(argv0); }
 
+namespace {
+std::string& command_line() {
+    static std::string c;
+    return c;
+}
+}  // namespace
+
+void set_command_line(int argc, char** argv) {
+    command_line() = util::shell_command_line("harris-cosim", std::vector<std::string>(argv + std::min(argc, 1), argv + argc));
+}
+
+const std::string& typed_command_line() { return command_line(); }
+
 CLI::Validator whole_number(long min) {
     return CLI::Validator(
         [min](std::string& s) -> std::string {
@@ -39,14 +52,9 @@ void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o) {
                     "images sorted by name), or one video file");
     cmd->add_option("--pattern", o.pattern, "synthetic frames: " + pattern_names());
     cmd->add_option("--size", o.size, "WxH: size of synthetic frames, or a centred crop of the frames read (eval scores KITTI frames whole)");
-    const CLI::Validator count = whole_number(1);
-    cmd->add_option_function<std::string>("--frames", [&o, cmd](const std::string& v) {
-           if (v.find(':') == std::string::npos) return void(o.frames = std::stoi(v));
-           if (cmd->count("--pairs")) throw InputError("--pairs excludes --frames (its older spelling when given a:b)");
-           o.pairs = v;
-       }, "number of chained frames (patterns: default 3; images, video, KITTI: the first N); a:b is the older "
-          "spelling of --pairs")
-        ->check(CLI::Validator([count](std::string& s) { return s.find(':') != std::string::npos ? std::string() : count(s); }, "N >= 1"));
+    cmd->add_option("--frames", o.frames,
+                    "number of frames: of a pattern (default 3), else the first N frames of the stream (KITTI: L R L R ...)")
+        ->check(whole_number(1));
     cmd->add_option("--kitti", o.kitti, "KITTI odometry root (holds sequences/NN); default <data>/kitti");
     cmd->add_option("--sequence", o.sequence, "KITTI sequence")->capture_default_str();
     cmd->add_option("--pairs", o.pairs, "a:b stereo pairs of the KITTI sequence (b excluded), streamed L R L R ...");
@@ -55,8 +63,7 @@ void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o) {
 }
 
 void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string& help) {
-    CLI::Option* pairs = cmd->add_option("--pairs", range, help);
-    cmd->add_option("--frames", range, "the older name of --pairs (the same range a:b)")->excludes(pairs);
+    cmd->add_option("--pairs", range, help);
 }
 
 void add_runner_flags(CLI::App* cmd, cluster::RunnerSettings& f) {

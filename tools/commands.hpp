@@ -36,12 +36,11 @@ struct Sharded : Command {
 
 /// The frame-source flags of every command that streams images, bound to `o`: image files,
 /// globs, folders or a video (positional), --pattern, --size, --frames N, --kitti,
-/// --sequence, --pairs a:b, --data, --seed. `--frames a:b` is the older spelling of --pairs
-/// and says so in the help.
+/// --sequence, --pairs a:b, --data, --seed. --frames N counts frames (the first N of any
+/// stream), --pairs a:b picks stereo pairs, in every command.
 void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o);
 
-/// `--pairs a:b`, a range of a stereo dataset's pairs (b excluded), bound to `range`; and
-/// `--frames` as its older spelling (its help says so; giving both is an error).
+/// `--pairs a:b`, a range of a stereo dataset's pairs (b excluded), bound to `range`.
 void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string& help);
 
 /// The sharding flags (in an option group "Sharding"), bound to `s`.
@@ -57,6 +56,9 @@ cluster::JobRunner job_runner(const CLI::App* cmd, cluster::RunnerSettings s, bo
 
 /// The path of this executable (main's argv[0], resolved), the runner's worker program.
 void set_program_path(const char* argv0);
+/// The command line as typed (harris-cosim and argv[1..], shell-quoted), for the reports.
+void set_command_line(int argc, char** argv);
+const std::string& typed_command_line();
 
 void add_rtl_command(CLI::App& app);        // GHDL co-simulation (cmd_rtl.cpp)
 void add_model_command(CLI::App& app);      // cycle model alone (cmd_rtl.cpp)

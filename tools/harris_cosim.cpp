@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
                      t::add_calibrate_command, t::add_slam_command, t::add_landmarks_command, t::add_shard_command})
         add(app);
     t::set_program_path(argc > 0 ? argv[0] : nullptr);
+    t::set_command_line(argc, argv);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {   // --help, --version

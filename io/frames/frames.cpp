@@ -246,29 +246,6 @@ long FrameFeed::loads() const {
     return state_->loads;
 }
 
-FrameFeed open_kitti_feed(const fs::path& kitti_dir, const std::string& sequence, util::Range r, const std::string& what,
-                          int min_pairs) {
-    const KittiSequence k = open_kitti(kitti_dir, sequence);
-    auto paths = stereo_stream(k, r, what);
-    if (static_cast<int>(paths.size()) < 2 * min_pairs)
-        throw InputError(what + " gives " + std::to_string(paths.size() / 2) + " stereo pair(s) of KITTI sequence '" +
-                         k.root.string() + "'; at least " + std::to_string(min_pairs) + " are needed");
-    std::vector<std::string> names;
-    std::vector<int> pairs;
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-        names.push_back(sequence + "/" + (i % 2 ? "R" : "L") + paths[i].stem().string());
-        pairs.push_back(r.first + static_cast<int>(i / 2));
-    }
-    FrameFeed feed(std::move(names), std::move(pairs), "", [paths](int i) {
-        return load_image(paths[static_cast<std::size_t>(i)]);
-    });
-    feed.describe("KITTI sequence " + sequence + " (" + k.root.string() + "), stereo pairs " + std::to_string(r.first) +
-                  ".." + std::to_string(r.first + static_cast<int>(paths.size() / 2) - 1) + ": " +
-                  std::to_string(paths.size()) + " frames " + std::to_string(feed.width()) + "x" +
-                  std::to_string(feed.height()));
-    return feed;
-}
-
 std::vector<const Image*> pointers(const std::vector<Image>& frames) {
     std::vector<const Image*> v;
     for (const auto& f : frames) v.push_back(&f);

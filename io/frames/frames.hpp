@@ -152,10 +152,24 @@ private:
     std::shared_ptr<State> state_;
     std::vector<std::future<void>> loading_;   ///< prefetches started (finished ones pruned)
 };
+/// How a feed is cut: its first `frames` frames (0: all; more than the stream holds is an
+/// InputError naming --frames), each cropped around its centre to `width` x `height` (0: whole).
+struct FeedCut {
+    int frames = 0;
+    int width = 0, height = 0;
+};
+
 /// Stereo pairs `r` of a KITTI sequence as a feed (the same checks, names and description as
-/// load_kitti_stream, each image read when reached).
+/// load_kitti_stream, each image read when reached), cut by `cut`. InputError when the cut
+/// stream spans fewer than `min_pairs` stereo pairs.
 FrameFeed open_kitti_feed(const std::filesystem::path& kitti_dir, const std::string& sequence, util::Range r,
-                          const std::string& what, int min_pairs = 1);
+                          const std::string& what, int min_pairs = 1, const FeedCut& cut = {});
+
+/// The stereo stream of a machine without KITTI data: pairs of consecutive frames of OpenCV's
+/// sample video vtest.avi (opencv-doc) when installed, grey, centred 640x360 crop (the thesis's
+/// camera size), 12 pairs at most; else the synthetic `blocks` pattern, 640x360. Pairs `r` of
+/// it (an open end: all), cut to its first cut.frames frames.
+FrameFeed default_stereo_feed(util::Range r, int frames = 0);
 
 /// Which frames a command streams (the command line's frame-source flags, the same on every
 /// command that reads a stream of images).
@@ -165,7 +179,7 @@ struct FrameSource {
     std::vector<std::string> images;
     std::string pattern;               ///< synthetic pattern name
     std::string size;                  ///< WxH: pattern size, or centred crop of images
-    int frames = 0;                    ///< number of frames (patterns; first N images or pairs)
+    int frames = 0;                    ///< number of frames (patterns; else the first N frames of the stream)
     std::string kitti;                 ///< KITTI odometry root (holding sequences/)
     std::string sequence = "01";
     std::string pairs;                 ///< a:b stereo pairs of the KITTI sequence
@@ -187,11 +201,20 @@ bool is_video_file(const std::filesystem::path& p);
 /// matches nothing, a folder without images, or no item at all.
 std::vector<std::filesystem::path> expand_image_list(const std::vector<std::string>& items, const std::string& what);
 
+/// What a command streams when no frame-source flag names a source: `pattern`, three 64x36
+/// frames of the `blocks` pattern (a --pattern's defaults); `stereo`, the KITTI sequence
+/// `--sequence` of the data directory when it has a KITTI root (a missing sequence is an
+/// InputError naming it), else default_stereo_feed.
+enum class WhenNone { pattern, stereo };
+
 /// The frames `o` names as a feed, each read (cropped, converted to grey) when the run
 /// reaches it: image files, globs, folders, a video, a KITTI sequence's stereo stream or a
-/// synthetic pattern. Frames of images, a video or a pattern pair up in order (0 1, 2 3, ...)
-/// as a KITTI stream's L R do. InputError naming the input (as load_frames).
-FrameFeed open_feed(const FrameSource& o);
+/// synthetic pattern; with none of them, what `none` says. Frames of images, a video or a
+/// pattern pair up in order (0 1, 2 3, ...) as a KITTI stream's L R do. `--frames N` takes
+/// the first N frames of any of them; `--pairs a:b` picks the stereo pairs of a KITTI or the
+/// default stereo stream. A KITTI stream spanning fewer than `min_pairs` pairs is refused.
+/// InputError naming the input (as load_frames).
+FrameFeed open_feed(const FrameSource& o, WhenNone none = WhenNone::pattern, int min_pairs = 1);
 
 /// Loads the frames; throws InputError naming the bad input (including a stream the design
 /// cannot be built for). With nothing chosen, three 64x36 frames of the `blocks` pattern.

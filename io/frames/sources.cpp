@@ -8,6 +8,7 @@
 #include <mutex>
 #include <set>
 
+#include <fmt/format.h>
 #include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -143,24 +144,25 @@ FrameFeed image_feed(const FrameSource& o, int cw, int ch) {
     });
 }
 
-FrameFeed kitti_feed(const FrameSource& o, int cw, int ch) {
-    const fs::path root = require_kitti_root(o.kitti, o.data, "a KITTI stream needs KITTI data");
-    const KittiSequence seq = open_kitti(root, o.sequence);
-    const util::Range r = o.pairs.empty() ? util::Range{0, seq.pairs()} : util::parse_range(o.pairs, "--pairs");
-    const auto paths = stereo_stream(seq, r, "--pairs " + (o.pairs.empty() ? std::string("(all)") : o.pairs));
-    if (paths.empty()) throw InputError("KITTI sequence " + o.sequence + " has no stereo pair");
-    const size_t n = o.frames > 0 ? std::min<size_t>(static_cast<size_t>(o.frames), paths.size()) : paths.size();
-    std::vector<std::string> names;
-    std::vector<int> pair_index;
-    for (size_t k = 0; k < n; ++k) {
-        names.push_back(paths[k].string());
-        pair_index.push_back(r.first + static_cast<int>(k / 2));
-    }
-    return FrameFeed(names, std::move(pair_index),
-                     "KITTI " + o.sequence + ", " + std::to_string(n) + " frame(s) (L R L R ...)", [names, cw, ch](int k) {
-                         const std::string& f = names[static_cast<std::size_t>(k)];
-                         return crop(load_image(f), cw, ch, "KITTI frame '" + f + "'");
-                     });
+/// The pairs a --pairs flag names ("--pairs (all)" without it), as errors name them.
+std::string pairs_what(const FrameSource& o) {
+    return "--pairs " + (o.pairs.empty() ? std::string("(all)") : o.pairs);
+}
+
+FrameFeed kitti_feed(const fs::path& root, const FrameSource& o, int cw, int ch, int min_pairs) {
+    const util::Range r = o.pairs.empty() ? util::Range{0, 1 << 30} : util::parse_range(o.pairs, "--pairs");
+    return open_kitti_feed(root, o.sequence, r, pairs_what(o), min_pairs, {o.frames, cw, ch});
+}
+
+/// Frames [0, n) of a stream of paths (names `names`, stereo pairs from `first_pair`), each
+/// loaded and cropped when reached.
+FrameFeed stereo_path_feed(std::vector<fs::path> paths, std::vector<std::string> names, int first_pair, int cw, int ch) {
+    std::vector<int> pairs;
+    for (std::size_t i = 0; i < names.size(); ++i) pairs.push_back(first_pair + static_cast<int>(i / 2));
+    return FrameFeed(std::move(names), std::move(pairs), "", [paths = std::move(paths), cw, ch](int i) {
+        const fs::path& f = paths[static_cast<std::size_t>(i)];
+        return crop(load_image(f), cw, ch, "KITTI frame '" + f.string() + "'");
+    });
 }
 
 bool all_digits(const std::string& s) {
@@ -221,13 +223,81 @@ std::vector<fs::path> expand_image_list(const std::vector<std::string>& items, c
     return expand(items, what, true);
 }
 
-FrameFeed open_feed(const FrameSource& o) {
+FrameFeed open_kitti_feed(const fs::path& kitti_dir, const std::string& sequence, util::Range r, const std::string& what,
+                          int min_pairs, const FeedCut& cut) {
+    const KittiSequence k = open_kitti(kitti_dir, sequence);
+    const auto paths = stereo_stream(k, r, what);
+    const std::size_t n = first_n(cut.frames, paths.size(), "frames in " + what + " of KITTI sequence " + sequence);
+    const int spanned = static_cast<int>((n + 1) / 2);
+    if (spanned < min_pairs)
+        throw InputError(what + (cut.frames > 0 ? " --frames " + std::to_string(cut.frames) : std::string()) + " gives " +
+                         std::to_string(spanned) + " stereo pair(s) of KITTI sequence '" + k.root.string() +
+                         "'; at least " + std::to_string(min_pairs) + " are needed");
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < n; ++i) names.push_back(sequence + "/" + (i % 2 ? "R" : "L") + paths[i].stem().string());
+    FrameFeed feed = stereo_path_feed({paths.begin(), paths.begin() + static_cast<long>(n)}, std::move(names), r.first,
+                                      cut.width, cut.height);
+    feed.describe("KITTI sequence " + sequence + " (" + k.root.string() + "), stereo pairs " + std::to_string(r.first) +
+                  ".." + std::to_string(r.first + spanned - 1) + ": " + std::to_string(n) + " frames " +
+                  std::to_string(feed.width()) + "x" + std::to_string(feed.height()) +
+                  (cut.width > 0 ? " (centre crop)" : ""));
+    return feed;
+}
+
+FrameFeed default_stereo_feed(util::Range r, int frames) {
+    const std::string video = HC_OPENCV_SAMPLE_VIDEO;
+    constexpr int kPairs = 12, kWidth = 640, kHeight = 360;
+    const int last = std::min(r.last, kPairs);
+    if (last - r.first <= 0) throw InputError("--pairs selects no pair of the default 12-pair stream");
+    Stream s;
+    cv::VideoCapture cap;
+    if (!video.empty() && fs::exists(video) && cap.open(video)) {
+        cv::Mat f;
+        for (int k = 0; k < 2 * last && cap.read(f); ++k) {
+            if (k < 2 * r.first) continue;
+            s.frames.push_back(crop(image_of(f), kWidth, kHeight, video));
+            s.names.push_back(fmt::format("vtest/{}{:03}", k % 2 ? 'R' : 'L', k / 2));
+            s.pair_index.push_back(k / 2);
+        }
+        s.description = fmt::format("default stream: {} frame pairs of {} (grey, {}x{} centre crop); no KITTI data found",
+                                    s.frames.size() / 2, video, kWidth, kHeight);
+    }
+    if (s.frames.size() < 4) {
+        s = {};
+        for (int k = 2 * r.first; k < 2 * last; ++k) {
+            s.frames.push_back(make_pattern(Pattern::blocks, kWidth, kHeight, k));
+            s.names.push_back(fmt::format("blocks/{}{:03}", k % 2 ? 'R' : 'L', k / 2));
+            s.pair_index.push_back(k / 2);
+        }
+        s.description = fmt::format("default stream: generated 'blocks' pattern {}x{} (no KITTI data, no opencv-doc video)",
+                                    kWidth, kHeight);
+    }
+    const std::size_t n = first_n(frames, s.frames.size(), "frames in the default stream");
+    s.frames.resize(n);
+    s.names.resize(n);
+    s.pair_index.resize(n);
+    auto held = std::make_shared<const Stream>(std::move(s));
+    return FrameFeed(held->names, held->pair_index, held->description, [held](int k) {
+        return held->frames[static_cast<std::size_t>(k)];
+    });
+}
+
+FrameFeed open_feed(const FrameSource& o, WhenNone none, int min_pairs) {
     const int sources = (!o.images.empty()) + (!o.pattern.empty()) + (!o.kitti.empty() || !o.pairs.empty());
     if (sources > 1) throw InputError("choose one frame source: image files, --pattern, or --kitti/--pairs");
     int cw = 0, ch = 0;
     if (!o.size.empty()) std::tie(cw, ch) = util::parse_size(o.size);
     if (!o.images.empty()) return image_feed(o, cw, ch);
-    if (!o.kitti.empty() || !o.pairs.empty()) return kitti_feed(o, cw, ch);
+    if (o.pattern.empty()) {
+        if (!o.kitti.empty() || (!o.pairs.empty() && none == WhenNone::pattern))
+            return kitti_feed(require_kitti_root(o.kitti, o.data, "a KITTI stream needs KITTI data"), o, cw, ch, min_pairs);
+        if (none == WhenNone::stereo) {
+            const fs::path root = kitti_root(o.kitti, o.data);
+            if (!root.empty()) return kitti_feed(root, o, cw, ch, min_pairs);
+            return default_stereo_feed(o.pairs.empty() ? util::Range{0, 1 << 30} : util::parse_range(o.pairs, "--pairs"),
+                                       o.frames);
+        }
+    }
     const Pattern p = parse_pattern(o.pattern.empty() ? "blocks" : o.pattern);
     const int w = cw > 0 ? cw : 64, h = ch > 0 ? ch : 36;
     const int n = o.frames > 0 ? o.frames : 3;

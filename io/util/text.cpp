@@ -1,5 +1,6 @@
 // text.cpp: hashing and the little text formats (util.hpp).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -14,6 +15,21 @@ std::uint64_t fnv1a(std::string_view s, std::uint64_t h) {
         h *= 1099511628211ULL;
     }
     return h;
+}
+
+std::string shell_command_line(const std::string& program, const std::vector<std::string>& args) {
+    const auto quoted = [](const std::string& a) {
+        const bool plain = !a.empty() && std::all_of(a.begin(), a.end(), [](unsigned char c) {
+            return std::isalnum(c) || std::string_view("-_./:=,+@%").find(static_cast<char>(c)) != std::string_view::npos;
+        });
+        if (plain) return a;
+        std::string q = "'";
+        for (char c : a) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+        return q + "'";
+    };
+    std::string out = program;
+    for (const auto& a : args) out += " " + quoted(a);
+    return out;
 }
 
 std::string hex64(std::uint64_t h) {

@@ -41,6 +41,11 @@ std::uint64_t fnv1a(std::string_view s, std::uint64_t h = 14695981039346656037UL
 /// 16 lower-case hex digits.
 std::string hex64(std::uint64_t h);
 
+/// A command line as the user typed it, for a report: `program` then each argument, quoted
+/// for a POSIX shell where it holds anything but letters, digits and -_./:=,+@% (so pasting
+/// it into a shell runs the same command).
+std::string shell_command_line(const std::string& program, const std::vector<std::string>& args);
+
 // ---- files ----------------------------------------------------------------------------
 
 /// The bytes of a file. Throws InputError "cannot read '<what>'" (what defaults to the path).

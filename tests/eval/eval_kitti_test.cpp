@@ -103,8 +103,8 @@ TEST_CASE("the spec and cycle reports of all of KITTI 01 match their recorded di
         INFO(source << " source");
         eval::Request r;
         r.source = eval::parse_source(source);
-        r.kitti = g_kitti;
-        r.sequence = "01";
+        r.frames.kitti = g_kitti.string();
+        r.frames.sequence = "01";
         r.out = std::filesystem::temp_directory_path() / ("hc-eval-kitti-reports-" + std::to_string(::getpid())) / source;
         r.command = "eval_kitti_tests";
         eval::evaluate(r);

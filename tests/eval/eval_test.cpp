@@ -225,12 +225,10 @@ TEST_CASE("eval scores a folder of images exactly as the same frames made by the
         cv::imwrite((dir / "frames" / ("f" + std::to_string(k) + ".png")).string(), m);
     }
     eval::Request folder, pattern;
-    folder.frames = frames::FrameSource{};
-    folder.frames->images = {(dir / "frames").string()};
-    pattern.frames = frames::FrameSource{};
-    pattern.frames->pattern = "blocks";
-    pattern.frames->size = "64x48";
-    pattern.frames->frames = 4;
+    folder.frames.images = {(dir / "frames").string()};
+    pattern.frames.pattern = "blocks";
+    pattern.frames.size = "64x48";
+    pattern.frames.frames = 4;
     for (eval::Request* r : {&folder, &pattern}) {
         r->out = dir / (r == &folder ? "folder" : "pattern");
         r->ablation = false;

@@ -180,3 +180,66 @@ TEST_CASE("KITTI sequence lists are ranges or lists of two-digit names", "[frame
     CHECK_THROWS_AS(frames::parse_sequences("0a"), InputError);
     CHECK_THROWS_AS(frames::parse_sequences("01,01"), InputError);
 }
+
+namespace {
+
+/// A KITTI stand-in of `pairs` stereo pairs of the blocks pattern (64x48) under `root`.
+void write_kitti_standin(const fs::path& root, int pairs) {
+    for (const char* side : {"image_0", "image_1"}) {
+        const fs::path d = root / "sequences" / "00" / side;
+        fs::create_directories(d);
+        for (int k = 0; k < pairs; ++k) {
+            char name[16];
+            std::snprintf(name, sizeof name, "%06d.png", k);
+            cv::imwrite((d / name).string(), mat_of(make_pattern(Pattern::blocks, 64, 48, 2 * k + (side[6] == '1'))));
+        }
+    }
+}
+
+}  // namespace
+
+TEST_CASE("--frames N counts frames and --pairs a:b picks pairs the same way whatever a command streams when none is named",
+          "[frames]") {
+    const fs::path root = sources_scratch("kitti-standin");
+    write_kitti_standin(root, 3);
+    const fs::path empty = sources_scratch("no-data");
+    for (const frames::WhenNone none : {frames::WhenNone::pattern, frames::WhenNone::stereo}) {
+        CAPTURE(static_cast<int>(none));
+        frames::FrameSource s;
+        s.kitti = root.string();
+        s.sequence = "00";
+        s.frames = 3;
+        frames::FrameFeed f = frames::open_feed(s, none);
+        CHECK(f.names() == std::vector<std::string>{"00/L000000", "00/R000000", "00/L000001"});
+        CHECK(f.pair_index() == std::vector<int>{0, 0, 1});
+        CHECK(*f.frame(2) == make_pattern(Pattern::blocks, 64, 48, 2));
+        s.pairs = "1:3";
+        s.frames = 2;
+        f = frames::open_feed(s, none);
+        CHECK(f.names() == std::vector<std::string>{"00/L000001", "00/R000001"});
+        CHECK(f.pair_index() == std::vector<int>{1, 1});
+        s.pairs.clear();
+        s.frames = 7;
+        CHECK_THROWS_WITH(frames::open_feed(s, none), "--frames 7 but only 6 frames in --pairs (all) of KITTI sequence 00");
+        s.frames = 2;   // one stereo pair: fewer than a run that needs two pairs takes
+        CHECK_THROWS_WITH(frames::open_feed(s, none, 2), Catch::Contains("--pairs (all) --frames 2 gives 1 stereo pair(s)") &&
+                                                             Catch::Contains("at least 2 are needed"));
+    }
+    // with no source named: blocks frames for `pattern`, the default stereo stream for `stereo`
+    frames::FrameSource none_named;
+    none_named.data = empty.string();
+    none_named.frames = 3;
+    CHECK(frames::open_feed(none_named, frames::WhenNone::pattern).names() ==
+          std::vector<std::string>{"blocks#0", "blocks#1", "blocks#2"});
+    frames::FrameFeed d = frames::open_feed(none_named, frames::WhenNone::stereo);
+    REQUIRE(d.size() == 3);
+    CHECK(d.pair_index() == std::vector<int>{0, 0, 1});
+    CHECK(d.width() == 640);
+    CHECK(d.height() == 360);
+    none_named.frames = 0;
+    none_named.pairs = "2:3";
+    d = frames::open_feed(none_named, frames::WhenNone::stereo);
+    REQUIRE(d.size() == 2);
+    CHECK(d.pair_index() == std::vector<int>{2, 2});
+    CHECK(d.names()[0].substr(d.names()[0].size() - 4) == "L002");
+}
