@@ -29,7 +29,7 @@ namespace hc::sweep {
 namespace {
 
 // Bump when the analysis (bounds, search, verdicts) changes: cached reports then miss.
-constexpr const char* kRangesVersion = "hc-ranges-4 interval + witness search + z3 (rlimit) on the model and on GHDL's netlist";
+constexpr const char* kRangesVersion = "hc-ranges-5 interval + witness search + z3 (rlimit) on the model and on GHDL's netlist";
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -131,7 +131,12 @@ const RegisterRange* RangeReport::first_wrap() const {
 std::string RangeReport::summary() const {
     switch (overall()) {
         case Verdict::proven: return "proven safe";
-        case Verdict::wraps: return std::string("wraps at ") + kRegNames[idx(first_wrap()->reg)];
+        case Verdict::wraps: {
+            std::string s = std::string("wraps at ") + kRegNames[idx(first_wrap()->reg)], d;
+            for (const auto& r : regs)
+                if (r.netlist_differs) d += fmt::format("{}{}", d.empty() ? "" : ", ", kRegNames[idx(r.reg)]);
+            return d.empty() ? s : s + "; the netlist differs from the VHDL at the witness of " + d;
+        }
         default: break;
     }
     std::string s;
@@ -315,7 +320,9 @@ std::string ranges_markdown(const std::string& config, const RangeReport& r) {
                          x.searched ? fmt::format("[{}, {}] ({} windows)", x.reached.lo, x.reached.hi, x.search_windows) : "-",
                          x.solver_asked ? fmt::format("{} ({:.1f} s, {} units)", x.solver, x.solver_seconds, x.solver_rlimit) : "-",
                          extreme,
-                         x.netlist_asked ? fmt::format("{}: {} ({} units)", verdict_name(x.netlist_verdict), x.netlist, x.netlist_rlimit)
+                         x.netlist_asked ? fmt::format("{}{}: {} ({} units); {}", verdict_name(x.netlist_verdict),
+                                                       x.netlist_differs ? ", **differs from the VHDL**" : "", x.netlist,
+                                                       x.netlist_rlimit, x.netlist_vhdl)
                                          : "-",
                          wit);
     }
@@ -880,6 +887,12 @@ json range_report_to_json(const RangeReport& r) {
             e["netlist"] = x.netlist;
             e["netlist_rlimit"] = x.netlist_rlimit;
             if (x.netlist_range) e["netlist_range"] = interval_json(*x.netlist_range);
+            e["netlist_vhdl"] = x.netlist_vhdl;
+            e["netlist_differs"] = x.netlist_differs;
+            if (x.netlist_differs) {
+                e["netlist_value"] = x.netlist_value;
+                e["vhdl_value"] = x.vhdl_value;
+            }
         }
         e["decided_by"] = x.decided_by;
         regs.push_back(e);
@@ -941,6 +954,12 @@ RangeReport range_report_from_json(const json& j) {
             x.netlist = e.at("netlist");
             x.netlist_rlimit = e.at("netlist_rlimit");
             if (e.contains("netlist_range")) x.netlist_range = interval_from(e.at("netlist_range"));
+            x.netlist_vhdl = e.at("netlist_vhdl");
+            x.netlist_differs = e.at("netlist_differs");
+            if (x.netlist_differs) {
+                x.netlist_value = e.at("netlist_value");
+                x.vhdl_value = e.at("vhdl_value");
+            }
         }
         x.decided_by = e.at("decided_by");
         r.regs.push_back(x);

@@ -26,7 +26,10 @@
 //      proven on the netlist for the stage before (assume-guarantee), and from the 25
 //      pixels through the whole chain where the stage's question is satisfiable. unsat is
 //      proven on the netlist, sat a window (checked in the model), unknown open. A register
-//      on which the two routes disagree (one proves it, the other has a window) is an error.
+//      on which the two routes disagree (one proves it, the other has a window) is an error,
+//      except where a signed resize to fewer bits may overflow upstream: GHDL's synthesis
+//      truncates it (numeric_std keeps the sign bit), so there the netlist is not the VHDL
+//      and the report says so (signed_shrinks, RegisterRange::netlist_vhdl, netlist_differs).
 //   5. otherwise the register is open: the bound, the best value the search reached and
 //      where the solvers stopped.
 // Every z3 query is limited by z3's resource limit (rlimit), not by time, so verdicts and
@@ -100,6 +103,14 @@ struct RegisterRange {
     std::string netlist;              ///< its answer: "unsat on the stage netlist (assuming ...)", "sat from pixels: ...", ...
     std::int64_t netlist_rlimit = 0;  ///< z3's resource units it spent on the register
     std::optional<Interval> netlist_range;   ///< proven on the netlist: the register's hardware value lies in here
+    /// Whether the netlist route's answer holds for the VHDL (numeric_std), not only for GHDL's
+    /// netlist: "holds for the VHDL: ..." when no signed shrink of the register's stage or
+    /// upstream can overflow, else "GHDL's netlist only: resize(...) may overflow".
+    std::string netlist_vhdl;
+    /// The netlist computes another value than the VHDL at the model's witness (a signed
+    /// shrink overflows there): the netlist's value at the witness, the model's (numeric_std) beside it.
+    bool netlist_differs = false;
+    std::int64_t netlist_value = 0, vhdl_value = 0;
     /// which route decided the verdict: "interval", "search", "model-smt" (z3 on the model's
     /// arithmetic), "netlist" (z3 on GHDL's netlist), "" (open)
     std::string decided_by;
@@ -203,10 +214,30 @@ StageNetlists stage_netlists(const Formats& f, const std::filesystem::path& dir)
 /// holds at window `w`: Sobel and M at the window's top-left 3x3 position, the rest at its
 /// centre; the threshold (computed in harris_top, outside the chain) is absent.
 std::array<std::optional<std::int64_t>, kRegCount> netlist_values(const StageNetlists& n, const Formats& f, const Window5& w);
+/// A resize of a signed value to fewer bits in the stage chain at formats `f`. numeric_std
+/// keeps the sign bit and the low to-1 bits; GHDL's --synth (2.0) keeps the low `to` bits
+/// (tests/sweep/numeric_std_synth_test.cpp), so the netlist is the VHDL there only where the
+/// value fits `to` bits.
+struct SignedShrink {
+    std::string what;        ///< "resize(ac, RESP_W) in harris_response"
+    int from = 0, to = 0;    ///< the operand's width, the resized width
+    std::vector<Reg> feeds;  ///< the registers of its stage it feeds
+    Interval operand;        ///< a sound bound on the operand's value (the report's ranges)
+    bool fits = false;       ///< the bound fits `to` bits: the shrink cannot overflow
+};
+/// Every signed shrink of the stage chain at the report's formats, with the bound of its operand
+/// from the report's ranges (a register the model route proves in its bound or the solver's
+/// range, any other in what its width holds).
+std::vector<SignedShrink> signed_shrinks(const RangeReport& rep);
+
 /// The netlist route on a report the model route made (analyse_ranges runs it when o.netlist):
 /// every register of the chain is asked on the netlist; a register the model route left open
-/// takes the netlist's verdict. std::logic_error when the routes disagree (one proves, the
-/// other has a window) or a netlist window does not wrap in the model.
+/// takes the netlist's verdict where that holds for the VHDL (no signed shrink upstream may
+/// overflow: RegisterRange::netlist_vhdl). Where a signed shrink may overflow, a model witness
+/// the netlist does not wrap is reported as the netlist differing from the VHDL there
+/// (netlist_differs), not as a fault. std::logic_error when the routes disagree (one proves,
+/// the other has a window) or a netlist window does not wrap in the model, where no signed
+/// shrink may overflow.
 void netlist_route(RangeReport& rep, const RangeOptions& o);
 
 /// The exact value and the hardware value of every register at the window's centre

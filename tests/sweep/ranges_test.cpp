@@ -3,6 +3,8 @@
 // witnesses that wrap in the model (the overflow audit sees them), the report's JSON. That the RTL wraps alike is the cosim label's (tests/cosim/CMakeLists.txt).
 #include <catch2/catch.hpp>
 
+#include <map>
+
 #include <algorithm>
 #include <limits>
 
@@ -118,6 +120,35 @@ TEST_CASE("the thesis configuration: every register proven by the interval bound
     CHECK(r.at(Reg::m_a).bound == Interval{0, 1020 * 1020 / 32});
     CHECK(r.at(Reg::block_a).bound == Interval{0, 9 * (1020 * 1020 / 32) / 16});
     CHECK(r.at(Reg::response).held == Interval{-(std::int64_t{1} << 31), (std::int64_t{1} << 31) - 1});
+}
+
+TEST_CASE("the signed shrinks of the stage chain: where they are and whether their operand fits", "[model][sweep][ranges]") {
+    const auto shrinks = [](const Formats& f) {
+        std::map<std::string, bool> m;   // what -> fits
+        for (const SignedShrink& s : signed_shrinks(analyse_ranges(f, no_solver()))) {
+            CHECK(s.to < s.from);
+            CHECK(s.fits == fits(s.operand, s.to, true));
+            m[s.what] = s.fits;
+        }
+        return m;
+    };
+    // the thesis: only the products of m_products are shrunk (22 to 21 bits), and they fit (|ix*iy| <= 1020^2 < 2^20)
+    const std::map<std::string, bool> thesis = {{"resize(ix * ix, M_PROD_W) in m_products", true},
+                                                {"resize(ix * iy, M_PROD_W) in m_products", true},
+                                                {"resize(iy * iy, M_PROD_W) in m_products", true}};
+    CHECK(shrinks(Formats{}) == thesis);
+    Formats r27;
+    r27.resp_w = 27;
+    const auto m27 = shrinks(r27);
+    CHECK(m27.at("resize(ac, RESP_W) in harris_response") == false);   // a*c up to 18288^2 > 2^26
+    CHECK(m27.at("resize(bb, RESP_W) in harris_response") == false);
+    CHECK(m27.at("resize(ktr2, RESP_W) in harris_response") == true);  // the k-term's bound [0, 52,257,960] < 2^26
+    Formats s9;
+    s9.sobel_w = 9;
+    const auto m9 = shrinks(s9);
+    CHECK(m9.at("resize(p21, SOBEL_W) in sobel_x") == false);   // -2 * 255 does not fit 9 bits
+    CHECK(m9.at("resize(p12, SOBEL_W) in sobel_y") == false);
+    CHECK(m9.count("resize(p11, SOBEL_W) in sobel_x") == 0);    // 9 bits to 9: no shrink
 }
 
 TEST_CASE("sweep/configs/bit-widths.json: the tight points are proven, each too-narrow point wraps with a witness the audit sees",
