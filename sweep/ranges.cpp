@@ -151,7 +151,7 @@ std::string RangeReport::summary() const {
 
 std::string RangeReport::routes() const {
     std::string s;
-    for (const char* route : {"interval", "search", "model-smt", "netlist"}) {
+    for (const char* route : {"interval", "search", "relation", "model-smt", "netlist"}) {
         const auto n = std::count_if(regs.begin(), regs.end(), [&](const RegisterRange& x) { return x.decided_by == route; });
         if (n) s += fmt::format("{}{} {}", s.empty() ? "" : ", ", route, n);
     }
@@ -318,7 +318,12 @@ std::string ranges_markdown(const std::string& config, const RangeReport& r) {
                          x.held.lo, x.held.hi, x.bound.lo, x.bound.hi,
                          x.verdict == Verdict::wraps ? "**wraps**" : verdict_name(x.verdict), x.decided_by.empty() ? "-" : x.decided_by,
                          x.searched ? fmt::format("[{}, {}] ({} windows)", x.reached.lo, x.reached.hi, x.search_windows) : "-",
-                         x.solver_asked ? fmt::format("{} ({:.1f} s, {} units)", x.solver, x.solver_seconds, x.solver_rlimit) : "-",
+                         x.relation.empty() && !x.solver_asked ? "-"
+                             : fmt::format("{}{}{}", x.relation.empty() ? "" : "relation " + x.relation,
+                                           !x.relation.empty() && x.solver_asked ? "; " : "",
+                                           x.solver_asked ? fmt::format("{} ({:.1f} s, {} units)", x.solver, x.solver_seconds,
+                                                                        x.solver_rlimit)
+                                                          : ""),
                          extreme,
                          x.netlist_asked ? fmt::format("{}{}: {} ({} units); {}", verdict_name(x.netlist_verdict),
                                                        x.netlist_differs ? ", **differs from the VHDL**" : "", x.netlist,
@@ -804,11 +809,22 @@ RangeReport analyse_ranges(const Formats& f, const RangeOptions& o) {
         if (rr.verdict != Verdict::wraps && (lo || !hi)) search_witness(rr, f, o, false);
     }
     rep.seconds_search = since(t0);
+    // det and the response through the block sums' relations, where their bounds do not fit and no witness was found
+    if (const ResponseRelation rel = response_relation(rep); rel.applies)
+        for (auto [r, range, ok] : {std::tuple{Reg::det, rel.det, rel.det_fits}, std::tuple{Reg::response, rel.response, rel.response_fits}}) {
+            RegisterRange& rr = rep.regs[idx(r)];
+            if (rr.verdict != Verdict::open) continue;
+            rr.relation = (ok ? "proven: " : "does not fit: ") + rel.why;
+            rr.relation_range = range;
+            if (ok) rr.verdict = Verdict::proven;
+        }
     // the solver where the search found no witness (the maximum is the response's: below),
     // first whether each open register can wrap, then its exact extreme, within the budget
     const auto t1 = Clock::now();
     Budget budget{o.solver_rlimit};
-    const bool open = std::any_of(rep.regs.begin(), rep.regs.end(), [](const RegisterRange& x) { return x.verdict == Verdict::open; });
+    // the maximum is not asked: it takes the response's verdict (below)
+    const bool open = std::any_of(rep.regs.begin(), rep.regs.end(),
+                                  [](const RegisterRange& x) { return x.verdict == Verdict::open && x.reg != Reg::maximum; });
     if (o.solver_rlimit > 0 && open) {
         rep.query_rlimit = o.query_rlimit;
         // the products' intervals are loose (b = ix*iy: x and y share pixels): their exact
@@ -840,6 +856,7 @@ RangeReport analyse_ranges(const Formats& f, const RangeOptions& o) {
         rr.decided_by = rr.bound_fits                     ? "interval"
                         : rr.verdict == Verdict::open     ? ""
                         : rr.solver_asked                 ? "model-smt"
+                        : rr.verdict == Verdict::proven   ? "relation"
                                                           : "search";
     // the maximum holds a response: it wraps with the response's witness, is proven with it
     RegisterRange& m = rep.regs[idx(Reg::maximum)];
@@ -865,6 +882,10 @@ json range_report_to_json(const RangeReport& r) {
         json e = {{"register", kRegNames[idx(x.reg)]}, {"bound", interval_json(x.bound)}, {"held", interval_json(x.held)},
                   {"width", x.width}, {"bound_fits", x.bound_fits}, {"verdict", verdict_name(x.verdict)},
                   {"searched", x.searched}};
+        if (!x.relation.empty()) {
+            e["relation"] = x.relation;
+            e["relation_range"] = interval_json(*x.relation_range);
+        }
         if (x.searched) {
             e["reached"] = interval_json(x.reached);
             e["search_windows"] = x.search_windows;
@@ -932,6 +953,10 @@ RangeReport range_report_from_json(const json& j) {
         x.bound_fits = e.at("bound_fits");
         x.verdict = verdict_from(e.at("verdict"));
         x.searched = e.at("searched");
+        if (e.contains("relation")) {
+            x.relation = e.at("relation");
+            x.relation_range = interval_from(e.at("relation_range"));
+        }
         if (x.searched) {
             x.reached = interval_from(e.at("reached"));
             x.search_windows = e.at("search_windows");

@@ -96,6 +96,9 @@ struct RegisterRange {
     /// used as the next stage's input range; reached: a window attains both ends.
     std::optional<Interval> solver_range;
     bool solver_range_reached = false;
+    /// det and the response: their range by response_relation (decided by "relation" where it fits), or ""
+    std::string relation;
+    std::optional<Interval> relation_range;
     std::int64_t solver_rlimit = 0;   ///< z3's resource units the model route spent on the register
     // the netlist route
     bool netlist_asked = false;
@@ -111,8 +114,8 @@ struct RegisterRange {
     /// shrink overflows there): the netlist's value at the witness, the model's (numeric_std) beside it.
     bool netlist_differs = false;
     std::int64_t netlist_value = 0, vhdl_value = 0;
-    /// which route decided the verdict: "interval", "search", "model-smt" (z3 on the model's
-    /// arithmetic), "netlist" (z3 on GHDL's netlist), "" (open)
+    /// which route decided the verdict: "interval", "search", "relation" (response_relation),
+    /// "model-smt" (z3 on the model's arithmetic), "netlist" (z3 on GHDL's netlist), "" (open)
     std::string decided_by;
 };
 
@@ -165,6 +168,28 @@ RangeReport interval_ranges(const Formats& f, int pixel_max = 255, const Tighten
 /// The whole analysis: interval bounds, then the witness search where they do not fit, then
 /// the solver (z3 on PATH; without it the register stays open, saying so) where the search found none.
 RangeReport analyse_ranges(const Formats& f, const RangeOptions& o = {});
+
+/// det and the response bounded through the relations one window's gradients impose on the
+/// block sums, where Sobel, M, the block sums and the k-term are proven by their interval
+/// bounds (their hardware values are their exact values) and a, c >= 0:
+///   energy = max of ix^2 + iy^2 over the pixel box, at one of its 512 vertices (ix, iy are
+///     linear in the pixels, the sum of their squares convex);
+///   per position ma + mc <= floor(energy / 2^m_drop), so a + c <= T = floor(9 floor(energy /
+///     2^m_drop) / 2^bf_drop) (a floor of a sum is at least the sum of the floors);
+///   a*c <= floor(T/2) ceil(T/2);
+///   Cauchy-Schwarz over the nine positions, with every floor's slack: |b| < sqrt((a + g)(c + g))
+///     + g, g = 1 + ceil(9 / 2^bf_drop); so b*b < (T/2 + 2g)^2 and a*c - b*b > -2gT - 4g^2;
+///   ktr2 <= floor(T^2 / 2^k_shift1) + floor(T^2 / 2^k_shift2).
+/// det cannot wrap when a*c and b*b fit resp_w signed bits; the response when ktr2 and its own
+/// range fit too (the response's sum is modular, the resizes exact).
+struct ResponseRelation {
+    bool applies = false;            ///< the preconditions hold (else `why` says which fails)
+    std::int64_t energy = 0, trace = 0, g = 0;
+    Interval ac, bb, det, ktr2, response;   ///< sound ranges of the exact values
+    bool det_fits = false, response_fits = false;
+    std::string why;                 ///< the ranges and what they rest on, or why the relation does not apply
+};
+ResponseRelation response_relation(const RangeReport& rep);
 
 /// The solver's answer to "is there a window of pixels in [0, pixel_max] where register r's
 /// exact value differs from its hardware value?" (z3 on PATH, one query of at most

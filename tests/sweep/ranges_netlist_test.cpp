@@ -183,7 +183,7 @@ TEST_CASE("without GHDL the netlist route proves nothing and says why", "[netlis
     RangeOptions o;
     o.solver_rlimit = 0;
     Formats f;
-    f.resp_w = 29;   // open by the model route without its solver
+    f.bf_sum_w = 19;   // block_b: open by the model route without its solver
     const RangeReport r = analyse_ranges(f, o);
     setenv("PATH", saved.c_str(), 1);
     CHECK_THAT(r.netlist_note, Catch::StartsWith("not run"));
@@ -191,7 +191,7 @@ TEST_CASE("without GHDL the netlist route proves nothing and says why", "[netlis
         CHECK_FALSE(x.netlist_asked);
         CHECK(x.decided_by != "netlist");
     }
-    CHECK(r.at(Reg::response).verdict == Verdict::open);
+    CHECK(r.at(Reg::block_b).verdict == Verdict::open);
 }
 
 TEST_CASE("the netlists are made in a directory given relative to the working directory", "[netlist][sweep][ranges]") {
