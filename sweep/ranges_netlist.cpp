@@ -455,7 +455,7 @@ struct Route {
         rr.netlist_value = net;
         rr.vhdl_value = m.narrowed;
         rr.netlist = fmt::format("unsat at the model's witness window: the netlist differs from the VHDL there (netlist {}, "
-                                 "VHDL {}, exact {}): {} overflows, where GHDL's synthesis drops the sign bit",
+                                 "VHDL {}, exact {}), where {} may overflow (GHDL's synthesis drops the sign bit numeric_std keeps)",
                                  net, m.narrowed, m.exact, shrink_list(v));
     }
 
