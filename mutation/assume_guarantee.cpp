@@ -1,6 +1,7 @@
 // assume_guarantee.cpp: proofs of mutants under proven assumptions (see campaign.hpp).
 #include <algorithm>
 #include <chrono>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -226,11 +227,13 @@ Proof prove_assuming(const Mutant& m, const fs::path& work, int timeout_s, const
             bw, within("in_a", r.bf_square), within("in_c", r.bf_square), within("in_b", r.bf_cross));
         // invariants of the registers a*c and b*b (their top bits zero) and the k-terms equal
         const long long b2 = std::max(r.bf_cross.lo * r.bf_cross.lo, r.bf_cross.hi * r.bf_cross.hi);
-        if (r.bf_square.lo < 0) throw InputError("harris_response's a and c must be proven non-negative");
-        const ProductBits ac = zero_bits(r.bf_square.hi * r.bf_square.hi, f.prod_w());
         const ProductBits bb = zero_bits(b2, f.prod_w());
         goals = "-prove trigger 0";
-        if (ac.from <= ac.to) goals += fmt::format(" -prove m.gold.ac[{}:{}] 0", ac.to, ac.from);
+        // a*c's top bits are zero only when a and c are non-negative: otherwise no invariant on ac
+        if (r.bf_square.lo >= 0) {
+            const ProductBits ac = zero_bits(r.bf_square.hi * r.bf_square.hi, f.prod_w());
+            if (ac.from <= ac.to) goals += fmt::format(" -prove m.gold.ac[{}:{}] 0", ac.to, ac.from);
+        }
         if (bb.from <= bb.to) goals += fmt::format(" -prove m.gold.bb[{}:{}] 0", bb.to, bb.from);
         goals += " -prove m.gold.ktr2 m.gate.ktr2";
     } else {
@@ -263,6 +266,38 @@ Proof prove_assuming(const Mutant& m, const fs::path& work, int timeout_s, const
     p.equivalent = run_yosys("assume-guarantee", script, work, timeout_s, p);
     p.seconds = since(t0);
     return p;
+}
+
+std::vector<CexValue> counterexample(const Proof& p, const fs::path& work, int timeout_s) {
+    std::string script = p.script;
+    const size_t sat = script.rfind("sat -verify ");
+    if (sat == std::string::npos) throw std::logic_error("counterexample: the proof's script has no `sat -verify`: " + p.method);
+    script.replace(sat, 12, "sat ");
+    const size_t eol = script.find('\n', sat);
+    script.insert(eol == std::string::npos ? script.size() : eol, " -show-inputs");
+    const fs::path ys = work / "counterexample.ys", log = work / "counterexample.log";
+    util::write_file_atomic(ys, script);
+    fs::remove(log);
+    util::run_process({"timeout", std::to_string(timeout_s), "yosys", "-s", ys.filename().string()}, {.cwd = work, .log = log});
+    // "SAT temporal induction proof finished - model found for base case: FAIL!", then the
+    // table: "  <step> \\<signal> <dec> <hex> <bin>"
+    const std::string out = util::read_file(log);
+    const size_t found = out.find("model found for base case: FAIL!");
+    std::vector<CexValue> v;
+    if (found == std::string::npos) return v;
+    std::istringstream in(out.substr(found));
+    for (std::string line; std::getline(in, line);) {
+        std::istringstream w(line);
+        std::string step, name, dec, hex, bin;
+        if (!(w >> step >> name >> dec >> hex >> bin) || name.empty() || name[0] != '\\') continue;
+        if (step.find_first_not_of("0123456789") != std::string::npos) continue;
+        if (bin.find_first_not_of("01") != std::string::npos) continue;
+        long long x = 0;
+        for (char ch : bin) x = 2 * x + (ch - '0');
+        if (bin.size() < 64 && bin[0] == '1') x -= 1LL << bin.size();
+        v.push_back({std::stoi(step), name.substr(1), x});
+    }
+    return v;
 }
 
 }  // namespace hc::mutation

@@ -197,6 +197,18 @@ bool has_assumptions(const std::string& file);
 Proof prove_assuming(const Mutant& m, const fs::path& work, int timeout_s,
                      const StageRanges& r = derive_ranges());
 
+/// One input of a failed proof's counterexample: its value at a time step (1: the first).
+struct CexValue {
+    int step = 0;
+    std::string signal;     ///< yosys's name without the leading backslash ("in_a")
+    long long value = 0;    ///< the bits read as a signed number
+};
+/// The inputs of the base-case counterexample of a failed `sat -tempinduct` proof (method
+/// "miter" or "assume-guarantee"): p.script run again in `work` (beside its gold.v and gate.v)
+/// without -verify and with -show-inputs. Empty when yosys finds no base-case counterexample
+/// (the proof holds for `-maxsteps` steps, or only its induction step fails).
+std::vector<CexValue> counterexample(const Proof& p, const fs::path& work, int timeout_s);
+
 /// Verdicts of the mutants `sel` from `old` (results_from_csv of an earlier run on this rtl/):
 /// killed, stillborn and unconditionally proven ones stand; a surviving one, or one proven
 /// under assumptions, is proven again by prove_assuming (`jobs` at a time, `timeout_s` per

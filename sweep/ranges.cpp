@@ -29,7 +29,7 @@ namespace hc::sweep {
 namespace {
 
 // Bump when the analysis (bounds, search, verdicts) changes: cached reports then miss.
-constexpr const char* kRangesVersion = "hc-ranges-4 interval + witness search + z3 (rlimit) on the model and on GHDL's netlist";
+constexpr const char* kRangesVersion = "hc-ranges-5 interval + witness search + z3 (rlimit) on the model and on GHDL's netlist";
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -131,7 +131,12 @@ const RegisterRange* RangeReport::first_wrap() const {
 std::string RangeReport::summary() const {
     switch (overall()) {
         case Verdict::proven: return "proven safe";
-        case Verdict::wraps: return std::string("wraps at ") + kRegNames[idx(first_wrap()->reg)];
+        case Verdict::wraps: {
+            std::string s = std::string("wraps at ") + kRegNames[idx(first_wrap()->reg)], d;
+            for (const auto& r : regs)
+                if (r.netlist_differs) d += fmt::format("{}{}", d.empty() ? "" : ", ", kRegNames[idx(r.reg)]);
+            return d.empty() ? s : s + "; the netlist differs from the VHDL at the witness of " + d;
+        }
         default: break;
     }
     std::string s;
@@ -146,7 +151,7 @@ std::string RangeReport::summary() const {
 
 std::string RangeReport::routes() const {
     std::string s;
-    for (const char* route : {"interval", "search", "model-smt", "netlist"}) {
+    for (const char* route : {"interval", "search", "relation", "model-smt", "netlist"}) {
         const auto n = std::count_if(regs.begin(), regs.end(), [&](const RegisterRange& x) { return x.decided_by == route; });
         if (n) s += fmt::format("{}{} {}", s.empty() ? "" : ", ", route, n);
     }
@@ -313,9 +318,16 @@ std::string ranges_markdown(const std::string& config, const RangeReport& r) {
                          x.held.lo, x.held.hi, x.bound.lo, x.bound.hi,
                          x.verdict == Verdict::wraps ? "**wraps**" : verdict_name(x.verdict), x.decided_by.empty() ? "-" : x.decided_by,
                          x.searched ? fmt::format("[{}, {}] ({} windows)", x.reached.lo, x.reached.hi, x.search_windows) : "-",
-                         x.solver_asked ? fmt::format("{} ({:.1f} s, {} units)", x.solver, x.solver_seconds, x.solver_rlimit) : "-",
+                         x.relation.empty() && !x.solver_asked ? "-"
+                             : fmt::format("{}{}{}", x.relation.empty() ? "" : "relation " + x.relation,
+                                           !x.relation.empty() && x.solver_asked ? "; " : "",
+                                           x.solver_asked ? fmt::format("{} ({:.1f} s, {} units)", x.solver, x.solver_seconds,
+                                                                        x.solver_rlimit)
+                                                          : ""),
                          extreme,
-                         x.netlist_asked ? fmt::format("{}: {} ({} units)", verdict_name(x.netlist_verdict), x.netlist, x.netlist_rlimit)
+                         x.netlist_asked ? fmt::format("{}{}: {} ({} units); {}", verdict_name(x.netlist_verdict),
+                                                       x.netlist_differs ? ", **differs from the VHDL**" : "", x.netlist,
+                                                       x.netlist_rlimit, x.netlist_vhdl)
                                          : "-",
                          wit);
     }
@@ -797,11 +809,22 @@ RangeReport analyse_ranges(const Formats& f, const RangeOptions& o) {
         if (rr.verdict != Verdict::wraps && (lo || !hi)) search_witness(rr, f, o, false);
     }
     rep.seconds_search = since(t0);
+    // det and the response through the block sums' relations, where their bounds do not fit and no witness was found
+    if (const ResponseRelation rel = response_relation(rep); rel.applies)
+        for (auto [r, range, ok] : {std::tuple{Reg::det, rel.det, rel.det_fits}, std::tuple{Reg::response, rel.response, rel.response_fits}}) {
+            RegisterRange& rr = rep.regs[idx(r)];
+            if (rr.verdict != Verdict::open) continue;
+            rr.relation = (ok ? "proven: " : "does not fit: ") + rel.why;
+            rr.relation_range = range;
+            if (ok) rr.verdict = Verdict::proven;
+        }
     // the solver where the search found no witness (the maximum is the response's: below),
     // first whether each open register can wrap, then its exact extreme, within the budget
     const auto t1 = Clock::now();
     Budget budget{o.solver_rlimit};
-    const bool open = std::any_of(rep.regs.begin(), rep.regs.end(), [](const RegisterRange& x) { return x.verdict == Verdict::open; });
+    // the maximum is not asked: it takes the response's verdict (below)
+    const bool open = std::any_of(rep.regs.begin(), rep.regs.end(),
+                                  [](const RegisterRange& x) { return x.verdict == Verdict::open && x.reg != Reg::maximum; });
     if (o.solver_rlimit > 0 && open) {
         rep.query_rlimit = o.query_rlimit;
         // the products' intervals are loose (b = ix*iy: x and y share pixels): their exact
@@ -833,6 +856,7 @@ RangeReport analyse_ranges(const Formats& f, const RangeOptions& o) {
         rr.decided_by = rr.bound_fits                     ? "interval"
                         : rr.verdict == Verdict::open     ? ""
                         : rr.solver_asked                 ? "model-smt"
+                        : rr.verdict == Verdict::proven   ? "relation"
                                                           : "search";
     // the maximum holds a response: it wraps with the response's witness, is proven with it
     RegisterRange& m = rep.regs[idx(Reg::maximum)];
@@ -858,6 +882,10 @@ json range_report_to_json(const RangeReport& r) {
         json e = {{"register", kRegNames[idx(x.reg)]}, {"bound", interval_json(x.bound)}, {"held", interval_json(x.held)},
                   {"width", x.width}, {"bound_fits", x.bound_fits}, {"verdict", verdict_name(x.verdict)},
                   {"searched", x.searched}};
+        if (!x.relation.empty()) {
+            e["relation"] = x.relation;
+            e["relation_range"] = interval_json(*x.relation_range);
+        }
         if (x.searched) {
             e["reached"] = interval_json(x.reached);
             e["search_windows"] = x.search_windows;
@@ -880,6 +908,12 @@ json range_report_to_json(const RangeReport& r) {
             e["netlist"] = x.netlist;
             e["netlist_rlimit"] = x.netlist_rlimit;
             if (x.netlist_range) e["netlist_range"] = interval_json(*x.netlist_range);
+            e["netlist_vhdl"] = x.netlist_vhdl;
+            e["netlist_differs"] = x.netlist_differs;
+            if (x.netlist_differs) {
+                e["netlist_value"] = x.netlist_value;
+                e["vhdl_value"] = x.vhdl_value;
+            }
         }
         e["decided_by"] = x.decided_by;
         regs.push_back(e);
@@ -919,6 +953,10 @@ RangeReport range_report_from_json(const json& j) {
         x.bound_fits = e.at("bound_fits");
         x.verdict = verdict_from(e.at("verdict"));
         x.searched = e.at("searched");
+        if (e.contains("relation")) {
+            x.relation = e.at("relation");
+            x.relation_range = interval_from(e.at("relation_range"));
+        }
         if (x.searched) {
             x.reached = interval_from(e.at("reached"));
             x.search_windows = e.at("search_windows");
@@ -941,6 +979,12 @@ RangeReport range_report_from_json(const json& j) {
             x.netlist = e.at("netlist");
             x.netlist_rlimit = e.at("netlist_rlimit");
             if (e.contains("netlist_range")) x.netlist_range = interval_from(e.at("netlist_range"));
+            x.netlist_vhdl = e.at("netlist_vhdl");
+            x.netlist_differs = e.at("netlist_differs");
+            if (x.netlist_differs) {
+                x.netlist_value = e.at("netlist_value");
+                x.vhdl_value = e.at("vhdl_value");
+            }
         }
         x.decided_by = e.at("decided_by");
         r.regs.push_back(x);

@@ -26,7 +26,10 @@
 //      proven on the netlist for the stage before (assume-guarantee), and from the 25
 //      pixels through the whole chain where the stage's question is satisfiable. unsat is
 //      proven on the netlist, sat a window (checked in the model), unknown open. A register
-//      on which the two routes disagree (one proves it, the other has a window) is an error.
+//      on which the two routes disagree (one proves it, the other has a window) is an error,
+//      except where a signed resize to fewer bits may overflow upstream: GHDL's synthesis
+//      truncates it (numeric_std keeps the sign bit), so there the netlist is not the VHDL
+//      and the report says so (signed_shrinks, RegisterRange::netlist_vhdl, netlist_differs).
 //   5. otherwise the register is open: the bound, the best value the search reached and
 //      where the solvers stopped.
 // Every z3 query is limited by z3's resource limit (rlimit), not by time, so verdicts and
@@ -93,6 +96,9 @@ struct RegisterRange {
     /// used as the next stage's input range; reached: a window attains both ends.
     std::optional<Interval> solver_range;
     bool solver_range_reached = false;
+    /// det and the response: their range by response_relation (decided by "relation" where it fits), or ""
+    std::string relation;
+    std::optional<Interval> relation_range;
     std::int64_t solver_rlimit = 0;   ///< z3's resource units the model route spent on the register
     // the netlist route
     bool netlist_asked = false;
@@ -100,8 +106,16 @@ struct RegisterRange {
     std::string netlist;              ///< its answer: "unsat on the stage netlist (assuming ...)", "sat from pixels: ...", ...
     std::int64_t netlist_rlimit = 0;  ///< z3's resource units it spent on the register
     std::optional<Interval> netlist_range;   ///< proven on the netlist: the register's hardware value lies in here
-    /// which route decided the verdict: "interval", "search", "model-smt" (z3 on the model's
-    /// arithmetic), "netlist" (z3 on GHDL's netlist), "" (open)
+    /// Whether the netlist route's answer holds for the VHDL (numeric_std), not only for GHDL's
+    /// netlist: "holds for the VHDL: ..." when no signed shrink of the register's stage or
+    /// upstream can overflow, else "GHDL's netlist only: resize(...) may overflow".
+    std::string netlist_vhdl;
+    /// The netlist computes another value than the VHDL at the model's witness (a signed
+    /// shrink overflows there): the netlist's value at the witness, the model's (numeric_std) beside it.
+    bool netlist_differs = false;
+    std::int64_t netlist_value = 0, vhdl_value = 0;
+    /// which route decided the verdict: "interval", "search", "relation" (response_relation),
+    /// "model-smt" (z3 on the model's arithmetic), "netlist" (z3 on GHDL's netlist), "" (open)
     std::string decided_by;
 };
 
@@ -155,6 +169,28 @@ RangeReport interval_ranges(const Formats& f, int pixel_max = 255, const Tighten
 /// the solver (z3 on PATH; without it the register stays open, saying so) where the search found none.
 RangeReport analyse_ranges(const Formats& f, const RangeOptions& o = {});
 
+/// det and the response bounded through the relations one window's gradients impose on the
+/// block sums, where Sobel, M, the block sums and the k-term are proven by their interval
+/// bounds (their hardware values are their exact values) and a, c >= 0:
+///   energy = max of ix^2 + iy^2 over the pixel box, at one of its 512 vertices (ix, iy are
+///     linear in the pixels, the sum of their squares convex);
+///   per position ma + mc <= floor(energy / 2^m_drop), so a + c <= T = floor(9 floor(energy /
+///     2^m_drop) / 2^bf_drop) (a floor of a sum is at least the sum of the floors);
+///   a*c <= floor(T/2) ceil(T/2);
+///   Cauchy-Schwarz over the nine positions, with every floor's slack: |b| < sqrt((a + g)(c + g))
+///     + g, g = 1 + ceil(9 / 2^bf_drop); so b*b < (T/2 + 2g)^2 and a*c - b*b > -2gT - 4g^2;
+///   ktr2 <= floor(T^2 / 2^k_shift1) + floor(T^2 / 2^k_shift2).
+/// det cannot wrap when a*c and b*b fit resp_w signed bits; the response when ktr2 and its own
+/// range fit too (the response's sum is modular, the resizes exact).
+struct ResponseRelation {
+    bool applies = false;            ///< the preconditions hold (else `why` says which fails)
+    std::int64_t energy = 0, trace = 0, g = 0;
+    Interval ac, bb, det, ktr2, response;   ///< sound ranges of the exact values
+    bool det_fits = false, response_fits = false;
+    std::string why;                 ///< the ranges and what they rest on, or why the relation does not apply
+};
+ResponseRelation response_relation(const RangeReport& rep);
+
 /// The solver's answer to "is there a window of pixels in [0, pixel_max] where register r's
 /// exact value differs from its hardware value?" (z3 on PATH, one query of at most
 /// o.query_rlimit resource units): proven (unsat), wraps (sat; the window wraps r in the model, else
@@ -203,10 +239,30 @@ StageNetlists stage_netlists(const Formats& f, const std::filesystem::path& dir)
 /// holds at window `w`: Sobel and M at the window's top-left 3x3 position, the rest at its
 /// centre; the threshold (computed in harris_top, outside the chain) is absent.
 std::array<std::optional<std::int64_t>, kRegCount> netlist_values(const StageNetlists& n, const Formats& f, const Window5& w);
+/// A resize of a signed value to fewer bits in the stage chain at formats `f`. numeric_std
+/// keeps the sign bit and the low to-1 bits; GHDL's --synth (2.0) keeps the low `to` bits
+/// (tests/sweep/numeric_std_synth_test.cpp), so the netlist is the VHDL there only where the
+/// value fits `to` bits.
+struct SignedShrink {
+    std::string what;        ///< "resize(ac, RESP_W) in harris_response"
+    int from = 0, to = 0;    ///< the operand's width, the resized width
+    std::vector<Reg> feeds;  ///< the registers of its stage it feeds
+    Interval operand;        ///< a sound bound on the operand's value (the report's ranges)
+    bool fits = false;       ///< the bound fits `to` bits: the shrink cannot overflow
+};
+/// Every signed shrink of the stage chain at the report's formats, with the bound of its operand
+/// from the report's ranges (a register the model route proves in its bound or the solver's
+/// range, any other in what its width holds).
+std::vector<SignedShrink> signed_shrinks(const RangeReport& rep);
+
 /// The netlist route on a report the model route made (analyse_ranges runs it when o.netlist):
 /// every register of the chain is asked on the netlist; a register the model route left open
-/// takes the netlist's verdict. std::logic_error when the routes disagree (one proves, the
-/// other has a window) or a netlist window does not wrap in the model.
+/// takes the netlist's verdict where that holds for the VHDL (no signed shrink upstream may
+/// overflow: RegisterRange::netlist_vhdl). Where a signed shrink may overflow, a model witness
+/// the netlist does not wrap is reported as the netlist differing from the VHDL there
+/// (netlist_differs), not as a fault. std::logic_error when the routes disagree (one proves,
+/// the other has a window) or a netlist window does not wrap in the model, where no signed
+/// shrink may overflow.
 void netlist_route(RangeReport& rep, const RangeOptions& o);
 
 /// The exact value and the hardware value of every register at the window's centre

@@ -1,6 +1,7 @@
 // ranges_netlist.cpp: the netlist route of the derived ranges (see ranges.hpp): each
 // register's question asked by z3 on GHDL's synthesis of the stage chain, as yosys writes
 // it in SMT-LIB.
+#include <algorithm>
 #include <chrono>
 
 #include <fmt/format.h>
@@ -110,6 +111,72 @@ std::string smt_script(const std::string& top, const std::vector<std::string>& m
            "t:$dlatch t:$adlatch t:$dlatchsr t:$sr t:$mem t:$mem_v2\n"
            "techmap -map flop_to_wire.v t:$dff\nopt\ncheck -assert\nselect -assert-none t:$dff\n"
            "write_smt2 -wires " + top + ".smt2\n";
+}
+
+// ---- where the netlist can differ from numeric_std -------------------------------------
+
+/// The interval of x * y for x, y in the two intervals; a square when `square`.
+Interval product(const Interval& x, const Interval& y, bool square) {
+    const std::int64_t c[4] = {x.lo * y.lo, x.lo * y.hi, x.hi * y.lo, x.hi * y.hi};
+    Interval p{*std::min_element(c, c + 4), *std::max_element(c, c + 4)};
+    if (square) p.lo = (x.lo <= 0 && x.hi >= 0) ? 0 : std::min(x.lo * x.lo, x.hi * x.hi);
+    return p;
+}
+
+/// What the next stage sees of register r: its proven range (the solver's, else its bound,
+/// within its width) where the model route proves it, else what its width holds.
+Interval seen(const RangeReport& rep, Reg r) {
+    const RegisterRange& x = rep.at(r);
+    if (x.verdict != Verdict::proven || x.decided_by == "netlist") return x.held;
+    const Interval v = x.solver_range ? *x.solver_range : x.bound;
+    return {std::max(v.lo, x.held.lo), std::min(v.hi, x.held.hi)};
+}
+
+/// The pipeline stage of a register (0 Sobel, 1 M, 2 block sums, 3 the response's stage).
+int stage_index(Reg r) {
+    switch (r) {
+        case Reg::sobel_x: case Reg::sobel_y: return 0;
+        case Reg::m_a: case Reg::m_b: case Reg::m_c: return 1;
+        case Reg::block_a: case Reg::block_b: case Reg::block_c: return 2;
+        default: return 3;
+    }
+}
+
+/// The register's signed shrinks that may overflow, as far as the VHDL's value is concerned:
+/// those of its stage that feed it, unless the model route proves it (its VHDL value is then
+/// its exact value), and those of the stages upstream, unless the model route proves a
+/// register they feed.
+std::vector<const SignedShrink*> unsafe_shrinks(const RangeReport& rep, Reg r, const std::vector<SignedShrink>& all) {
+    const auto model_proven = [&](Reg x) { return rep.at(x).verdict == Verdict::proven && rep.at(x).decided_by != "netlist"; };
+    std::vector<const SignedShrink*> v;
+    for (const SignedShrink& s : all) {
+        if (s.fits || stage_index(s.feeds.front()) > stage_index(r)) continue;
+        const bool own = stage_index(s.feeds.front()) == stage_index(r);
+        if (own && std::find(s.feeds.begin(), s.feeds.end(), r) == s.feeds.end()) continue;
+        if (own ? model_proven(r) : std::any_of(s.feeds.begin(), s.feeds.end(), model_proven)) continue;
+        v.push_back(&s);
+    }
+    return v;
+}
+
+std::string shrink_list(const std::vector<const SignedShrink*>& v) {
+    std::string s;
+    for (const SignedShrink* x : v)
+        s += fmt::format("{}{} from {} bits (operand in [{}, {}])", s.empty() ? "" : "; ", x->what, x->from, x->operand.lo,
+                         x->operand.hi);
+    return s;
+}
+
+/// The side condition under which the netlist's answer on register r is the VHDL's.
+std::string vhdl_condition(const RangeReport& rep, Reg r, const std::vector<SignedShrink>& all) {
+    const auto v = unsafe_shrinks(rep, r, all);
+    if (!v.empty()) return "GHDL's netlist only: " + shrink_list(v) + " may overflow, where GHDL's synthesis drops the sign bit";
+    int n = 0;
+    for (const SignedShrink& s : all) n += stage_index(s.feeds.front()) <= stage_index(r);
+    return n == 0 ? "holds for the VHDL: no signed shrink upstream"
+                  : fmt::format("holds for the VHDL: each of the {} signed shrinks upstream fits its width (its bound, or the "
+                                "model route's proof of the register it feeds)",
+                                n);
 }
 
 // ---- the questions ---------------------------------------------------------------------
@@ -287,6 +354,8 @@ struct Route {
     std::array<int, kRegCount> asked{};     ///< queries per register so far
     /// the hardware value of each register as proven on the netlist (else what its width holds)
     std::array<Interval, kRegCount> proven{};
+    const RangeReport* rep = nullptr;       ///< the model route's report (its verdicts, for the shrinks' side conditions)
+    std::vector<SignedShrink> shrinks;      ///< the chain's signed shrinks at the configuration
 
     struct Ask {
         Sat sat = Sat::unknown;
@@ -350,17 +419,49 @@ struct Route {
         if (a.exact == a.hw)
             throw std::logic_error(fmt::format("netlist route: {}'s value {} at window {} leaves the range the model route proves",
                                                kRegNames[idx(rr.reg)], a.hw, window_text(a.window)));
-        if (!wraps_in_model(a.window, f, rr.reg))
+        if (!wraps_in_model(a.window, f, rr.reg)) {
+            if (const auto v = unsafe_shrinks(*rep, rr.reg, shrinks); !v.empty()) {
+                rr.netlist = fmt::format("sat {} on GHDL's netlist only (exact {}, netlist {}), not a wrap of the VHDL at window {}: "
+                                         "the netlist differs from the VHDL where {} overflows",
+                                         how, a.exact, a.hw, window_text(a.window), shrink_list(v));
+                return;
+            }
             throw std::logic_error(fmt::format("netlist route: {} wraps on the netlist at window {} (exact {}, netlist {}), "
                                                "not in the model",
                                                kRegNames[idx(rr.reg)], window_text(a.window), a.exact, a.hw));
+        }
         rr.netlist_verdict = Verdict::wraps;
         rr.netlist = fmt::format("sat {}: exact {}, netlist {}", how, a.exact, a.hw);
         if (rr.verdict != Verdict::wraps) rr.witness = a.window;
     }
 
+    /// The model's witness does not wrap r on the netlist (its exact value there at every
+    /// position asked): where a signed shrink may overflow, the netlist differs from the VHDL
+    /// at the witness; elsewhere that is a fault of the analysis.
+    void differs(RegisterRange& rr) {
+        const auto v = unsafe_shrinks(*rep, rr.reg, shrinks);
+        if (v.empty())
+            throw std::logic_error(fmt::format("netlist route: {} does not wrap on the netlist at the model's witness {}",
+                                               kRegNames[idx(rr.reg)], window_text(rr.witness)));
+        WindowValue m{};
+        for (bool maximise : {true, false})
+            if (const WindowValue x = window_values(rr.witness, f, maximise)[idx(rr.reg)]; x.exact != x.narrowed) m = x;
+        // Sobel and M: the netlist holds the exact value at each position (the queries above); the rest at the centre
+        const std::int64_t net = stage_of(rr.reg) == "chain" ? m.exact : netlist_values(n, f, rr.witness)[idx(rr.reg)].value();
+        if (net == m.narrowed)
+            throw std::logic_error(fmt::format("netlist route: {} at the model's witness {}: the netlist holds the model's {}",
+                                               kRegNames[idx(rr.reg)], window_text(rr.witness), net));
+        rr.netlist_differs = true;
+        rr.netlist_value = net;
+        rr.vhdl_value = m.narrowed;
+        rr.netlist = fmt::format("unsat at the model's witness window: the netlist differs from the VHDL there (netlist {}, "
+                                 "VHDL {}, exact {}), where {} may overflow (GHDL's synthesis drops the sign bit numeric_std keeps)",
+                                 net, m.narrowed, m.exact, shrink_list(v));
+    }
+
     void decide(RegisterRange& rr) {
         rr.netlist_asked = true;
+        rr.netlist_vhdl = vhdl_condition(*rep, rr.reg, shrinks);
         const Interval held = rr.held;
         // the range claimed: the model route's proven range (the solver's, else the bound), within the register
         Interval claim = held;
@@ -375,9 +476,7 @@ struct Route {
                 if (a.sat == Sat::unknown) break;
             }
             if (a.sat == Sat::sat) return witness(rr, a, "at the model's witness window");
-            if (a.sat == Sat::unsat)
-                throw std::logic_error(fmt::format("netlist route: {} does not wrap on the netlist at the model's witness {}",
-                                                   kRegNames[idx(rr.reg)], window_text(rr.witness)));
+            if (a.sat == Sat::unsat) return differs(rr);
             rr.netlist = a.why;
             return;
         }
@@ -423,6 +522,41 @@ struct Route {
 };
 
 }  // namespace
+
+std::vector<SignedShrink> signed_shrinks(const RangeReport& rep) {
+    const Formats& f = rep.formats;
+    std::vector<SignedShrink> v;
+    const auto add = [&](std::string what, int from, int to, std::vector<Reg> feeds, Interval operand) {
+        if (to < from) v.push_back({std::move(what), from, to, std::move(feeds), operand, fits(operand, to, true)});
+    };
+    // sobel_x: p11, p13, p31, p33 = +-pixel in 9 bits, p21, p23 = +-2 pixel in 10; sobel_y: p12, p32 the doubled ones
+    const std::int64_t pm = rep.pixel_max;
+    for (const char* p : {"p11", "p13", "p31", "p33"}) {
+        add(fmt::format("resize({}, SOBEL_W) in sobel_x", p), 9, f.sobel_w, {Reg::sobel_x}, p[2] == '1' ? Interval{-pm, 0} : Interval{0, pm});
+    }
+    add("resize(p21, SOBEL_W) in sobel_x", 10, f.sobel_w, {Reg::sobel_x}, {-2 * pm, 0});
+    add("resize(p23, SOBEL_W) in sobel_x", 10, f.sobel_w, {Reg::sobel_x}, {0, 2 * pm});
+    for (const char* p : {"p11", "p13", "p31", "p33"})
+        add(fmt::format("resize({}, SOBEL_W) in sobel_y", p), 9, f.sobel_w, {Reg::sobel_y}, p[1] == '1' ? Interval{0, pm} : Interval{-pm, 0});
+    add("resize(p12, SOBEL_W) in sobel_y", 10, f.sobel_w, {Reg::sobel_y}, {0, 2 * pm});
+    add("resize(p32, SOBEL_W) in sobel_y", 10, f.sobel_w, {Reg::sobel_y}, {-2 * pm, 0});
+    const Interval ix = seen(rep, Reg::sobel_x), iy = seen(rep, Reg::sobel_y);
+    add("resize(ix * ix, M_PROD_W) in m_products", 2 * f.sobel_w, f.m_prod_w, {Reg::m_a}, product(ix, ix, true));
+    add("resize(ix * iy, M_PROD_W) in m_products", 2 * f.sobel_w, f.m_prod_w, {Reg::m_b}, product(ix, iy, false));
+    add("resize(iy * iy, M_PROD_W) in m_products", 2 * f.sobel_w, f.m_prod_w, {Reg::m_c}, product(iy, iy, true));
+    for (auto [m, blk] : {std::pair{Reg::m_a, Reg::block_a}, std::pair{Reg::m_b, Reg::block_b}, std::pair{Reg::m_c, Reg::block_c}})
+        add(fmt::format("resize(a(i, j), BF_SUM_W) in block_filter ({})", kRegNames[idx(blk)]), f.m_w(), f.bf_sum_w, {blk}, seen(rep, m));
+    const Interval a = seen(rep, Reg::block_a), b = seen(rep, Reg::block_b), c = seen(rep, Reg::block_c);
+    const Interval tr{a.lo + c.lo, a.hi + c.hi}, tr2 = product(tr, tr, true);
+    const int tr2_w = 2 * f.trace_w();
+    for (int k : {f.k_shift1, f.k_shift2})
+        add(fmt::format("resize(trace_sq(TR2_W - 1 downto {}), KTR_W) in harris_response", k), tr2_w - k, f.ktr_w,
+            {Reg::k_term, Reg::response}, floor_div_pow2(tr2, k));
+    add("resize(ac, RESP_W) in harris_response", f.prod_w(), f.resp_w, {Reg::det, Reg::response}, product(a, c, false));
+    add("resize(bb, RESP_W) in harris_response", f.prod_w(), f.resp_w, {Reg::det, Reg::response}, product(b, b, true));
+    add("resize(ktr2, RESP_W) in harris_response", f.ktr_w, f.resp_w, {Reg::response}, seen(rep, Reg::k_term));
+    return v;
+}
 
 StageNetlists stage_netlists(const Formats& f, const fs::path& where) {
     f.validate();
@@ -502,7 +636,7 @@ void netlist_route(RangeReport& rep, const RangeOptions& o) {
     }
     rep.netlist_note = "GHDL's synthesis of sobel_x, sobel_y, m_products, block_filter and harris_response at the "
                        "configuration's generics, through yosys write_smt2; z3 with rlimit";
-    Route route{n, rep.formats, o, o.netlist_budget, o.netlist_dir, {}, {}};
+    Route route{n, rep.formats, o, o.netlist_budget, o.netlist_dir, {}, {}, &rep, signed_shrinks(rep)};
     for (const auto& rr : rep.regs) route.proven[idx(rr.reg)] = rr.held;
     for (Reg r : {Reg::sobel_x, Reg::sobel_y, Reg::m_a, Reg::m_b, Reg::m_c, Reg::block_a, Reg::block_b, Reg::block_c, Reg::trace,
                   Reg::response, Reg::det, Reg::k_term})
@@ -514,9 +648,12 @@ void netlist_route(RangeReport& rep, const RangeOptions& o) {
     m.netlist_asked = true;
     m.netlist_verdict = resp.netlist_verdict;
     m.netlist = "the response's";
-    // the routes together: a disagreement is an error; an open register takes the netlist's verdict
+    m.netlist_vhdl = resp.netlist_vhdl;
+    // the routes together, where the netlist's answer holds for the VHDL: a disagreement is an
+    // error; an open register takes the netlist's verdict
     for (auto& rr : rep.regs) {
         if (!rr.netlist_asked || rr.netlist_verdict == Verdict::open) continue;
+        if (rr.netlist_vhdl.rfind("holds for the VHDL", 0) != 0 && rr.netlist_verdict == Verdict::proven) continue;
         if (rr.verdict != Verdict::open && rr.verdict != rr.netlist_verdict)
             throw std::logic_error(fmt::format("the routes disagree on {}: the model route says {}, the netlist route {} ({})",
                                                kRegNames[idx(rr.reg)], verdict_name(rr.verdict), verdict_name(rr.netlist_verdict),

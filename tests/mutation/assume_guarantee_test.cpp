@@ -6,6 +6,8 @@
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
+#include <map>
+
 #include "mutation/mutation.hpp"
 #include "io/util/util.hpp"
 
@@ -100,6 +102,41 @@ TEST_CASE("a survivor of harris_response is proven equivalent under the proven r
     CHECK(p.assumptions.size() == 5);
     CHECK(p.script.find("assume(in_a >= 0 && in_a <= 18288)") != std::string::npos);
     CHECK(p.script.find("-prove m.gold.ac[31:29] 0") != std::string::npos);
+}
+
+TEST_CASE("a weakened upstream guarantee (a and c anywhere in 16 signed bits) and the proof of 51:24 fails at a real overflow",
+          "[assume-guarantee]") {
+    util::ScratchDir work("ag-test");
+    const auto m = named("harris_response.vhd:51:24 resize `RESP_W` -> `RESP_W - 1`");
+    // the block sums of a and c claimed only to fit their 16 bits: true (the guarantee is still
+    // proven), but weaker than [0, 18288], so resize(ac, RESP_W - 1) can now drop a bit
+    mutation::StageRanges r = mutation::derive_ranges();
+    r.bf_square = {-32768, 32767};
+    const mutation::Proof p = mutation::prove_assuming(m, work.path() / "p", timeout_s, r);
+    INFO(p.output);
+    CHECK_FALSE(p.equivalent);
+    CHECK(p.method == "assume-guarantee");
+    CHECK(p.assumptions.size() == 5);   // every guarantee, the weakened one too, is proven: only the downstream proof fails
+    CHECK(p.script.find("assume(in_a >= -32768 && in_a <= 32767)") != std::string::npos);
+    // the solver's failing input: a*c outside the 31 signed bits the mutant keeps (the only
+    // place it differs), with a or c outside the true range [0, 18288]
+    const std::vector<mutation::CexValue> cex = mutation::counterexample(p, work.path() / "p", timeout_s);
+    REQUIRE_FALSE(cex.empty());
+    const long long lo = -(1LL << 30), hi = (1LL << 30) - 1;
+    bool overflow = false;
+    for (int step = 1; step <= 12; ++step) {
+        std::map<std::string, long long> in;
+        for (const auto& x : cex)
+            if (x.step == step) in[x.signal] = x.value;
+        if (!in.count("in_a") || !in.count("in_b") || !in.count("in_c")) continue;
+        const long long a = in["in_a"], c = in["in_c"];
+        INFO("step " << step << ": a = " << a << ", b = " << in["in_b"] << ", c = " << c);
+        if (a * c < lo || a * c > hi) {
+            overflow = true;
+            CHECK((a < 0 || c < 0 || a > 18288 || c > 18288));   // unreachable under the true guarantee
+        }
+    }
+    CHECK(overflow);
 }
 
 TEST_CASE("threshold's reset value of r0_delay is proven unobservable under the proven enable", "[assume-guarantee]") {

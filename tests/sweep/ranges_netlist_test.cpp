@@ -183,7 +183,7 @@ TEST_CASE("without GHDL the netlist route proves nothing and says why", "[netlis
     RangeOptions o;
     o.solver_rlimit = 0;
     Formats f;
-    f.resp_w = 29;   // open by the model route without its solver
+    f.bf_sum_w = 19;   // block_b: open by the model route without its solver
     const RangeReport r = analyse_ranges(f, o);
     setenv("PATH", saved.c_str(), 1);
     CHECK_THAT(r.netlist_note, Catch::StartsWith("not run"));
@@ -191,7 +191,7 @@ TEST_CASE("without GHDL the netlist route proves nothing and says why", "[netlis
         CHECK_FALSE(x.netlist_asked);
         CHECK(x.decided_by != "netlist");
     }
-    CHECK(r.at(Reg::response).verdict == Verdict::open);
+    CHECK(r.at(Reg::block_b).verdict == Verdict::open);
 }
 
 TEST_CASE("the netlists are made in a directory given relative to the working directory", "[netlist][sweep][ranges]") {
@@ -203,4 +203,71 @@ TEST_CASE("the netlists are made in a directory given relative to the working di
     CHECK_THAT(n.response, Catch::Contains("stage_response_n"));
     CHECK(std::filesystem::exists(d.path() / "nets" / "chain.log"));
     CHECK(std::filesystem::exists(d.path() / "nets" / "commands.txt"));
+}
+
+namespace {
+
+/// A configuration whose resize(ac, RESP_W) overflows: the model (numeric_std) wraps the
+/// response at its witness, GHDL's netlist (which truncates) does not; the report says both.
+void check_wraps_and_netlist_differs(const Formats& f) {
+    const RangeReport r = analyse_ranges(f);
+    INFO(r.summary());
+    REQUIRE(r.overall() == Verdict::wraps);
+    const RegisterRange& resp = r.at(Reg::response);
+    INFO(resp.netlist);
+    CHECK(resp.verdict == Verdict::wraps);
+    CHECK(resp.decided_by != "netlist");
+    REQUIRE(resp.netlist_differs);
+    CHECK(resp.netlist_verdict == Verdict::open);
+    CHECK_THAT(resp.netlist_vhdl, Catch::StartsWith("GHDL's netlist only") && Catch::Contains("resize(ac, RESP_W)"));
+    CHECK_THAT(r.summary(), Catch::Contains("the netlist differs from the VHDL at the witness of response"));
+    // the VHDL's value is the model's at the witness, and it wraps; the netlist's is another
+    bool model_value = false;
+    for (bool maximise : {true, false}) {
+        const WindowValue v = window_values(resp.witness, f, maximise)[static_cast<int>(Reg::response)];
+        if (v.exact != v.narrowed && v.narrowed == resp.vhdl_value) model_value = true;
+    }
+    CHECK(model_value);
+    CHECK(resp.netlist_value != resp.vhdl_value);
+    // on the netlist the witness's response is its exact value modulo 2^resp_w
+    const util::ScratchDir dir;
+    const StageNetlists n = stage_netlists(f, dir.path() / "nets");
+    CHECK(netlist_values(n, f, resp.witness)[static_cast<int>(Reg::response)] == resp.netlist_value);
+    // the overflow audit counts the witness as a wrap of the response (numeric_std's value)
+    CHECK(count_overflows(witness_image(resp.witness), f).wrapped[response] > 0);
+    // the shrink that overflows is listed, and does not fit
+    bool ac = false;
+    for (const SignedShrink& s : signed_shrinks(r))
+        if (s.what == "resize(ac, RESP_W) in harris_response") ac = !s.fits && s.to == f.resp_w && s.from == f.prod_w();
+    CHECK(ac);
+    // the registers upstream hold for the VHDL (no signed shrink there) and are proven on the netlist
+    for (Reg reg : {Reg::sobel_x, Reg::m_b, Reg::block_a, Reg::trace}) {
+        INFO(kRegNames[static_cast<int>(reg)] << ": " << r.at(reg).netlist_vhdl);
+        CHECK_THAT(r.at(reg).netlist_vhdl, Catch::StartsWith("holds for the VHDL"));
+        CHECK(r.at(reg).netlist_verdict == Verdict::proven);
+    }
+    // the new fields survive the report's JSON
+    const RangeReport back = range_report_from_json(range_report_to_json(r));
+    CHECK(back.at(Reg::response).netlist_differs);
+    CHECK(back.at(Reg::response).netlist_value == resp.netlist_value);
+    CHECK(back.at(Reg::response).vhdl_value == resp.vhdl_value);
+    CHECK(back.at(Reg::response).netlist_vhdl == resp.netlist_vhdl);
+}
+
+}  // namespace
+
+TEST_CASE("resp_w=27: the response wraps (numeric_std keeps the sign of resize(ac, 27)) and the netlist differs from the VHDL there",
+          "[netlist][sweep][ranges]") {
+    Formats f;
+    f.resp_w = 27;
+    check_wraps_and_netlist_differs(f);
+}
+
+TEST_CASE("k_shift1=4, k_shift2=5, resp_w=27: wraps, and the netlist differs from the VHDL at the witness",
+          "[netlist][sweep][ranges]") {
+    Formats f;
+    f.k_shift1 = 4;
+    f.k_shift2 = 5;
+    f.resp_w = 27;
+    check_wraps_and_netlist_differs(f);
 }

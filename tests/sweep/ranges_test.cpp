@@ -3,6 +3,8 @@
 // witnesses that wrap in the model (the overflow audit sees them), the report's JSON. That the RTL wraps alike is the cosim label's (tests/cosim/CMakeLists.txt).
 #include <catch2/catch.hpp>
 
+#include <map>
+
 #include <algorithm>
 #include <limits>
 
@@ -120,6 +122,35 @@ TEST_CASE("the thesis configuration: every register proven by the interval bound
     CHECK(r.at(Reg::response).held == Interval{-(std::int64_t{1} << 31), (std::int64_t{1} << 31) - 1});
 }
 
+TEST_CASE("the signed shrinks of the stage chain: where they are and whether their operand fits", "[model][sweep][ranges]") {
+    const auto shrinks = [](const Formats& f) {
+        std::map<std::string, bool> m;   // what -> fits
+        for (const SignedShrink& s : signed_shrinks(analyse_ranges(f, no_solver()))) {
+            CHECK(s.to < s.from);
+            CHECK(s.fits == fits(s.operand, s.to, true));
+            m[s.what] = s.fits;
+        }
+        return m;
+    };
+    // the thesis: only the products of m_products are shrunk (22 to 21 bits), and they fit (|ix*iy| <= 1020^2 < 2^20)
+    const std::map<std::string, bool> thesis = {{"resize(ix * ix, M_PROD_W) in m_products", true},
+                                                {"resize(ix * iy, M_PROD_W) in m_products", true},
+                                                {"resize(iy * iy, M_PROD_W) in m_products", true}};
+    CHECK(shrinks(Formats{}) == thesis);
+    Formats r27;
+    r27.resp_w = 27;
+    const auto m27 = shrinks(r27);
+    CHECK(m27.at("resize(ac, RESP_W) in harris_response") == false);   // a*c up to 18288^2 > 2^26
+    CHECK(m27.at("resize(bb, RESP_W) in harris_response") == false);
+    CHECK(m27.at("resize(ktr2, RESP_W) in harris_response") == true);  // the k-term's bound [0, 52,257,960] < 2^26
+    Formats s9;
+    s9.sobel_w = 9;
+    const auto m9 = shrinks(s9);
+    CHECK(m9.at("resize(p21, SOBEL_W) in sobel_x") == false);   // -2 * 255 does not fit 9 bits
+    CHECK(m9.at("resize(p12, SOBEL_W) in sobel_y") == false);
+    CHECK(m9.count("resize(p11, SOBEL_W) in sobel_x") == 0);    // 9 bits to 9: no shrink
+}
+
 TEST_CASE("sweep/configs/bit-widths.json: the tight points are proven, each too-narrow point wraps with a witness the audit sees",
           "[model][sweep][ranges]") {
     const SweepSpec spec = load_sweep_spec(std::filesystem::path(HC_SOURCE_DIR) / "sweep" / "configs" / "bit-widths.json");
@@ -162,21 +193,64 @@ TEST_CASE("a block sum narrowed by one bit is reachable, with the exact maximum 
     CHECK(v[static_cast<int>(Reg::block_a)].exact == a.bound.hi);   // the witness reaches the bound: it is exact
 }
 
-TEST_CASE("a response one bit too narrow for the interval bound: the search says wraps or open, never proven",
+TEST_CASE("a response one or two bits too narrow for the interval bound: det and the response proven through the block sums' "
+          "relations, every register decided; one more bit less wraps",
           "[model][sweep][ranges]") {
-    Formats f;
-    f.resp_w = 29;   // the thesis's upper bound 18288^2 = 334,450,944 needs 30 signed bits
-    const RangeReport r = analyse_ranges(f, no_solver());
-    const RegisterRange& x = r.at(Reg::response);
-    CHECK_FALSE(x.bound_fits);
-    CHECK(x.verdict != Verdict::proven);
-    if (x.verdict == Verdict::wraps) {
-        const auto v = window_values(x.witness, f, true);
-        const auto w = window_values(x.witness, f, false);
-        CHECK((v[static_cast<int>(Reg::response)].exact != v[static_cast<int>(Reg::response)].narrowed ||
-               w[static_cast<int>(Reg::response)].exact != w[static_cast<int>(Reg::response)].narrowed));
-        CHECK(count_overflows(witness_image(x.witness), f).wrapped[response] > 0);
+    for (int w : {29, 28}) {
+        Formats f;
+        f.resp_w = w;   // the thesis's interval bound 18288^2 = 334,450,944 needs 30 signed bits
+        const RangeReport r = analyse_ranges(f, no_solver());
+        INFO("resp_w " << w << ": " << r.summary());
+        CHECK(r.overall() == Verdict::proven);
+        for (const auto& x : r.regs) {
+            INFO(kRegNames[static_cast<int>(x.reg)] << ": " << x.relation);
+            CHECK(x.verdict == Verdict::proven);
+            CHECK_FALSE(x.decided_by.empty());
+        }
+        for (Reg reg : {Reg::det, Reg::response}) {
+            const RegisterRange& x = r.at(reg);
+            INFO(kRegNames[static_cast<int>(reg)] << ": " << x.relation);
+            CHECK_FALSE(x.bound_fits);
+            CHECK(x.decided_by == "relation");
+            REQUIRE(x.relation_range);
+            CHECK(fits(*x.relation_range, w, true));
+            // the values the witness search reached lie inside the relation's range
+            REQUIRE(x.searched);
+            CHECK(x.relation_range->lo <= x.reached.lo);
+            CHECK(x.reached.hi <= x.relation_range->hi);
+        }
+        CHECK(r.at(Reg::maximum).decided_by == "relation");
     }
+    // the relation's figures at the thesis formats: max ix^2 + iy^2 = 1020^2 + 510^2, a + c <= 9 * floor(1,300,500 / 32) / 16
+    Formats f28;
+    f28.resp_w = 28;
+    const ResponseRelation rel = response_relation(interval_ranges(f28));
+    REQUIRE(rel.applies);
+    CHECK(rel.energy == 1020 * 1020 + 510 * 510);
+    CHECK(rel.trace == 9 * (1300500 / 32) / 16);   // 22,860
+    CHECK(rel.ac.hi == 11430LL * 11430);            // 130,644,900 < 2^27
+    CHECK(rel.g == 2);
+    CHECK(rel.det_fits);
+    CHECK(rel.response_fits);
+    // resp_w=27: a*c reaches more than 2^26, and the search has a witness
+    Formats f27;
+    f27.resp_w = 27;
+    const RangeReport r27 = analyse_ranges(f27, no_solver());
+    CHECK_FALSE(response_relation(r27).det_fits);
+    CHECK(r27.at(Reg::response).verdict == Verdict::wraps);
+}
+
+TEST_CASE("the relation's largest gradient energy is the largest over every window of 2-bit pixels", "[model][sweep][ranges]") {
+    // ix^2 + iy^2 is convex in the pixels, so its maximum over the box is at a vertex: all 4^9 windows agree
+    std::int64_t best = 0;
+    for (int v = 0; v < (1 << 18); ++v) {
+        int p[3][3];
+        for (int k = 0; k < 9; ++k) p[k / 3][k % 3] = (v >> (2 * k)) & 3;
+        const std::int64_t ix = (p[0][2] + 2 * p[1][2] + p[2][2]) - (p[0][0] + 2 * p[1][0] + p[2][0]);
+        const std::int64_t iy = (p[0][0] + 2 * p[0][1] + p[0][2]) - (p[2][0] + 2 * p[2][1] + p[2][2]);
+        best = std::max(best, ix * ix + iy * iy);
+    }
+    CHECK(response_relation(interval_ranges(Formats{}, 3)).energy == best);
 }
 
 TEST_CASE("a range report survives its JSON", "[model][sweep][ranges]") {
@@ -339,7 +413,7 @@ TEST_CASE("the witness search stops after a count of windows: two runs give the 
     o.search_windows = 300;
     const RangeReport small = analyse_ranges(f, o);
     CHECK(small.at(Reg::response).search_windows == 600);
-    CHECK(small.at(Reg::response).verdict == Verdict::open);
+    CHECK(small.at(Reg::response).verdict != Verdict::wraps);
     CHECK(analyse_ranges(f, o).at(Reg::response).reached == small.at(Reg::response).reached);
     // m_prod_w=20: the witness of m_b is found after 72 windows; a count of 10 leaves it open, the same on every run
     Formats narrow;
