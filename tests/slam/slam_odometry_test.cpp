@@ -100,7 +100,9 @@ namespace {
 
 /// Mean NEES of the visual odometry's motion over `draws` scenes (5-30 m, a new scene and
 /// noise draw each) at pixel noise sigma_px.
-double mean_odometry_nees(double sigma_px, int draws, OdometryResidual residual) {
+double mean_odometry_nees(double sigma_px, int draws, OdometryResidual residual, bool two_view = false) {
+    VisualOdometryConfig c = odometry(residual);
+    c.two_view_points = two_view;
     const Pose a(0, 0, 0);
     const Motion u(1.0, 0.03, 0.01);
     std::mt19937_64 rng(11);
@@ -109,7 +111,7 @@ double mean_odometry_nees(double sigma_px, int draws, OdometryResidual residual)
         // a new scene each draw: one scene alone can sit 10 % off (scene 2: 3.40 over 1000 draws)
         const Scene s = make_scene(200, 100 + k);
         const MotionEstimate e =
-            estimate_motion(view(s, a, &rng, sigma_px), view(s, compose(a, u), &rng, sigma_px), odometry(residual));
+            estimate_motion(view(s, a, &rng, sigma_px), view(s, compose(a, u), &rng, sigma_px), c);
         REQUIRE(e.ok);
         Eigen::Vector3d d = e.u - u;
         d(2) = wrap_angle(d(2));
@@ -139,6 +141,18 @@ TEST_CASE("visual odometry with pixel noise errs within its covariance (NEES ove
     INFO("residual " << name(residual) << ", 0.5 px: mean NEES " << nominal);
     CHECK(nominal > lo);
     CHECK(nominal < (residual == OdometryResidual::pixels ? hi : 1.25 * hi));
+}
+
+TEST_CASE("visual odometry refined on two views errs within its covariance (NEES over 200 scenes and draws)",
+          "[slam][odometry]") {
+    const int draws = 200;
+    const double lo = chi2_quantile(0.025, 3.0 * draws) / draws, hi = chi2_quantile(0.975, 3.0 * draws) / draws;
+    for (const double sigma : {0.02, hc::stereo::PixelNoise{}.sigma_px}) {
+        const double m = mean_odometry_nees(sigma, draws, OdometryResidual::pixels, true);
+        INFO("two-view, " << sigma << " px: mean NEES " << m << ", 95 % bounds [" << lo << ", " << hi << "]");
+        CHECK(m > lo);
+        CHECK(m < hi);
+    }
 }
 
 TEST_CASE("visual odometry fails cleanly without enough matches and keeps the sequence going", "[slam][odometry]") {
