@@ -89,6 +89,11 @@ struct TrajectoryMetrics {
     std::vector<double> nees;    ///< per frame, pose NEES (3 dof) against truth; NaN where P is singular
     double nees_mean = 0;        ///< mean over the frames with a defined NEES (NaN if none)
     int nees_frames = 0;         ///< frames with a defined NEES
+    /// 95 % bounds of the mean of nees_frames independent χ²(3) (χ²(0.025 / 0.975; 3 N) / N);
+    /// a trajectory's errors are correlated from frame to frame, so these are narrower than the
+    /// spread of one run's mean. 0 when no NEES is defined.
+    double nees_lo = 0, nees_hi = 0;
+    double nees_within_95 = 0;   ///< fraction of those frames whose NEES is ≤ χ²(0.95; 3) = 7.81
     double ape_percent() const { return path_length > 0 ? 100 * ape / path_length : 0; }
 };
 /// The metrics of `estimate` against `truth` (same length ≥ 1); `cov` (empty or one per pose)
@@ -215,6 +220,9 @@ struct SequenceRun {
     /// Visual odometry on pixels with the disparity correction estimated: the correction each
     /// frame was given (px, VisualOdometry::disparity_offset); empty otherwise.
     std::vector<double> disparity_offset;
+    /// Visual odometry with noise_from_residuals: the factor every frame's covariance was scaled
+    /// by (VisualOdometry::noise_scale); 1 otherwise.
+    double noise_scale = 1;
 };
 /// The filter over frames with the given motions (motions.size() == frames.size() − 1),
 /// started at `start`, then scored against `truth` (one pose per frame; used only after the

@@ -72,6 +72,14 @@ TrajectoryMetrics score_trajectory(const std::vector<Pose>& estimate, const std:
         }
     }
     m.nees_mean = m.nees_frames ? sum / m.nees_frames : std::numeric_limits<double>::quiet_NaN();
+    if (m.nees_frames) {
+        const double dof = 3.0 * m.nees_frames, point = chi2_quantile(0.95, 3);
+        m.nees_lo = chi2_quantile(0.025, dof) / m.nees_frames;
+        m.nees_hi = chi2_quantile(0.975, dof) / m.nees_frames;
+        int within = 0;
+        for (double e : m.nees) within += std::isfinite(e) && e <= point;
+        m.nees_within_95 = static_cast<double>(within) / m.nees_frames;
+    }
     return m;
 }
 

@@ -26,6 +26,8 @@ void VisualOdometryConfig::validate() const {
         throw InputError("the odometry's failure standard deviations must be positive");
     if (!(disparity_offset_significance >= 0))
         throw InputError("the odometry's disparity-correction significance must not be negative");
+    if (!(noise_tolerance > 0)) throw InputError("the odometry's noise tolerance must be positive");
+    if (noise_rounds < 0) throw InputError("the odometry's noise rounds must not be negative");
     if (residual == OdometryResidual::pixels) {
         if (!rig) throw InputError("visual odometry on pixel residuals needs the rig the frames were triangulated through");
         rig->validate();
@@ -160,6 +162,8 @@ struct Solved {
     Mat3 rotation = Mat3::Identity();                           // pixels: the 6-DoF motion and the
     Vec3 translation = Vec3::Zero();                            // covariance of (ω, δt)
     Eigen::Matrix<double, 6, 6> cov6 = Eigen::Matrix<double, 6, 6>::Zero();
+    double residual_chi2 = 0;   // Σ of the inliers' squared Mahalanobis residuals at the estimate
+    int residual_dof = 0;       // residuals minus parameters
 };
 
 /// A hypothesis's support: the matches within `gate` of it (`distance2(m)`, a Mahalanobis
@@ -228,6 +232,9 @@ Solved top_view_motion(const std::vector<Match>& matches, const VisualOdometryCo
     }
     out.u = u;
     out.cov = H.inverse();
+    const Mat2 R = rotation(u(2));
+    for (const Match* m : out.inliers) out.residual_chi2 += residual2(*m, R, u.head<2>());
+    out.residual_dof = 2 * static_cast<int>(out.inliers.size()) - 3;
     out.ok = true;
     return out;
 }
@@ -379,6 +386,68 @@ Rigid pixel_hypothesis(const std::vector<Match>& matches, const VisualOdometryCo
     return best_T;
 }
 
+Mat3 skew(const Vec3& w) {
+    Mat3 K;
+    K << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+    return K;
+}
+
+/// Two-view refinement of the motion T (its rotation and translation; c kept) on the inliers
+/// `in`: each inlier's point X (in the current camera) is estimated with the motion from its
+/// pixels in both frames, (u_l, v, u_r) − (0, 0, c) against π(X) in the current camera and
+/// π(R X + t) in the previous one, each under that frame's own pixel covariance; the points
+/// are eliminated by their Schur complement (Gauss-Newton, at most 10 iterations). Returns the
+/// covariance of (ω, δt), the Schur complement's inverse; `chi2` the residuals' squared
+/// Mahalanobis sum at the end (6 residuals, 3 point parameters each: 3n − 6 dof).
+Eigen::Matrix<double, 6, 6> refine_two_view(const std::vector<const Match*>& in, const stereo::RectifiedRig& g,
+                                            Rigid& T, double& chi2) {
+    using Mat6 = Eigen::Matrix<double, 6, 6>;
+    using Mat63 = Eigen::Matrix<double, 6, 3>;
+    using Vec6 = Eigen::Matrix<double, 6, 1>;
+    const Vec3 corr(0, 0, T.c);
+    std::vector<Vec3> X;
+    std::vector<Mat3> Wc, Wp;
+    for (const Match* m : in) {
+        X.push_back(T.c == 0 ? m->c->X : rig_point(g, m->c->m - corr));
+        Wc.push_back(m->c->M.inverse());
+        Wp.push_back(m->p->M.inverse());
+    }
+    Mat6 S = Mat6::Identity();
+    for (int it = 0; it < 10; ++it) {
+        S.setZero();
+        Vec6 b = Vec6::Zero();
+        std::vector<Mat63> HTX(in.size());
+        std::vector<Mat3> HXXi(in.size());
+        std::vector<Vec3> bX(in.size());
+        chi2 = 0;
+        for (size_t i = 0; i < in.size(); ++i) {
+            Mat3 Jc, Jp;
+            const Vec3 Y = T.R * X[i] + T.t;
+            const Vec3 rc = (in[i]->c->m - corr) - rig_pixels(g, X[i], &Jc);
+            const Vec3 rp = (in[i]->p->m - corr) - rig_pixels(g, Y, &Jp);
+            chi2 += rc.dot(Wc[i] * rc) + rp.dot(Wp[i] * rp);
+            Eigen::Matrix<double, 3, 6> JT;   // ∂π(Y)/∂(ω, δt), R·Exp(ω): ∂Y/∂ω = −R [X]×
+            JT.leftCols<3>() = -Jp * T.R * skew(X[i]);
+            JT.rightCols<3>() = Jp;
+            const Mat3 JXp = Jp * T.R;
+            S += JT.transpose() * Wp[i] * JT;
+            b += JT.transpose() * Wp[i] * rp;
+            HTX[i] = JT.transpose() * Wp[i] * JXp;
+            HXXi[i] = (Jc.transpose() * Wc[i] * Jc + JXp.transpose() * Wp[i] * JXp).inverse();
+            bX[i] = Jc.transpose() * Wc[i] * rc + JXp.transpose() * Wp[i] * rp;
+            S -= HTX[i] * HXXi[i] * HTX[i].transpose();
+            b -= HTX[i] * HXXi[i] * bX[i];
+        }
+        const Vec6 d = S.ldlt().solve(b);
+        Vec7 d7 = Vec7::Zero();
+        d7.head<6>() = d;
+        T = perturbed(T, d7);
+        for (size_t i = 0; i < in.size(); ++i) X[i] += HXXi[i] * (bX[i] - HTX[i].transpose() * d);
+        if (d.norm() < 1e-10) break;
+    }
+    return S.inverse();
+}
+
 Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfig& cfg, const DisparityPrior& prior) {
     Solved out;
     if (matches.size() < 3) return out;
@@ -399,10 +468,16 @@ Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfi
         if (same) break;
     }
     // the top view of T in the previous camera's frame, and its covariance
+    if (cfg.two_view_points) {
+        out.cov6 = refine_two_view(out.inliers, g, T, out.residual_chi2);
+    } else {
+        out.cov6 = H.inverse().topLeftCorner<6, 6>();
+        for (const Match* m : out.inliers) out.residual_chi2 += pixel_distance2(*m, T, g);
+    }
     out.rotation = T.R;
     out.translation = T.t;
-    out.cov6 = H.inverse().topLeftCorner<6, 6>();
     out.u = levelled_motion(Mat3::Identity(), T.R, T.t, out.cov6, &out.cov);
+    out.residual_dof = 3 * static_cast<int>(out.inliers.size()) - 6;
     if (cfg.estimate_disparity_offset) {   // the correction's estimate with this step's inliers
         Rigid T7 = T;
         const Mat7 H7 = refine_pixels(out.inliers, g, T7, true, prior);
@@ -472,6 +547,8 @@ MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& c
     est.rotation = s.rotation;
     est.translation = s.translation;
     est.cov6 = s.cov6;
+    est.residual_chi2 = s.residual_chi2;
+    est.residual_dof = s.residual_dof;
     est.ok = true;
     for (const Match* m : s.inliers) est.matches.emplace_back(m->p->index, m->c->index);
     return est;
@@ -531,14 +608,59 @@ StereoFrame with_disparity_offset(const StereoFrame& frame, const stereo::Rectif
     return out;
 }
 
-SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const std::vector<Pose>& truth,
+double residual_variance_factor(const VisualOdometry& vo, const VisualOdometryConfig& cfg) {
+    double chi2 = 0;
+    long dof = 0;
+    for (const MotionEstimate& e : vo.estimates)
+        if (e.ok) chi2 += e.residual_chi2, dof += e.residual_dof;
+    if (dof <= 0) return 1;
+    const double d = cfg.residual == OdometryResidual::pixels ? 3 : 2, g = chi2_quantile(cfg.inlier_probability, d);
+    const double truncated = regularized_gamma_p(d / 2 + 1, g / 2) / regularized_gamma_p(d / 2, g / 2);
+    return chi2 / static_cast<double>(dof) / truncated;
+}
+
+StereoFrame with_noise_scaled(const StereoFrame& frame, double factor) {
+    if (!(factor > 0)) throw InputError("a noise scale must be positive, got " + std::to_string(factor));
+    StereoFrame out = frame;
+    for (StereoLandmarkObs& o : out) o.cov *= factor;
+    return out;
+}
+
+namespace {
+
+/// Visual odometry on `frames`, with noise_from_residuals on the frames scaled by the variance
+/// factor of its own residuals until it settles; `scaled` gets the frames it ran on (empty:
+/// `frames` themselves).
+VisualOdometry odometry_on_measured_noise(const std::vector<StereoFrame>& frames, const VisualOdometryConfig& cfg,
+                                          std::vector<StereoFrame>& scaled) {
+    VisualOdometry vo = visual_odometry(frames, cfg);
+    if (!cfg.noise_from_residuals) return vo;
+    double scale = 1;
+    for (int round = 0; round < cfg.noise_rounds; ++round) {
+        const double f = residual_variance_factor(vo, cfg);
+        if (std::abs(f - 1) <= cfg.noise_tolerance) break;
+        scale *= f;
+        scaled.clear();
+        for (const StereoFrame& fr : frames) scaled.push_back(with_noise_scaled(fr, scale));
+        vo = visual_odometry(scaled, cfg);
+    }
+    vo.noise_scale = scale;
+    return vo;
+}
+
+}  // namespace
+
+SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames_in, const std::vector<Pose>& truth,
                                 const VisualOdometryConfig& cfg, const AssociationConfig& association,
                                 VisualOdometry* odometry) {
-    if (frames.size() < 2) throw InputError("a sequence needs at least 2 frames, got " + std::to_string(frames.size()));
-    if (truth.size() != frames.size())
-        throw InputError("a sequence needs one pose per frame to score: " + std::to_string(frames.size()) +
+    if (frames_in.size() < 2)
+        throw InputError("a sequence needs at least 2 frames, got " + std::to_string(frames_in.size()));
+    if (truth.size() != frames_in.size())
+        throw InputError("a sequence needs one pose per frame to score: " + std::to_string(frames_in.size()) +
                          " frames, " + std::to_string(truth.size()) + " poses");
-    VisualOdometry vo = visual_odometry(frames, cfg);
+    std::vector<StereoFrame> scaled;
+    VisualOdometry vo = odometry_on_measured_noise(frames_in, cfg, scaled);
+    const std::vector<StereoFrame>& frames = scaled.empty() ? frames_in : scaled;
     const bool pixels = cfg.residual == OdometryResidual::pixels;
     const bool offset = pixels && cfg.estimate_disparity_offset, level = pixels && cfg.level;
     SequenceRun run;
@@ -555,6 +677,7 @@ SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const st
         run = run_filter(frames, vo.motions, vo.covariances, Pose::Zero(), association, truth);
     }
     if (offset) run.disparity_offset = vo.disparity_offset;
+    run.noise_scale = vo.noise_scale;
     if (odometry) *odometry = std::move(vo);
     return run;
 }

@@ -44,6 +44,20 @@ struct VisualOdometryConfig {
     /// camera (VisualOdometry::tilt), so that a camera that pitches and rolls relative to the
     /// first one still moves and sees in one plane; false: in each camera's own frame.
     bool level = true;
+    /// Pixels only: the final motion is refined jointly with every inlier's point, estimated
+    /// from its pixels in both frames, each frame's pixels under their own covariance (a
+    /// two-view bundle adjustment; the points eliminated by their Schur complement); false: the
+    /// previous frame's triangulated point is taken as given and its covariance carried into
+    /// the current frame's pixels (the residual RANSAC and the inlier gate use).
+    bool two_view_points = false;
+    /// Every frame's covariance is scaled by the variance factor of the run's own inlier
+    /// residuals (residual_variance_factor), re-estimated on the scaled frames until it is within
+    /// noise_tolerance of 1 (at most noise_rounds rounds): the pixel noise measured on the run
+    /// instead of the one the frames were triangulated with. Both the odometry and the filter
+    /// see the scaled frames (run_visual_sequence).
+    bool noise_from_residuals = false;
+    double noise_tolerance = 0.01;
+    int noise_rounds = 10;
     double max_hamming_fraction = 0.25;   ///< temporal matches: Hamming ≤ this fraction of the bits
     double min_range = 1.0, max_range = 60.0;   ///< m: top-view range of the points used
     int ransac_iterations = 300;
@@ -66,6 +80,11 @@ struct MotionEstimate {
     /// With estimate_disparity_offset: the disparity correction c (px) estimated with u, and
     /// its standard deviation; 0 and 0 without.
     double disparity_offset = 0, disparity_offset_sigma = 0;
+    /// The inliers' squared Mahalanobis residuals at the estimate, summed, under the frames'
+    /// own covariances, and their degrees of freedom (residuals minus the motion's parameters:
+    /// 3n − 6 on pixels, 2n − 3 on the top view).
+    double residual_chi2 = 0;
+    int residual_dof = 0;
     std::vector<std::pair<int, int>> matches;   ///< inliers: (index in previous, index in current)
     /// Pixels: the 6-DoF motion, X_prev = rotation · X_cur + translation, and the covariance of
     /// its perturbation (ω, δt) (rotation · Exp(ω), translation + δt); u is its top view in the
@@ -121,8 +140,19 @@ struct VisualOdometry {
     /// Per frame, the camera's tilt (tilt_of) after the 6-DoF steps so far: identity for frame 0,
     /// on the top view and without levelling; a failed step keeps the tilt before it.
     std::vector<Mat3> tilt;
+    /// With noise_from_residuals: the factor every frame's covariance was scaled by (the pixel
+    /// noise's variance relative to the frames' own); 1 without.
+    double noise_scale = 1;
 };
 VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const VisualOdometryConfig& config = {});
+
+/// The variance factor of the odometry's residuals: the inliers' squared Mahalanobis residuals
+/// summed over the steps that succeeded, over their degrees of freedom, divided by what one
+/// residual of dimension d (3 on pixels, 2 on the top view) averages per dimension when it is
+/// χ²(d) truncated at the inlier gate g: F_{d+2}(g) / F_d(g). 1 when no step succeeded.
+double residual_variance_factor(const VisualOdometry& vo, const VisualOdometryConfig& config);
+/// `frame` with every point's covariance multiplied by `factor` (> 0).
+StereoFrame with_noise_scaled(const StereoFrame& frame, double factor);
 
 /// `frame` with every disparity made `c` px larger: each point re-triangulated through `rig` at
 /// (u_l, v, u_r − c), its covariance carried by the Jacobian of that map. Points whose

@@ -314,7 +314,8 @@ nlohmann::json metrics_json(const TrajectoryMetrics& m) {
     return {{"ape_m", m.ape},          {"ape_se2_m", m.ape_se2},   {"ape_percent_of_path", m.ape_percent()},
             {"rpe_m", m.rpe},          {"rpe_heading_rad", m.rpe_heading}, {"final_error_m", m.final_error},
             {"nees_mean", m.nees_frames ? nlohmann::json(m.nees_mean) : nlohmann::json(nullptr)},
-            {"nees_frames", m.nees_frames}};
+            {"nees_frames", m.nees_frames}, {"nees_bounds_95", {m.nees_lo, m.nees_hi}},
+            {"nees_frames_within_chi2_95", m.nees_within_95}};
 }
 
 void save_sequence_states(const fs::path& dir, const SequenceRun& r) {
@@ -367,6 +368,7 @@ void save_sequence_summary(const fs::path& dir, const SequenceRun& r, const Sequ
         j["disparity_correction_px"] = {{"final", r.disparity_offset.back()},
                                         {"min", *std::min_element(r.disparity_offset.begin(), r.disparity_offset.end())},
                                         {"max", *std::max_element(r.disparity_offset.begin(), r.disparity_offset.end())}};
+    j["pixel_noise_variance_factor"] = r.noise_scale;
     save(dir / "summary.json", j.dump(2) + "\n");
 }
 
@@ -393,12 +395,22 @@ bool plot_map_size(const fs::path& dir, const SequenceRun& r, const std::string&
         "plot $ms u 1:2 w l lw 2 t 'map size', $ms u 1:3 w l t 'matched', $ms u 1:4 w l t 'added'\n");
 }
 
+// A mean pose NEES with the 95 % bounds of a mean over its frames and the share of frames under
+// χ²(0.95; 3): "mean [lo, hi], p % ≤ 7.81"; "-" when no NEES is defined.
+std::string nees_cell(const TrajectoryMetrics& m) {
+    if (!m.nees_frames) return "-";
+    std::ostringstream o;
+    o << std::setprecision(4) << m.nees_mean << " [" << std::setprecision(3) << m.nees_lo << ", " << m.nees_hi << "], "
+      << std::setprecision(3) << 100 * m.nees_within_95 << " % ≤ 7.81";
+    return o.str();
+}
+
 // One row of the report's metrics table.
 std::string metrics_row(const std::string& name, const TrajectoryMetrics& m) {
     std::ostringstream o;
     o << std::setprecision(4) << "| " << name << " | " << m.ape << " | " << m.ape_percent() << " | " << m.ape_se2
       << " | " << m.rpe << " | " << m.rpe_heading * 180 / std::numbers::pi << " | " << m.final_error << " | "
-      << (m.nees_frames ? num(m.nees_mean) : std::string("-")) << " |\n";
+      << nees_cell(m) << " |\n";
     return o.str();
 }
 
@@ -412,7 +424,7 @@ std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, con
        << "Ground truth is used only to score: the trajectories below were computed without it, then compared "
           "with it (evo's APE and RPE on the top view, pose NEES with 3 dof).\n\n"
        << "| trajectory | APE (m) | APE % of path | APE SE(2)-aligned (m) | RPE per frame (m) | RPE heading (°) | "
-          "final error (m) | mean pose NEES |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
+          "final error (m) | mean pose NEES [95 % bounds of the mean], frames ≤ χ²(0.95; 3) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
        << metrics_row("EKF-SLAM", r.slam_metrics) << metrics_row(odometry_label, r.odometry_metrics) << "\n"
        << r.truth.size() << " frames, path length " << r.slam_metrics.path_length << " m; " << t.observed
        << " observations, " << t.matched << " associated; map size final " << r.frames.back().map_size << ", peak "
@@ -456,8 +468,9 @@ std::string sequences_markdown(const std::vector<std::pair<std::string, Sequence
                                const std::string& odometry_label) {
     std::ostringstream md;
     md << std::setprecision(4)
-       << "| sequence | frames | path (m) | APE EKF-SLAM (m) | % of path | APE SE(2) (m) | RPE (m) | mean NEES | APE "
-       << odometry_label << " (m) | % of path | RPE (m) | mean NEES | matched | wrong vs truth |\n"
+       << "| sequence | frames | path (m) | APE EKF-SLAM (m) | % of path | APE SE(2) (m) | RPE (m) | mean NEES [95 % "
+          "bounds], frames ≤ 7.81 | APE "
+       << odometry_label << " (m) | % of path | RPE (m) | mean NEES [95 % bounds], frames ≤ 7.81 | matched | wrong vs truth |\n"
        << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& [name, r] : runs) {
         const SequenceTotals t = totals(r);
@@ -465,8 +478,8 @@ std::string sequences_markdown(const std::vector<std::pair<std::string, Sequence
         const auto& o = r.odometry_metrics;
         md << "| " << name << " | " << r.truth.size() << " | " << s.path_length << " | " << s.ape << " | "
            << s.ape_percent() << " | " << s.ape_se2 << " | " << s.rpe << " | "
-           << (s.nees_frames ? num(s.nees_mean) : std::string("-")) << " | " << o.ape << " | " << o.ape_percent()
-           << " | " << o.rpe << " | " << (o.nees_frames ? num(o.nees_mean) : std::string("-")) << " | " << t.matched
+           << nees_cell(s) << " | " << o.ape << " | " << o.ape_percent()
+           << " | " << o.rpe << " | " << nees_cell(o) << " | " << t.matched
            << " | " << t.wrong << " of " << t.checked << " |\n";
     }
     return md.str();

@@ -100,6 +100,8 @@ KittiRunOptions kitti_options(const SlamCommand& o) {
     vc.residual = o.vo_residual == "top-view" ? OdometryResidual::top_view : OdometryResidual::pixels;
     vc.estimate_disparity_offset = o.vo_disparity_offset;
     vc.level = o.vo_level;
+    vc.noise_from_residuals = o.vo_measured_noise;
+    vc.two_view_points = o.vo_two_view;
     SyntheticOdometry& so = k.synthetic;
     if (o.sigma_dx) so.sigma_dx = *o.sigma_dx;
     so.sigma_dy = o.sigma_dy;
@@ -132,7 +134,8 @@ std::string sequence_command(const SlamCommand& o, const KittiRunOptions& k, con
     const std::string odo_args = k.visual_odometry
         ? " --vo-hamming-fraction " + num(vc.max_hamming_fraction) + " --vo-min-inliers " + std::to_string(vc.min_inliers) +
               " --vo-max-range " + num(vc.max_range) + " --vo-residual " + o.vo_residual +
-              (o.vo_disparity_offset ? "" : " --no-vo-disparity-offset") + (o.vo_level ? "" : " --no-vo-level")
+              (o.vo_disparity_offset ? "" : " --no-vo-disparity-offset") + (o.vo_level ? "" : " --no-vo-level") +
+              (o.vo_two_view ? " --vo-two-view" : "") + (o.vo_measured_noise ? " --vo-measured-noise" : "")
         : " --sigma-dx " + num(so.sigma_dx) + " --sigma-dy " + num(so.sigma_dy) + " --sigma-dtheta " +
               num(so.sigma_dtheta / deg);
     const bool seeded = o.odometry == "synthetic" || o.landmarks_from == "synthetic";

@@ -40,6 +40,7 @@ struct SlamCommand {
     double sigma_dy = SyntheticOdometry{}.sigma_dy;
     bool descriptor = true, vo_disparity_offset = VisualOdometryConfig{}.estimate_disparity_offset;
     bool noise_at_prediction = AssociationConfig{}.noise_at_prediction, vo_level = VisualOdometryConfig{}.level;
+    bool vo_measured_noise = VisualOdometryConfig{}.noise_from_residuals, vo_two_view = VisualOdometryConfig{}.two_view_points;
     // --landmarks-from stereo: the landmark pipeline's options
     std::string corners = landmarks::detector_name(KittiRunOptions{}.pipeline.detector),
                 descriptor_name = landmarks::descriptor_name(KittiRunOptions{}.pipeline.descriptor), config;

@@ -64,6 +64,12 @@ void add_odometry_flags(CLI::App* cmd, slam::SlamCommand& o) {
     cmd->add_flag("!--no-vo-level", o.vo_level,
                   "visual odometry on pixels: motions and the filter's frames in each camera's own frame, not levelled "
                   "by the tilt of the 6-DoF steps");
+    cmd->add_flag("--vo-two-view", o.vo_two_view,
+                  "visual odometry on pixels: refine each motion jointly with its inliers' points, estimated from "
+                  "both frames' pixels (two-view bundle adjustment; off by default)");
+    cmd->add_flag("--vo-measured-noise", o.vo_measured_noise,
+                  "visual odometry: scale every frame's covariance by the variance factor of the run's own inlier "
+                  "residuals, for the odometry and the filter (off by default)");
 }
 
 /// The landmark source and data association flags of a KITTI run.

@@ -100,7 +100,9 @@ namespace {
 
 /// Mean NEES of the visual odometry's motion over `draws` scenes (5-30 m, a new scene and
 /// noise draw each) at pixel noise sigma_px.
-double mean_odometry_nees(double sigma_px, int draws, OdometryResidual residual) {
+double mean_odometry_nees(double sigma_px, int draws, OdometryResidual residual, bool two_view = false) {
+    VisualOdometryConfig c = odometry(residual);
+    c.two_view_points = two_view;
     const Pose a(0, 0, 0);
     const Motion u(1.0, 0.03, 0.01);
     std::mt19937_64 rng(11);
@@ -109,7 +111,7 @@ double mean_odometry_nees(double sigma_px, int draws, OdometryResidual residual)
         // a new scene each draw: one scene alone can sit 10 % off (scene 2: 3.40 over 1000 draws)
         const Scene s = make_scene(200, 100 + k);
         const MotionEstimate e =
-            estimate_motion(view(s, a, &rng, sigma_px), view(s, compose(a, u), &rng, sigma_px), odometry(residual));
+            estimate_motion(view(s, a, &rng, sigma_px), view(s, compose(a, u), &rng, sigma_px), c);
         REQUIRE(e.ok);
         Eigen::Vector3d d = e.u - u;
         d(2) = wrap_angle(d(2));
@@ -139,6 +141,18 @@ TEST_CASE("visual odometry with pixel noise errs within its covariance (NEES ove
     INFO("residual " << name(residual) << ", 0.5 px: mean NEES " << nominal);
     CHECK(nominal > lo);
     CHECK(nominal < (residual == OdometryResidual::pixels ? hi : 1.25 * hi));
+}
+
+TEST_CASE("visual odometry refined on two views errs within its covariance (NEES over 200 scenes and draws)",
+          "[slam][odometry]") {
+    const int draws = 200;
+    const double lo = chi2_quantile(0.025, 3.0 * draws) / draws, hi = chi2_quantile(0.975, 3.0 * draws) / draws;
+    for (const double sigma : {0.02, hc::stereo::PixelNoise{}.sigma_px}) {
+        const double m = mean_odometry_nees(sigma, draws, OdometryResidual::pixels, true);
+        INFO("two-view, " << sigma << " px: mean NEES " << m << ", 95 % bounds [" << lo << ", " << hi << "]");
+        CHECK(m > lo);
+        CHECK(m < hi);
+    }
 }
 
 TEST_CASE("visual odometry fails cleanly without enough matches and keeps the sequence going", "[slam][odometry]") {
@@ -416,4 +430,43 @@ TEST_CASE("JCBB resolves an ambiguity that individual gating with nearest neighb
     // the node limit: one node is the root only, nothing paired, marked incomplete
     const Association cut = associate_jcbb(ekf, obs, cand, 0.99, 1);
     CHECK_FALSE(cut.complete);
+}
+
+TEST_CASE("visual odometry's residual variance factor measures the pixel noise the frames' covariances assume",
+          "[slam][odometry]") {
+    // 11 frames 1 m apart of one scene (200 points, 5-30 m); their covariances say 0.5 px (the
+    // pixel-noise model's default), their pixels are drawn at 0.5 px or at 1 px
+    const Scene s = make_scene(200, 7);
+    std::vector<Pose> truth;
+    for (int k = 0; k <= 10; ++k) truth.emplace_back(k, 0, 0);
+    const auto frames_at = [&](double drawn_px) {
+        std::mt19937_64 rng(21);
+        std::vector<StereoFrame> frames;
+        for (const Pose& r : truth) {
+            StereoFrame f = view(s, r, &rng, drawn_px);
+            for (StereoLandmarkObs& o : f) o.cov *= 0.25 / (drawn_px * drawn_px);   // as triangulated at 0.5 px
+            frames.push_back(std::move(f));
+        }
+        return frames;
+    };
+    for (const bool two_view : {false, true}) {
+        VisualOdometryConfig c = odometry();
+        c.two_view_points = two_view;
+        const double honest = residual_variance_factor(visual_odometry(frames_at(0.5), c), c);
+        const double understated = residual_variance_factor(visual_odometry(frames_at(1.0), c), c);
+        // iterated on the run: the gate, set by the assumed noise, cuts the residuals less each round
+        c.noise_from_residuals = true;
+        const SequenceRun run = run_visual_sequence(frames_at(1.0), truth, c, AssociationConfig{});
+        INFO((two_view ? "two-view" : "one-view") << " residuals: variance factor " << honest << " at the assumed noise, "
+             << understated << " in one pass with the pixels drawn at twice it, " << run.noise_scale << " iterated");
+        CHECK(std::abs(honest - 1) < 0.1);
+        CHECK(understated > 1.5);
+        CHECK(std::abs(run.noise_scale - 4) < 0.4);
+        // the frames rescaled by it leave a factor of 1
+        std::vector<StereoFrame> rescaled;
+        for (const StereoFrame& f : frames_at(1.0)) rescaled.push_back(with_noise_scaled(f, run.noise_scale));
+        c.noise_from_residuals = false;
+        CHECK(std::abs(residual_variance_factor(visual_odometry(rescaled, c), c) - 1) < 0.1);
+    }
+    CHECK_THROWS_AS(with_noise_scaled({}, 0), InputError);
 }
