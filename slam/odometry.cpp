@@ -531,12 +531,29 @@ StereoFrame with_disparity_offset(const StereoFrame& frame, const stereo::Rectif
     return out;
 }
 
+SpatialTrack spatial_track(const VisualOdometry& vo) {
+    SpatialTrack s;
+    Mat3 M = Mat3::Identity();   // the camera's orientation and position in the first camera's frame
+    Vec3 p = Vec3::Zero();
+    s.tilt.push_back(M);
+    s.height.push_back(0);
+    for (const MotionEstimate& e : vo.estimates) {
+        if (e.ok) {
+            p += M * e.translation;
+            M = M * e.rotation;
+        }
+        s.tilt.push_back(tilt_of(M));
+        s.height.push_back(p.y());
+    }
+    return s;
+}
+
 SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const std::vector<Pose>& truth,
                                 const VisualOdometryConfig& cfg, const AssociationConfig& association,
                                 VisualOdometry* odometry) {
     if (frames.size() < 2) throw InputError("a sequence needs at least 2 frames, got " + std::to_string(frames.size()));
-    if (truth.size() != frames.size())
-        throw InputError("a sequence needs one pose per frame to score: " + std::to_string(frames.size()) +
+    if (truth.size() > frames.size())
+        throw InputError("a sequence needs at most one pose per frame to score: " + std::to_string(frames.size()) +
                          " frames, " + std::to_string(truth.size()) + " poses");
     VisualOdometry vo = visual_odometry(frames, cfg);
     const bool pixels = cfg.residual == OdometryResidual::pixels;
@@ -555,6 +572,12 @@ SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const st
         run = run_filter(frames, vo.motions, vo.covariances, Pose::Zero(), association, truth);
     }
     if (offset) run.disparity_offset = vo.disparity_offset;
+    if (pixels) {
+        const SpatialTrack s = spatial_track(vo);
+        run.estimate_3d = spatial_poses(run.estimate, s.tilt, s.height);
+        run.dead_reckoning_3d = spatial_poses(run.dead_reckoning, s.tilt, s.height);
+        run.spatial_from_odometry = true;
+    }
     if (odometry) *odometry = std::move(vo);
     return run;
 }
