@@ -181,7 +181,7 @@ std::string provenance(const SlamCommand& o, bool has_truth) {
 
 /// The title of a run's report.
 std::string run_title(const SlamCommand& o, const KittiRunOptions& k, const std::string& sequence) {
-    const std::string what = sequence.empty() ? "the rig's pairs (" + o.calib + ")" : "KITTI " + sequence;
+    const std::string what = sequence.empty() ? "the rig of " + o.calib : "KITTI " + sequence;   // no apostrophe: gnuplot quotes the plot titles
     return k.stereo_landmarks ? what + " (stereo landmarks: " + o.descriptor_name + " on " + o.corners + " corners, " +
                                     o.odometry + " odometry)"
                               : what + " (synthetic landmarks on the real trajectory, " + o.odometry + " odometry)";
