@@ -70,10 +70,30 @@ std::vector<Motion> noisy_odometry(const std::vector<Pose>& truth, const Synthet
 /// Dead reckoning: the poses that compose() integrates from `start` with `motions`.
 std::vector<Pose> dead_reckoning(const Pose& start, const std::vector<Motion>& motions);
 
-/// Trajectory files: KITTI (12 numbers a line) and TUM ("t tx ty tz qx qy qz qw"), in
-/// the KITTI camera frame (x right, y down, z forward), height 0.
+/// Trajectory files: KITTI (12 numbers a line) and TUM ("t tx ty tz qx qy qz qw", qw ≥ 0) of
+/// 6-DoF poses (camera 0 in the first camera's frame: x right, y down, z forward); a top-view
+/// trajectory as KITTI poses at height 0 (kitti_pose).
+std::string kitti_trajectory(const std::vector<Mat34>& poses);
+std::string tum_trajectory(const std::vector<Mat34>& poses, const std::vector<double>& timestamps);
 std::string kitti_trajectory(const std::vector<Pose>& poses);
-std::string tum_trajectory(const std::vector<Pose>& poses, const std::vector<double>& timestamps);
+/// Reads a trajectory file of ground-truth poses of camera 0 in the first camera's frame (KITTI's
+/// convention): KITTI (12 numbers a line, read_kitti_poses) or TUM ("t tx ty tz qx qy qz qw",
+/// lines starting with '#' skipped), told apart by the count of numbers on its first pose line.
+/// TUM poses are paired with frames in file order (their timestamps are not matched). Throws
+/// InputError naming the file and line when absent, malformed or empty.
+std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file);
+/// Reads timestamps, one number (s) a line (KITTI's times.txt). InputError naming the file and
+/// line when absent, malformed or empty.
+std::vector<double> read_timestamps(const std::filesystem::path& file);
+/// The 6-DoF poses of a top-view trajectory: rotation Y(θ)·tilt[k] (tilt_of's factors), position
+/// (−y, height[k], x) in the camera frame. `tilt` and `height` empty: level, height 0 (kitti_pose).
+/// Throws std::invalid_argument when a non-empty `tilt` or `height` is not one per pose.
+std::vector<Mat34> spatial_poses(const std::vector<Pose>& planar, const std::vector<Mat3>& tilt = {},
+                                 const std::vector<double>& height = {});
+/// 3-D absolute trajectory error: RMS distance between the positions (the 3×4 poses' last
+/// columns), poses paired by index, no alignment: what evo_ape computes on the two KITTI files by
+/// default. Throws std::invalid_argument on size mismatch.
+double absolute_trajectory_error_3d(const std::vector<Mat34>& estimate, const std::vector<Mat34>& truth);
 /// Absolute trajectory error: RMS planar position error, poses paired by index, no
 /// alignment (both start at the same pose). Throws std::invalid_argument on size mismatch.
 double absolute_trajectory_error(const std::vector<Pose>& estimate, const std::vector<Pose>& truth);
@@ -206,9 +226,23 @@ private:
 int hamming_distance(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
 
 /// A run on a sequence: the filter, and the same motions integrated alone (dead reckoning
-/// of the odometry: synthetic odometry, or visual odometry alone).
+/// of the odometry: synthetic odometry, or visual odometry alone). `truth` holds the true poses
+/// of the frames scored: one per frame, the first frames' only (the overlap of a shorter ground
+/// truth), or none (no ground truth: every metric and the wrong-association counts stay 0).
 struct SequenceRun {
     std::vector<Pose> truth, estimate, dead_reckoning;
+    /// 6-DoF poses: the estimate and the odometry alone (top view of the filter or the odometry,
+    /// height, roll and pitch of visual odometry's 6-DoF steps where it has them, else level at
+    /// height 0: spatial_poses), and the truth's own 3×4 poses (the frames scored).
+    std::vector<Mat34> estimate_3d, dead_reckoning_3d, truth_3d;
+    /// 3-D APE (absolute_trajectory_error_3d) of estimate_3d and dead_reckoning_3d against
+    /// truth_3d over its frames; 0 without it.
+    double ape_3d_slam = 0, ape_3d_dead_reckoning = 0;
+    /// true: estimate_3d's height, roll and pitch come from visual odometry's 6-DoF steps.
+    bool spatial_from_odometry = false;
+    /// TUM timestamps, one per frame (s), and where they come from (for the report).
+    std::vector<double> timestamps;
+    std::string timestamps_from;
     std::vector<Mat3> pose_cov;
     std::vector<FrameStats> frames;
     std::vector<Motion> odometry;
@@ -225,11 +259,18 @@ struct SequenceRun {
     double noise_scale = 1;
 };
 /// The filter over frames with the given motions (motions.size() == frames.size() − 1),
-/// started at `start`, then scored against `truth` (one pose per frame; used only after the
-/// run, for the metrics and the wrong-association counts). Throws InputError on size mismatch.
+/// started at `start`, then scored against `truth` (used only after the run, for the metrics
+/// and the wrong-association counts): one pose per frame, or fewer (the first truth.size()
+/// frames are scored), or none (not scored). estimate_3d and dead_reckoning_3d are level at
+/// height 0; truth_3d and the 3-D APE are score_spatial's. Throws InputError on a size mismatch
+/// of the motions or a truth longer than the frames.
 SequenceRun run_filter(const std::vector<StereoFrame>& frames, const std::vector<Motion>& motions,
                        const std::vector<Mat3>& motion_cov, const Pose& start, const AssociationConfig& association,
                        const std::vector<Pose>& truth);
+/// Sets run.truth_3d to the first run.truth.size() poses of `truth` (the frames run_filter
+/// scored) and the 3-D APE of estimate_3d and dead_reckoning_3d against them. Throws
+/// std::invalid_argument when `truth` has fewer poses than run.truth.
+void score_spatial(SequenceRun& run, const std::vector<Mat34>& truth);
 /// Synthetic odometry on a real trajectory: run_filter over frames[k] seen at ground-truth
 /// poses[k] (poses.size() == frames.size() ≥ 2) with noisy_odometry(truth, odometry, seed),
 /// started at the first true pose. Throws InputError on a size mismatch or fewer than 2 poses.

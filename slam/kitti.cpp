@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iomanip>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "slam/slam.hpp"
@@ -114,27 +115,129 @@ std::vector<Pose> dead_reckoning(const Pose& start, const std::vector<Motion>& m
 }
 
 std::string kitti_trajectory(const std::vector<Pose>& poses) {
+    std::vector<Mat34> T;
+    T.reserve(poses.size());
+    for (const auto& r : poses) T.push_back(kitti_pose(r));
+    return kitti_trajectory(T);
+}
+
+std::string kitti_trajectory(const std::vector<Mat34>& poses) {
     std::ostringstream o;
     o << std::setprecision(9);
-    for (const auto& r : poses) {
-        const Mat34 T = kitti_pose(r);
+    for (const auto& T : poses) {
         for (int i = 0; i < 12; ++i) o << (i ? " " : "") << T(i / 4, i % 4);
         o << '\n';
     }
     return o.str();
 }
 
-std::string tum_trajectory(const std::vector<Pose>& poses, const std::vector<double>& timestamps) {
+std::string tum_trajectory(const std::vector<Mat34>& poses, const std::vector<double>& timestamps) {
     if (timestamps.size() != poses.size()) throw std::invalid_argument("tum_trajectory: one timestamp per pose");
     std::ostringstream o;
     o << std::setprecision(9);
     for (size_t k = 0; k < poses.size(); ++k) {
-        const Pose& r = poses[k];
-        // rotation about y by −θ: q = (0, sin(−θ/2), 0, cos(−θ/2))
-        o << timestamps[k] << ' ' << -r(1) << ' ' << 0.0 << ' ' << r(0) << ' ' << 0.0 << ' ' << std::sin(-r(2) / 2)
-          << ' ' << 0.0 << ' ' << std::cos(-r(2) / 2) << '\n';
+        const Mat34& T = poses[k];
+        Eigen::Quaterniond q(Mat3(T.leftCols<3>()));
+        q.normalize();
+        if (q.w() < 0) q.coeffs() = -q.coeffs();
+        o << timestamps[k] << ' ' << T(0, 3) << ' ' << T(1, 3) << ' ' << T(2, 3) << ' ' << q.x() << ' ' << q.y() << ' '
+          << q.z() << ' ' << q.w() << '\n';
     }
     return o.str();
+}
+
+namespace {
+/// The numbers of a line, or nullopt at the first word that is not a finite number.
+std::optional<std::vector<double>> numbers_of(const std::string& line) {
+    std::istringstream ss(line);
+    std::vector<double> v;
+    std::string w;
+    while (ss >> w) {
+        char* end = nullptr;
+        const double x = std::strtod(w.c_str(), &end);
+        if (end != w.c_str() + w.size() || !std::isfinite(x)) return std::nullopt;
+        v.push_back(x);
+    }
+    return v;
+}
+}  // namespace
+
+std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file) {
+    std::ifstream f(file);
+    if (!f) throw InputError("cannot read the ground-truth file '" + file.string() + "'");
+    std::vector<Mat34> poses;
+    std::string line;
+    int lineno = 0;
+    size_t width = 0;   // 12: KITTI, 8: TUM
+    while (std::getline(f, line)) {
+        ++lineno;
+        const size_t first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '#') continue;
+        const auto v = numbers_of(line);
+        const std::string where = "'" + file.string() + "' line " + std::to_string(lineno);
+        if (!v) throw InputError(where + ": not a number");
+        if (width == 0) {
+            if (v->size() != 12 && v->size() != 8)
+                throw InputError(where + ": " + std::to_string(v->size()) +
+                                 " numbers, neither a KITTI pose (12) nor a TUM pose (8: t tx ty tz qx qy qz qw)");
+            width = v->size();
+        }
+        if (v->size() != width)
+            throw InputError(where + ": " + std::to_string(v->size()) + " numbers, the file's poses have " +
+                             std::to_string(width));
+        Mat34 T;
+        if (width == 12) {
+            for (int i = 0; i < 12; ++i) T(i / 4, i % 4) = (*v)[i];
+        } else {
+            const Eigen::Quaterniond q((*v)[7], (*v)[4], (*v)[5], (*v)[6]);
+            if (!(q.norm() > 0.5 && q.norm() < 2)) throw InputError(where + ": the quaternion is not of unit length");
+            T << q.normalized().toRotationMatrix(), Eigen::Vector3d((*v)[1], (*v)[2], (*v)[3]);
+        }
+        poses.push_back(T);
+    }
+    if (poses.empty()) throw InputError("the ground-truth file '" + file.string() + "' holds no pose");
+    return poses;
+}
+
+std::vector<double> read_timestamps(const std::filesystem::path& file) {
+    std::ifstream f(file);
+    if (!f) throw InputError("cannot read the timestamps file '" + file.string() + "'");
+    std::vector<double> t;
+    std::string line;
+    int lineno = 0;
+    while (std::getline(f, line)) {
+        ++lineno;
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        const auto v = numbers_of(line);
+        if (!v || v->size() != 1)
+            throw InputError("'" + file.string() + "' line " + std::to_string(lineno) + ": expected one number (s)");
+        t.push_back(v->front());
+    }
+    if (t.empty()) throw InputError("the timestamps file '" + file.string() + "' holds no timestamp");
+    return t;
+}
+
+std::vector<Mat34> spatial_poses(const std::vector<Pose>& planar, const std::vector<Mat3>& tilt,
+                                 const std::vector<double>& height) {
+    if ((!tilt.empty() && tilt.size() != planar.size()) || (!height.empty() && height.size() != planar.size()))
+        throw std::invalid_argument("spatial_poses: one tilt and one height per pose");
+    std::vector<Mat34> out;
+    out.reserve(planar.size());
+    for (size_t k = 0; k < planar.size(); ++k) {
+        Mat34 T = kitti_pose(planar[k]);
+        if (!tilt.empty()) T.leftCols<3>() = Mat3(T.leftCols<3>()) * tilt[k];
+        if (!height.empty()) T(1, 3) = height[k];
+        out.push_back(T);
+    }
+    return out;
+}
+
+double absolute_trajectory_error_3d(const std::vector<Mat34>& estimate, const std::vector<Mat34>& truth) {
+    if (estimate.size() != truth.size() || truth.empty())
+        throw std::invalid_argument("absolute_trajectory_error_3d: trajectories of different or zero length");
+    double s = 0;
+    for (size_t k = 0; k < truth.size(); ++k) s += (estimate[k].col(3) - truth[k].col(3)).squaredNorm();
+    return std::sqrt(s / static_cast<double>(truth.size()));
 }
 
 double absolute_trajectory_error(const std::vector<Pose>& estimate, const std::vector<Pose>& truth) {
@@ -340,14 +443,50 @@ std::pair<Vec2, Mat2> world_point(const StereoLandmarkObs& o, const Pose& truth)
 }
 }  // namespace
 
+namespace {
+/// Scores `run` against `truth` (its first truth.size() frames): the metrics of the estimate and
+/// of the odometry alone, and each match whose frame and landmark origin are both scored
+/// checked against the true poses. `matches`: per frame, (observation index, landmark id);
+/// `origins`: where each matched landmark was first observed.
+void score_run(SequenceRun& run, const std::vector<StereoFrame>& frames, const std::vector<Pose>& truth,
+               const std::vector<std::vector<std::pair<int, int>>>& matches,
+               const std::unordered_map<int, std::pair<int, int>>& origins) {
+    const size_t n = truth.size();
+    run.truth = truth;
+    if (n == 0) return;
+    const auto first = [n](const auto& v) { return std::vector(v.begin(), v.begin() + static_cast<long>(n)); };
+    run.slam_metrics = score_trajectory(first(run.estimate), truth, first(run.pose_cov));
+    std::vector<Mat3> dr_cov{Mat3::Zero()};
+    for (size_t k = 0; k + 1 < n; ++k) {
+        Mat3 R_r, R_u;
+        compose(run.dead_reckoning[k], run.odometry[k], &R_r, &R_u);
+        dr_cov.push_back(R_r * dr_cov.back() * R_r.transpose() + R_u * run.odometry_cov[k] * R_u.transpose());
+    }
+    run.odometry_metrics = score_trajectory(first(run.dead_reckoning), truth, dr_cov);
+    run.ate_slam = run.slam_metrics.ape;
+    run.ate_dead_reckoning = run.odometry_metrics.ape;
+    const double gate = chi2_quantile(0.999, 2);
+    for (size_t k = 0; k < n; ++k) {
+        for (const auto& [i, id] : matches[k]) {
+            const auto [f0, i0] = origins.at(id);
+            const auto [p, C] = world_point(frames[k][i], truth[k]);
+            const auto [p0, C0] = world_point(frames[f0][i0], truth[f0]);
+            const Vec2 e = p - p0;
+            ++run.frames[k].matched_checked;
+            run.frames[k].matched_wrong += e.dot((C + C0).ldlt().solve(e)) > gate;
+        }
+    }
+}
+}  // namespace
+
 SequenceRun run_filter(const std::vector<StereoFrame>& frames, const std::vector<Motion>& motions,
                        const std::vector<Mat3>& motion_cov, const Pose& start, const AssociationConfig& association,
                        const std::vector<Pose>& truth) {
     if (frames.size() < 2) throw InputError("a sequence needs at least 2 frames, got " + std::to_string(frames.size()));
     if (motions.size() + 1 != frames.size() || motion_cov.size() != motions.size())
         throw InputError("a sequence needs one motion and covariance between consecutive frames");
-    if (truth.size() != frames.size())
-        throw InputError("a sequence needs one landmark frame per pose: " + std::to_string(frames.size()) +
+    if (truth.size() > frames.size())
+        throw InputError("a sequence needs at most one landmark frame per pose: " + std::to_string(frames.size()) +
                          " frames, " + std::to_string(truth.size()) + " poses");
     SequenceRun run;
     run.odometry = motions;
@@ -370,30 +509,21 @@ SequenceRun run_filter(const std::vector<StereoFrame>& frames, const std::vector
         run.map.push_back(slam.filter().landmark(id));
         run.map_cov.push_back(slam.filter().landmark_covariance(id));
     }
+    run.estimate_3d = spatial_poses(run.estimate);
+    run.dead_reckoning_3d = spatial_poses(run.dead_reckoning);
     // scoring against the ground truth, after the run
-    run.truth = truth;
-    run.slam_metrics = score_trajectory(run.estimate, truth, run.pose_cov);
-    std::vector<Mat3> dr_cov{Mat3::Zero()};
-    for (size_t k = 0; k < motions.size(); ++k) {
-        Mat3 R_r, R_u;
-        compose(run.dead_reckoning[k], motions[k], &R_r, &R_u);
-        dr_cov.push_back(R_r * dr_cov.back() * R_r.transpose() + R_u * motion_cov[k] * R_u.transpose());
-    }
-    run.odometry_metrics = score_trajectory(run.dead_reckoning, truth, dr_cov);
-    run.ate_slam = run.slam_metrics.ape;
-    run.ate_dead_reckoning = run.odometry_metrics.ape;
-    const double gate = chi2_quantile(0.999, 2);
-    for (size_t k = 0; k < frames.size(); ++k) {
-        for (const auto& [i, id] : matches[k]) {
-            const auto [f0, i0] = origins.at(id);
-            const auto [p, C] = world_point(frames[k][i], truth[k]);
-            const auto [p0, C0] = world_point(frames[f0][i0], truth[f0]);
-            const Vec2 e = p - p0;
-            ++run.frames[k].matched_checked;
-            run.frames[k].matched_wrong += e.dot((C + C0).ldlt().solve(e)) > gate;
-        }
-    }
+    score_run(run, frames, truth, matches, origins);
     return run;
+}
+
+void score_spatial(SequenceRun& run, const std::vector<Mat34>& truth) {
+    const size_t n = run.truth.size();
+    if (truth.size() < n) throw std::invalid_argument("score_spatial: fewer poses than the frames scored");
+    run.truth_3d.assign(truth.begin(), truth.begin() + static_cast<long>(n));
+    if (n == 0) return;
+    const auto first = [n](const std::vector<Mat34>& v) { return std::vector(v.begin(), v.begin() + static_cast<long>(n)); };
+    run.ape_3d_slam = absolute_trajectory_error_3d(first(run.estimate_3d), run.truth_3d);
+    run.ape_3d_dead_reckoning = absolute_trajectory_error_3d(first(run.dead_reckoning_3d), run.truth_3d);
 }
 
 SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<StereoFrame>& frames,
@@ -406,7 +536,9 @@ SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<Ster
     std::vector<Pose> truth;
     for (const auto& T : poses) truth.push_back(planar_pose(T));
     const std::vector<Motion> u = noisy_odometry(truth, odometry, seed);
-    return run_filter(frames, u, std::vector<Mat3>(u.size(), odometry.covariance()), truth[0], association, truth);
+    SequenceRun run = run_filter(frames, u, std::vector<Mat3>(u.size(), odometry.covariance()), truth[0], association, truth);
+    score_spatial(run, poses);
+    return run;
 }
 
 stereo::RectifiedRig synthetic_rig() {

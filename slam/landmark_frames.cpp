@@ -3,6 +3,7 @@
 #include "slam/landmark_frames.hpp"
 
 #include <algorithm>
+#include <sstream>
 
 #include "io/frames/frames.hpp"
 
@@ -47,22 +48,37 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std
 
 namespace {
 
-/// The landmark pipeline on the sequence's first `poses` stereo pairs (fewer when it has fewer);
-/// `rig`, the rig of the first pair.
-std::vector<StereoFrame> stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, size_t poses,
-                                       const KittiRunOptions& o, stereo::RectifiedRig& rig) {
-    const landmarks::PipelineOptions& po = o.pipeline;
+/// A file's name in quotes, for messages.
+std::string quoted(const std::filesystem::path& p) {
+    std::string s = "'";
+    s += p.string();
+    s += '\'';
+    return s;
+}
+
+/// InputError unless the pipeline's options are valid and its descriptor binary.
+void check_pipeline(const landmarks::PipelineOptions& po) {
     landmarks::validate(po.grid);
     landmarks::check_combination(po.descriptor, po.detector, landmarks::Norm::automatic);
     if (landmarks::make_descriptor(po.descriptor, po.grid)->descriptorType() != CV_8U)
         throw InputError("--descriptor " + landmarks::descriptor_name(po.descriptor) +
                          " is not binary: visual odometry and the association compare Hamming distances");
-    const int pairs = std::min(static_cast<int>(poses), frames::open_kitti(kitti, sequence).pairs());
-    if (pairs < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
+}
+
+void report_landmarks(const KittiRunOptions& o, int pairs, const std::string& of) {
+    const landmarks::PipelineOptions& po = o.pipeline;
     if (o.progress)
-        o.progress("landmarks of " + std::to_string(pairs) + " stereo pairs of " + sequence + " (" +
+        o.progress("landmarks of " + std::to_string(pairs) + " stereo pairs of " + of + " (" +
                    landmarks::detector_name(po.detector) + " corners, " + landmarks::descriptor_name(po.descriptor) +
                    " descriptor)");
+}
+
+/// The landmark pipeline on the sequence's first `pairs` stereo pairs; `rig`, the rig of the
+/// first pair.
+std::vector<StereoFrame> stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, int pairs,
+                                       const KittiRunOptions& o, stereo::RectifiedRig& rig) {
+    const landmarks::PipelineOptions& po = o.pipeline;
+    report_landmarks(o, pairs, sequence);
     // The co-processor's sources stream the sequence as one (each frame's threshold comes from
     // the frame before), so they take it whole; the others detect image by image, and take
     // it kPairsAtOnce pairs at a time, so that the images held do not grow with its length.
@@ -78,31 +94,119 @@ std::vector<StereoFrame> stereo_frames(const std::filesystem::path& kitti, const
     return frames;
 }
 
-}  // namespace
+/// The ground truth a run scores with, for `frames` frames: `truth` itself when it has one
+/// pose per frame or none; with o.score_overlap, its first `frames` poses when longer (a
+/// shorter one is scored on its own length); else InputError naming both counts.
+std::vector<Mat34> reconcile_truth(std::vector<Mat34> truth, size_t frames, const std::string& truth_name,
+                                   const KittiRunOptions& o) {
+    if (truth.empty() || truth.size() == frames) return truth;
+    if (!o.score_overlap)
+        throw InputError("the ground truth " + truth_name + " has " + std::to_string(truth.size()) + " poses for " +
+                         std::to_string(frames) + " stereo pairs; give --score-overlap to score the first " +
+                         std::to_string(std::min(truth.size(), frames)) + " frames only");
+    if (truth.size() > frames) truth.resize(frames);
+    return truth;
+}
 
-KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::string& sequence, const KittiRunOptions& o) {
-    auto poses = read_kitti_poses(frames::kitti_poses_file(kitti, sequence));
-    if (poses.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
+/// Validates the options that do not depend on the frames; the rig of visual odometry on
+/// pixel residuals starts as synthetic_rig() (the synthetic landmarks' rig).
+VisualOdometryConfig checked_options(const KittiRunOptions& o) {
     o.association.validate();
-    // the frames' rig, for visual odometry on pixel residuals: synthetic_rig() for synthetic
-    // landmarks, the first pair's rig for the pipeline's (set by stereo_frames)
     VisualOdometryConfig vo = o.vo;
     vo.rig = synthetic_rig();
     vo.validate();
     if (!o.visual_odometry) o.synthetic.validate();
-    std::vector<StereoFrame> frames;
-    if (o.stereo_landmarks) {
-        frames = stereo_frames(kitti, sequence, poses.size(), o, *vo.rig);
-        poses.resize(frames.size());
-    } else {
-        if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
-        frames = synthesize_stereo_frames(poses, *vo.rig, {}, o.synthetic_count, o.flip_bits, o.seed);
-    }
-    std::vector<Pose> truth;
-    for (const auto& T : poses) truth.push_back(planar_pose(T));
+    if (o.stereo_landmarks) check_pipeline(o.pipeline);
+    if (!(o.frame_period > 0)) throw InputError("--frame-period must be positive");
+    return vo;
+}
+
+/// The filter over `frames` with the odometry of `o`, scored against `truth` (none, one per
+/// frame, or the first frames').
+KittiRun run_frames(const std::vector<StereoFrame>& frames, const std::vector<Mat34>& truth,
+                    const VisualOdometryConfig& vo, const KittiRunOptions& o) {
     KittiRun r;
-    r.run = o.visual_odometry ? run_visual_sequence(frames, truth, vo, o.association, &r.vo)
-                              : run_sequence(poses, frames, o.synthetic, o.association, o.seed);
+    if (o.visual_odometry) {
+        std::vector<Pose> planar;
+        for (const auto& T : truth) planar.push_back(planar_pose(T));
+        r.run = run_visual_sequence(frames, planar, vo, o.association, &r.vo);
+        score_spatial(r.run, truth);
+    } else {
+        if (truth.size() != frames.size())
+            throw InputError("--odometry synthetic is made from the ground truth: it needs one true pose per frame, "
+                             "got " + std::to_string(truth.size()) + " poses for " + std::to_string(frames.size()) +
+                             " frames");
+        r.run = run_sequence(truth, frames, o.synthetic, o.association, o.seed);
+    }
+    return r;
+}
+
+void set_timestamps(SequenceRun& run, const std::filesystem::path& times, const KittiRunOptions& o) {
+    const size_t n = run.estimate.size();
+    if (!times.empty() && std::filesystem::exists(times)) {
+        std::vector<double> t = read_timestamps(times);
+        if (t.size() < n)
+            throw InputError(quoted(times) + " has " + std::to_string(t.size()) + " timestamps for " +
+                             std::to_string(n) + " frames");
+        t.resize(n);
+        run.timestamps = std::move(t);
+        run.timestamps_from = "the sequence's times.txt";
+        return;
+    }
+    for (size_t k = 0; k < n; ++k) run.timestamps.push_back(static_cast<double>(k) * o.frame_period);
+    std::ostringstream period;
+    period << o.frame_period;
+    run.timestamps_from = "frame index × " + period.str() + " s (no times.txt)";
+}
+
+}  // namespace
+
+KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::string& sequence, const KittiRunOptions& o) {
+    const std::filesystem::path poses_file = frames::kitti_poses_file(kitti, sequence);
+    const bool own_truth = o.truth.empty() && std::filesystem::exists(poses_file);
+    std::vector<Mat34> truth = !o.truth.empty() ? read_trajectory_file(o.truth)
+                               : own_truth      ? read_kitti_poses(poses_file)
+                                                : std::vector<Mat34>{};
+    const std::string truth_name = quoted(own_truth ? poses_file : o.truth);
+    VisualOdometryConfig vo = checked_options(o);
+    std::vector<StereoFrame> frames;
+    const frames::KittiSequence seq = o.stereo_landmarks ? frames::open_kitti(kitti, sequence) : frames::KittiSequence{};
+    if (o.stereo_landmarks) {
+        const int pairs = seq.pairs();
+        if (pairs < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
+        truth = reconcile_truth(std::move(truth), static_cast<size_t>(pairs), truth_name, o);
+        frames = stereo_frames(kitti, sequence, pairs, o, *vo.rig);
+    } else {
+        if (truth.empty())
+            throw InputError("--landmarks-from synthetic lays its points along the ground truth: sequence " + sequence +
+                             " has no " + poses_file.string() + "; give --truth FILE");
+        if (truth.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
+        if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
+        frames = synthesize_stereo_frames(truth, *vo.rig, {}, o.synthetic_count, o.flip_bits, o.seed);
+    }
+    KittiRun r = run_frames(frames, truth, vo, o);
+    set_timestamps(r.run, frames::kitti_sequence_dir(kitti, sequence) / "times.txt", o);
+    return r;
+}
+
+KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o) {
+    if (!o.stereo_landmarks)
+        throw InputError("--landmarks-from synthetic makes its own frames: leave out --left, --right and --calib");
+    if (rig.calib.empty()) throw InputError("--left and --right are the images of a rig: give its --calib");
+    std::vector<Mat34> truth = o.truth.empty() ? std::vector<Mat34>{} : read_trajectory_file(o.truth);
+    VisualOdometryConfig vo = checked_options(o);
+    landmarks::DatasetChoice c;
+    c.calib = rig.calib;
+    c.left = rig.left;
+    c.right = rig.right;
+    std::filesystem::path root;
+    const landmarks::Dataset ds = landmarks::open_dataset(c, root);
+    if (ds.pairs.size() < 2) throw InputError("the rig's --left/--right give fewer than 2 stereo pairs");
+    truth = reconcile_truth(std::move(truth), ds.pairs.size(), quoted(o.truth), o);
+    report_landmarks(o, static_cast<int>(ds.pairs.size()), "the rig");
+    vo.rig = ds.calib.front();
+    KittiRun r = run_frames(landmark_frames(ds, o.pipeline), truth, vo, o);
+    set_timestamps(r.run, {}, o);
     return r;
 }
 

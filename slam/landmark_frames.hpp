@@ -44,17 +44,41 @@ struct KittiRunOptions {
     SyntheticOdometry synthetic;
     AssociationConfig association;
     std::uint64_t seed = 1;                ///< synthetic landmarks and synthetic odometry
+    /// Ground truth: a KITTI or TUM trajectory file (read_trajectory_file); empty: a KITTI-layout
+    /// sequence's poses/NN.txt when present, else none (the run is not scored).
+    std::filesystem::path truth;
+    /// A ground truth with another number of poses than frames: score the frames both cover
+    /// (true), or refuse it (false: InputError naming both counts).
+    bool score_overlap = false;
+    /// TUM timestamps where the sequence has no times.txt (and on a rig): frame index × this (s).
+    double frame_period = 0.1;
     std::function<void(const std::string&)> progress;   ///< one line per step (may be empty)
 };
 struct KittiRun {
     SequenceRun run;
     VisualOdometry vo;   ///< with visual_odometry: the motions and how many estimates failed
 };
-/// Reads the sequence's ground-truth poses (frames::kitti_poses_file; read only to score, and
-/// for the synthetic odometry and landmarks, which are made from them), makes its frames and
-/// runs the filter. A sequence with fewer stereo pairs than poses is cut to its pairs.
-/// InputError (slam's or landmarks') for fewer than 2 poses or pairs, a descriptor that is not
-/// binary, or options out of range.
+/// Reads the ground truth (o.truth, else frames::kitti_poses_file when present; read only to
+/// score, and for the synthetic odometry and landmarks, which are made from it), makes the
+/// sequence's frames (its stereo pairs, or synthetic landmarks: one frame per true pose) and
+/// runs the filter; TUM timestamps from the sequence's times.txt when present, else frame index
+/// × o.frame_period. InputError (slam's or landmarks') for fewer than 2 pairs, a ground truth
+/// with another number of poses than stereo pairs (both counts named) unless o.score_overlap,
+/// synthetic landmarks or odometry without a true pose per frame, a times.txt shorter than the
+/// frames, a descriptor that is not binary, or options out of range.
 KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::string& sequence, const KittiRunOptions& o);
+
+/// A user's rig: unrectified stereo pairs (files, glob patterns or folders, expanded by
+/// frames::expand_image_list) and the calibration `harris-cosim calibrate` wrote (or a KITTI-style
+/// calib.txt: pairs already rectified); keypoints rectified as `landmarks --calib` does
+/// (landmarks::open_dataset).
+struct RigPairs {
+    std::string calib;
+    std::vector<std::string> left, right;
+};
+/// run_kitti_sequence on a rig's pairs with the landmark pipeline (o.stereo_landmarks must be
+/// set): ground truth from o.truth only, timestamps frame index × o.frame_period. InputError as
+/// run_kitti_sequence's, and landmarks::open_dataset's for the rig.
+KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o);
 
 }  // namespace hc::slam

@@ -650,13 +650,30 @@ VisualOdometry odometry_on_measured_noise(const std::vector<StereoFrame>& frames
 
 }  // namespace
 
+SpatialTrack spatial_track(const VisualOdometry& vo) {
+    SpatialTrack s;
+    Mat3 M = Mat3::Identity();   // the camera's orientation and position in the first camera's frame
+    Vec3 p = Vec3::Zero();
+    s.tilt.push_back(M);
+    s.height.push_back(0);
+    for (const MotionEstimate& e : vo.estimates) {
+        if (e.ok) {
+            p += M * e.translation;
+            M = M * e.rotation;
+        }
+        s.tilt.push_back(tilt_of(M));
+        s.height.push_back(p.y());
+    }
+    return s;
+}
+
 SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames_in, const std::vector<Pose>& truth,
                                 const VisualOdometryConfig& cfg, const AssociationConfig& association,
                                 VisualOdometry* odometry) {
     if (frames_in.size() < 2)
         throw InputError("a sequence needs at least 2 frames, got " + std::to_string(frames_in.size()));
-    if (truth.size() != frames_in.size())
-        throw InputError("a sequence needs one pose per frame to score: " + std::to_string(frames_in.size()) +
+    if (truth.size() > frames_in.size())
+        throw InputError("a sequence needs at most one pose per frame to score: " + std::to_string(frames_in.size()) +
                          " frames, " + std::to_string(truth.size()) + " poses");
     std::vector<StereoFrame> scaled;
     VisualOdometry vo = odometry_on_measured_noise(frames_in, cfg, scaled);
@@ -678,6 +695,12 @@ SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames_in, const
     }
     if (offset) run.disparity_offset = vo.disparity_offset;
     run.noise_scale = vo.noise_scale;
+    if (pixels) {
+        const SpatialTrack s = spatial_track(vo);
+        run.estimate_3d = spatial_poses(run.estimate, s.tilt, s.height);
+        run.dead_reckoning_3d = spatial_poses(run.dead_reckoning, s.tilt, s.height);
+        run.spatial_from_odometry = true;
+    }
     if (odometry) *odometry = std::move(vo);
     return run;
 }

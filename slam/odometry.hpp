@@ -153,6 +153,15 @@ VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const Vis
 double residual_variance_factor(const VisualOdometry& vo, const VisualOdometryConfig& config);
 /// `frame` with every point's covariance multiplied by `factor` (> 0).
 StereoFrame with_noise_scaled(const StereoFrame& frame, double factor);
+/// What visual odometry's 6-DoF steps say of the camera beyond the top view, per frame: its
+/// tilt (tilt_of) and height (camera y, m) after the steps so far integrated (pose of frame k =
+/// pose of frame k−1 · [rotation | translation] of step k); frame 0 level at height 0. A failed
+/// step and a step on the top view move neither.
+struct SpatialTrack {
+    std::vector<Mat3> tilt;
+    std::vector<double> height;
+};
+SpatialTrack spatial_track(const VisualOdometry& vo);
 
 /// `frame` with every disparity made `c` px larger: each point re-triangulated through `rig` at
 /// (u_l, v, u_r − c), its covariance carried by the Jacobian of that map. Points whose
@@ -161,10 +170,12 @@ StereoFrame with_disparity_offset(const StereoFrame& frame, const stereo::Rectif
 
 /// Visual odometry and EKF-SLAM on stereo frames alone, started at the origin (KITTI's
 /// first pose is the identity); `truth` (one pose per frame) is read after the run only, to
-/// score. With the disparity correction estimated, the filter sees each frame corrected by
+/// score (as run_filter's: one per frame, the first frames', or none). With the disparity
+/// correction estimated, the filter sees each frame corrected by
 /// VisualOdometry::disparity_offset; with levelling, in the camera's levelled frame
-/// (VisualOdometry::tilt). Throws InputError on fewer than 2 frames or a truth of
-/// another length.
+/// (VisualOdometry::tilt). On pixel residuals, estimate_3d and dead_reckoning_3d take their
+/// height, roll and pitch from spatial_track. Throws InputError on fewer than 2 frames or a
+/// truth longer than the frames.
 SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const std::vector<Pose>& truth,
                                 const VisualOdometryConfig& vo, const AssociationConfig& association,
                                 VisualOdometry* odometry = nullptr);

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -323,13 +324,15 @@ void save_sequence_states(const fs::path& dir, const SequenceRun& r) {
     st << "frame,true_x,true_y,true_theta,est_x,est_y,est_theta,sigma_x,sigma_y,sigma_theta,odo_x,odo_y,odo_theta,"
           "nees_slam,nees_odometry,observed,matched,added,rejected_by_descriptor,removed,map_size,matched_agreeing,"
           "matched_checked,matched_wrong\n";
-    for (size_t k = 0; k < r.truth.size(); ++k) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (size_t k = 0; k < r.estimate.size(); ++k) {
+        const bool scored = k < r.truth.size();   // past the ground truth (or without one): NaN
         st << k;
-        for (int i = 0; i < 3; ++i) st << ',' << num(r.truth[k](i));
+        for (int i = 0; i < 3; ++i) st << ',' << num(scored ? r.truth[k](i) : nan);
         for (int i = 0; i < 3; ++i) st << ',' << num(r.estimate[k](i));
         for (int i = 0; i < 3; ++i) st << ',' << num(std::sqrt(r.pose_cov[k](i, i)));
         for (int i = 0; i < 3; ++i) st << ',' << num(r.dead_reckoning[k](i));
-        st << ',' << num(r.slam_metrics.nees[k]) << ',' << num(r.odometry_metrics.nees[k]);
+        st << ',' << num(scored ? r.slam_metrics.nees[k] : nan) << ',' << num(scored ? r.odometry_metrics.nees[k] : nan);
         const FrameStats& f = r.frames[k];
         st << ',' << f.observed << ',' << f.matched << ',' << f.added << ',' << f.rejected_by_descriptor << ','
            << f.removed << ',' << f.map_size << ',' << f.matched_agreeing << ',' << f.matched_checked << ','
@@ -338,26 +341,33 @@ void save_sequence_states(const fs::path& dir, const SequenceRun& r) {
     save(dir / "states.csv", st.str());
 }
 
-// The trajectories in KITTI's format, and the estimate in TUM's.
+// The 6-DoF trajectories in KITTI's format, the estimate also in TUM's and as the filter's top
+// view (height 0); the truth's poses when there is a ground truth.
 void save_trajectories(const fs::path& dir, const SequenceRun& r) {
-    save(dir / "estimate_kitti.txt", kitti_trajectory(r.estimate));
-    save(dir / "dead_reckoning_kitti.txt", kitti_trajectory(r.dead_reckoning));
-    save(dir / "truth_kitti.txt", kitti_trajectory(r.truth));
-    std::vector<double> ts;
-    for (size_t k = 0; k < r.estimate.size(); ++k) ts.push_back(0.1 * k);   // KITTI: 10 io/frames/s
-    save(dir / "estimate_tum.txt", tum_trajectory(r.estimate, ts));
+    save(dir / "estimate_kitti.txt", kitti_trajectory(r.estimate_3d));
+    save(dir / "estimate_planar_kitti.txt", kitti_trajectory(r.estimate));
+    save(dir / "dead_reckoning_kitti.txt", kitti_trajectory(r.dead_reckoning_3d));
+    if (!r.truth_3d.empty()) save(dir / "truth_kitti.txt", kitti_trajectory(r.truth_3d));
+    save(dir / "estimate_tum.txt", tum_trajectory(r.estimate_3d, r.timestamps));
 }
 
 void save_sequence_summary(const fs::path& dir, const SequenceRun& r, const SequenceTotals& t,
                            const std::string& command, const std::string& odometry_label) {
     nlohmann::json j;
     j["command"] = command;
-    j["frames"] = r.truth.size();
+    j["frames"] = r.estimate.size();
+    j["scored_frames"] = r.truth.size();
+    j["ground_truth"] = !r.truth.empty();
     j["odometry"] = odometry_label;
-    j["ate_m"] = {{"slam", r.ate_slam}, {"dead_reckoning", r.ate_dead_reckoning}};
-    j["slam"] = metrics_json(r.slam_metrics);
-    j["odometry_alone"] = metrics_json(r.odometry_metrics);
-    j["path_length_m"] = r.slam_metrics.path_length;
+    j["timestamps"] = r.timestamps_from;
+    j["height_roll_pitch"] = r.spatial_from_odometry ? "visual odometry's 6-DoF steps" : "none (level, height 0)";
+    if (!r.truth.empty()) {
+        j["ate_m"] = {{"slam", r.ate_slam}, {"dead_reckoning", r.ate_dead_reckoning}};
+        j["ape_3d_m"] = {{"slam", r.ape_3d_slam}, {"dead_reckoning", r.ape_3d_dead_reckoning}};
+        j["slam"] = metrics_json(r.slam_metrics);
+        j["odometry_alone"] = metrics_json(r.odometry_metrics);
+        j["path_length_m"] = r.slam_metrics.path_length;
+    }
     j["observations"] = t.observed;
     j["matched"] = t.matched;
     j["map_size"] = {{"final", r.frames.back().map_size}, {"peak", t.peak}};
@@ -378,10 +388,11 @@ bool plot_sequence_trajectory(const fs::path& dir, const SequenceRun& r, const s
     for (size_t i = 0; i < r.map.size(); ++i) ell += ellipse(r.map[i], r.map_cov[i], 3);
     const TopView view = top_view(positions({&r.truth, &r.estimate, &r.dead_reckoning}, r.map), title,
                                   "top view, final map with 3-sigma ellipses", "forward x (m)", "left y (m)");
+    const std::string truth_curve = r.truth.empty() ? "" : " $truth w l lw 2 lc rgb 'black' t 'ground truth',";
     return plot(dir / "trajectory.png",
         block("truth", poses_xy(r.truth)) + block("est", poses_xy(r.estimate)) + block("dr", poses_xy(r.dead_reckoning)) +
         block("ell", ell) + view.script +
-        "plot $ell w l lc rgb '#cc8888' t 'landmark 3{/Symbol s}', $truth w l lw 2 lc rgb 'black' t 'ground truth',"
+        "plot $ell w l lc rgb '#cc8888' t 'landmark 3{/Symbol s}'," + truth_curve +
         " $est w l lw 2 lc rgb 'blue' t 'EKF-SLAM', $dr w l lw 2 dt 2 lc rgb 'orange' t '" + odometry_label + "'\n", view.width, view.height);
 }
 
@@ -405,30 +416,56 @@ std::string nees_cell(const TrajectoryMetrics& m) {
     return o.str();
 }
 
+// Where the 6-DoF files' height, roll and pitch come from.
+std::string height_source(const SequenceRun& r) {
+    return r.spatial_from_odometry ? "heading and top-view position of the filter, height, roll and pitch of visual "
+                                     "odometry's 6-DoF steps"
+                                   : "the top view, level at height 0";
+}
+
 // One row of the report's metrics table.
-std::string metrics_row(const std::string& name, const TrajectoryMetrics& m) {
+std::string metrics_row(const std::string& name, const TrajectoryMetrics& m, double ape_3d) {
     std::ostringstream o;
-    o << std::setprecision(4) << "| " << name << " | " << m.ape << " | " << m.ape_percent() << " | " << m.ape_se2
+    o << std::setprecision(4) << "| " << name << " | " << m.ape << " | " << ape_3d << " | " << m.ape_percent() << " | " << m.ape_se2
       << " | " << m.rpe << " | " << m.rpe_heading * 180 / std::numbers::pi << " | " << m.final_error << " | "
       << nees_cell(m) << " |\n";
     return o.str();
 }
 
-/// A sequence's report.md, linking the plots that were drawn.
-std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, const std::string& title,
-                              const std::string& command, const std::string& odometry_label, bool traj_png,
-                              bool map_png) {
+/// The report's scores: the metrics table and the frames' counts, or the statement that there
+/// is no ground truth.
+std::string scores_markdown(const SequenceRun& r, const SequenceTotals& t, const std::string& odometry_label) {
     std::ostringstream md;
     md << std::setprecision(4);
-    md << "# EKF-SLAM on " << title << "\n\nCommand: `" << command << "`\n\n"
-       << "Ground truth is used only to score: the trajectories below were computed without it, then compared "
-          "with it (evo's APE and RPE on the top view, pose NEES with 3 dof).\n\n"
-       << "| trajectory | APE (m) | APE % of path | APE SE(2)-aligned (m) | RPE per frame (m) | RPE heading (°) | "
-          "final error (m) | mean pose NEES [95 % bounds of the mean], frames ≤ χ²(0.95; 3) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n"
-       << metrics_row("EKF-SLAM", r.slam_metrics) << metrics_row(odometry_label, r.odometry_metrics) << "\n"
-       << r.truth.size() << " frames, path length " << r.slam_metrics.path_length << " m; " << t.observed
+    if (r.truth.empty()) {
+        md << "No ground truth: the trajectory and the map are not scored.\n\n"
+           << r.estimate.size() << " frames; " << t.observed << " observations, " << t.matched
+           << " associated; map size final " << r.frames.back().map_size << ", peak " << t.peak << ".\n\n";
+        return md.str();
+    }
+    if (r.truth.size() < r.estimate.size())
+        md << "The ground truth covers the first " << r.truth.size() << " of the " << r.estimate.size()
+           << " frames (--score-overlap): every score below is of those frames.\n\n";
+    md << "APE 2-D is on the top view; APE 3-D on the 6-DoF poses of `estimate_kitti.txt` and "
+          "`dead_reckoning_kitti.txt` against `truth_kitti.txt` (" << height_source(r)
+       << "), as evo_ape computes it on those files without alignment.\n\n"
+       << "| trajectory | APE 2-D (m) | APE 3-D (m) | APE 2-D % of path | APE SE(2)-aligned (m) | RPE per frame (m) | "
+          "RPE heading (°) | final error (m) | mean pose NEES [95 % bounds of the mean], frames ≤ χ²(0.95; 3) |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
+       << metrics_row("EKF-SLAM", r.slam_metrics, r.ape_3d_slam)
+       << metrics_row(odometry_label, r.odometry_metrics, r.ape_3d_dead_reckoning) << "\n"
+       << r.estimate.size() << " frames, path length " << r.slam_metrics.path_length << " m; " << t.observed
        << " observations, " << t.matched << " associated; map size final " << r.frames.back().map_size << ", peak "
        << t.peak << ".\n\n";
+    return md.str();
+}
+
+/// A sequence's report.md, linking the plots that were drawn.
+std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, const SequenceReportText& text,
+                              bool traj_png, bool map_png) {
+    std::ostringstream md;
+    md << std::setprecision(4);
+    md << "# EKF-SLAM on " << text.title << "\n\nCommand: `" << text.command << "`\n\n" << text.provenance << "\n\n"
+       << scores_markdown(r, t, text.odometry_label);
     if (t.checked > 0)
         md << "Associations checked against the ground truth (observation and the landmark's first observation "
               "placed in the world with the true poses, χ²(2) 0.999): " << t.wrong << " of " << t.checked
@@ -445,39 +482,46 @@ std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, con
     if (t.jcbb_cut > 0) md << "JCBB stopped at its node limit in " << t.jcbb_cut << " frames (best hypothesis so far kept).\n\n";
     if (traj_png) md << "![trajectory](trajectory.png)\n\n";
     if (map_png) md << "![map size](map_size.png)\n\n";
-    md << "Files: `states.csv` (per frame, with the pose NEES), `summary.json`, `estimate_kitti.txt` and "
-          "`estimate_tum.txt` (estimate), `dead_reckoning_kitti.txt` (" << odometry_label << "), `truth_kitti.txt` "
-          "(KITTI camera frame, height 0).\n";
+    md << "Files (KITTI camera frame: x right, y down, z forward): `states.csv` (per frame, with the pose NEES), "
+          "`summary.json`, `estimate_kitti.txt` and `estimate_tum.txt` (the estimate, 6-DoF: " << height_source(r)
+       << "; TUM timestamps from " << r.timestamps_from << "), `estimate_planar_kitti.txt` (the filter's top view, "
+          "height 0), `dead_reckoning_kitti.txt` (" << text.odometry_label << ", 6-DoF as the estimate)"
+       << (r.truth_3d.empty() ? "" : ", `truth_kitti.txt` (the ground truth's poses of the frames scored)") << ".\n";
     return md.str();
 }
 }  // namespace
 
-void write_sequence_report(const fs::path& dir, const SequenceRun& r, const std::string& title, const std::string& command,
-                           const std::string& odometry_label) {
+void write_sequence_report(const fs::path& dir, const SequenceRun& r, const SequenceReportText& text) {
+    if (r.timestamps.size() != r.estimate.size())
+        throw std::invalid_argument("write_sequence_report: one timestamp per frame");
     make_dir(dir);
     save_sequence_states(dir, r);
     save_trajectories(dir, r);
     const SequenceTotals t = totals(r);
-    save_sequence_summary(dir, r, t, command, odometry_label);
-    const bool traj_png = plot_sequence_trajectory(dir, r, title, odometry_label);
-    const bool map_png = plot_map_size(dir, r, title);
-    save(dir / "report.md", sequence_markdown(r, t, title, command, odometry_label, traj_png, map_png));
+    save_sequence_summary(dir, r, t, text.command, text.odometry_label);
+    const bool traj_png = plot_sequence_trajectory(dir, r, text.title, text.odometry_label);
+    const bool map_png = plot_map_size(dir, r, text.title);
+    save(dir / "report.md", sequence_markdown(r, t, text, traj_png, map_png));
 }
 
 std::string sequences_markdown(const std::vector<std::pair<std::string, SequenceRun>>& runs,
                                const std::string& odometry_label) {
     std::ostringstream md;
     md << std::setprecision(4)
-       << "| sequence | frames | path (m) | APE EKF-SLAM (m) | % of path | APE SE(2) (m) | RPE (m) | mean NEES [95 % "
-          "bounds], frames ≤ 7.81 | APE "
+       << "| sequence | frames | path (m) | APE EKF-SLAM (m) | APE 3-D (m) | % of path | APE SE(2) (m) | RPE (m) | mean NEES [95 % bounds], frames ≤ 7.81 | APE "
        << odometry_label << " (m) | % of path | RPE (m) | mean NEES [95 % bounds], frames ≤ 7.81 | matched | wrong vs truth |\n"
-       << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+       << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& [name, r] : runs) {
         const SequenceTotals t = totals(r);
         const auto& s = r.slam_metrics;
         const auto& o = r.odometry_metrics;
-        md << "| " << name << " | " << r.truth.size() << " | " << s.path_length << " | " << s.ape << " | "
-           << s.ape_percent() << " | " << s.ape_se2 << " | " << s.rpe << " | "
+        if (r.truth.empty()) {
+            md << "| " << name << " | " << r.estimate.size() << " | no ground truth |||||||||||| " << t.matched
+               << " | - |\n";
+            continue;
+        }
+        md << "| " << name << " | " << r.estimate.size() << " | " << s.path_length << " | " << s.ape << " | "
+           << r.ape_3d_slam << " | " << s.ape_percent() << " | " << s.ape_se2 << " | " << s.rpe << " | "
            << nees_cell(s) << " | " << o.ape << " | " << o.ape_percent()
            << " | " << o.rpe << " | " << nees_cell(o) << " | " << t.matched
            << " | " << t.wrong << " of " << t.checked << " |\n";

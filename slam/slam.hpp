@@ -34,13 +34,22 @@ namespace hc::slam {
 void write_simulation_report(const std::filesystem::path& dir, const SimConfig& config, const MonteCarlo& mc,
                              const std::string& command);
 
-/// Writes the sequence report: report.md (metrics of EKF-SLAM and of the odometry alone,
-/// wrong associations against truth), states.csv (per frame, with the pose NEES),
-/// summary.json, estimate_kitti.txt, estimate_tum.txt, dead_reckoning_kitti.txt (the
-/// odometry alone), truth_kitti.txt, trajectory.png, map_size.png. `odometry_label` names
-/// the odometry-alone trajectory ("visual odometry alone", "synthetic odometry alone").
-void write_sequence_report(const std::filesystem::path& dir, const SequenceRun& run, const std::string& title,
-                           const std::string& command, const std::string& odometry_label);
+/// What a sequence report says besides the run's figures.
+struct SequenceReportText {
+    std::string title, command;
+    /// Names the odometry-alone trajectory ("visual odometry alone", "synthetic odometry alone").
+    std::string odometry_label;
+    /// How the ground truth entered the run, or that there is none: the report's first sentence.
+    std::string provenance;
+};
+/// Writes the sequence report: report.md (with a ground truth: 2-D and 3-D APE and the other
+/// metrics of EKF-SLAM and of the odometry alone, wrong associations against truth; without,
+/// the statement that nothing is scored), states.csv (per frame, with the pose NEES),
+/// summary.json, estimate_kitti.txt and estimate_tum.txt (6-DoF, SequenceRun::estimate_3d,
+/// timestamps run.timestamps), estimate_planar_kitti.txt (the filter's top view),
+/// dead_reckoning_kitti.txt (the odometry alone, 6-DoF), truth_kitti.txt (with a ground truth),
+/// trajectory.png, map_size.png. std::invalid_argument unless run has one timestamp per frame.
+void write_sequence_report(const std::filesystem::path& dir, const SequenceRun& run, const SequenceReportText& text);
 /// A Markdown table with one row per (sequence name, run).
 std::string sequences_markdown(const std::vector<std::pair<std::string, SequenceRun>>& runs,
                                const std::string& odometry_label);

@@ -109,6 +109,9 @@ KittiRunOptions kitti_options(const SlamCommand& o) {
     k.visual_odometry = o.odometry == "visual";
     k.stereo_landmarks = o.landmarks_from == "stereo";
     k.seed = o.seed;
+    k.truth = o.truth;
+    k.score_overlap = o.score_overlap;
+    k.frame_period = o.frame_period;
     k.synthetic_count = o.synthetic_count;
     k.flip_bits = o.flip_bits;
     if (k.stereo_landmarks) {
@@ -120,6 +123,21 @@ KittiRunOptions kitti_options(const SlamCommand& o) {
     }
     k.progress = [](const std::string& line) { std::fprintf(stderr, "slam: %s\n", line.c_str()); };
     return k;
+}
+
+/// The flags that choose the source of the pairs, the ground truth and the timestamps.
+std::string source_flags(const SlamCommand& o, const std::string& sequence) {
+    std::string s;
+    if (!sequence.empty()) {
+        s = " --sequences " + sequence;
+    } else {
+        s = " --calib " + o.calib;
+        for (const auto& f : o.left) s += " --left '" + f + "'";
+        for (const auto& f : o.right) s += " --right '" + f + "'";
+    }
+    if (!o.truth.empty()) s += " --truth " + o.truth;
+    if (o.score_overlap) s += " --score-overlap";
+    return s + " --frame-period " + num(o.frame_period);
 }
 
 /// The command line that reproduces one sequence's run, for its report.
@@ -139,7 +157,7 @@ std::string sequence_command(const SlamCommand& o, const KittiRunOptions& k, con
         : " --sigma-dx " + num(so.sigma_dx) + " --sigma-dy " + num(so.sigma_dy) + " --sigma-dtheta " +
               num(so.sigma_dtheta / deg);
     const bool seeded = o.odometry == "synthetic" || o.landmarks_from == "synthetic";
-    return "harris-cosim slam --sequences " + sequence + " --landmarks-from " + o.landmarks_from + source_args +
+    return "harris-cosim slam" + source_flags(o, sequence) + " --landmarks-from " + o.landmarks_from + source_args +
            " --odometry " + o.odometry + odo_args + " --association " + o.association + " --gate " + num(o.gate) +
            " --joint-gate " + num(o.joint_gate) + " --max-hamming-fraction " + num(o.max_hamming_fraction) +
            (o.descriptor ? "" : " --no-descriptor") + (o.noise_at_prediction ? "" : " --noise-at-measurement") + " --forget-after " + std::to_string(o.forget_after) +
@@ -147,18 +165,50 @@ std::string sequence_command(const SlamCommand& o, const KittiRunOptions& k, con
            (seeded ? " --seed " + std::to_string(o.seed) : std::string()) + " --out " + out.string();
 }
 
+/// How the ground truth entered a run of these settings (the report's first sentence).
+std::string provenance(const SlamCommand& o, bool has_truth) {
+    if (!has_truth) return "No ground truth: the run used the stereo pairs alone, and nothing below is scored.";
+    std::string s;
+    if (o.landmarks_from == "synthetic")
+        s += "The landmarks are synthetic: world points laid along the ground-truth trajectory and measured from the "
+             "true poses, so the ground truth enters the frames" +
+             std::string(o.odometry == "visual" ? " and, through them, the visual odometry. " : ". ");
+    if (o.odometry == "synthetic")
+        s += "The odometry is synthetic: the ground truth's relative poses plus noise, so the ground truth enters the "
+             "motions. ";
+    if (s.empty())
+        return "Ground truth is used only to score: the trajectories below were computed from the stereo pairs "
+               "without it, then compared with it (evo's APE and RPE, pose NEES with 3 dof).";
+    return s + "The scores (evo's APE and RPE, pose NEES with 3 dof) compare with the same ground truth.";
+}
+
+/// The title of a run's report.
+std::string run_title(const SlamCommand& o, const KittiRunOptions& k, const std::string& sequence) {
+    const std::string what = sequence.empty() ? "the rig of " + o.calib : "KITTI " + sequence;   // no apostrophe: gnuplot quotes the plot titles
+    return k.stereo_landmarks ? what + " (stereo landmarks: " + o.descriptor_name + " on " + o.corners + " corners, " +
+                                    o.odometry + " odometry)"
+                              : what + " (synthetic landmarks on the real trajectory, " + o.odometry + " odometry)";
+}
+
+/// One run (a KITTI-layout sequence, or the rig's pairs when `sequence` is empty): its report
+/// into `out` and its figures on stdout.
 SequenceRun run_one_sequence(const SlamCommand& o, const fs::path& kitti, const std::string& sequence, const fs::path& out) {
     const KittiRunOptions k = kitti_options(o);
-    const std::string title = k.stereo_landmarks
-        ? "KITTI " + sequence + " (stereo landmarks: " + o.descriptor_name + " on " + o.corners + " corners, " +
-              o.odometry + " odometry)"
-        : "KITTI " + sequence + " (synthetic landmarks on the real trajectory, " + o.odometry + " odometry)";
-    const KittiRun kr = run_kitti_sequence(kitti, sequence, k);
+    const KittiRun kr = sequence.empty() ? run_rig_sequence({o.calib, o.left, o.right}, k)
+                                         : run_kitti_sequence(kitti, sequence, k);
     const SequenceRun& run = kr.run;
-    write_sequence_report(out, run, title, sequence_command(o, k, sequence, out), odometry_label(o));
-    std::printf("%s: %zu frames, path %.1f m; APE: EKF-SLAM %.3f m (%.2f %%), %s %.3f m (%.2f %%)", sequence.c_str(),
-                run.truth.size(), run.slam_metrics.path_length, run.slam_metrics.ape, run.slam_metrics.ape_percent(),
-                odometry_label(o).c_str(), run.odometry_metrics.ape, run.odometry_metrics.ape_percent());
+    const std::string name = sequence.empty() ? "rig" : sequence;
+    write_sequence_report(out, run, {run_title(o, k, sequence), sequence_command(o, k, sequence, out), odometry_label(o),
+                                     provenance(o, !run.truth.empty())});
+    if (run.truth.empty()) {
+        std::printf("%s: %zu frames, no ground truth (not scored)", name.c_str(), run.estimate.size());
+    } else {
+        std::printf("%s: %zu frames (%zu scored), path %.1f m; APE 2-D / 3-D: EKF-SLAM %.3f / %.3f m (%.2f %%), "
+                    "%s %.3f / %.3f m (%.2f %%)",
+                    name.c_str(), run.estimate.size(), run.truth.size(), run.slam_metrics.path_length,
+                    run.slam_metrics.ape, run.ape_3d_slam, run.slam_metrics.ape_percent(), odometry_label(o).c_str(),
+                    run.odometry_metrics.ape, run.ape_3d_dead_reckoning, run.odometry_metrics.ape_percent());
+    }
     if (k.visual_odometry) std::printf("; odometry failed in %d of %zu steps", kr.vo.failures, kr.vo.motions.size());
     std::printf("\nreport: %s/report.md\n", out.c_str());
     return run;
@@ -168,22 +218,37 @@ void check_choice(const std::string& flag, const std::string& value, const std::
     if (value != a && value != b) throw InputError(flag + " '" + value + "' is neither " + a + " nor " + b);
 }
 
-void run_sequences(const SlamCommand& o) {
-    const fs::path kitti = frames::require_kitti_root(o.kitti, o.data, "slam --sequences needs KITTI data");
+void check_run_flags(const SlamCommand& o) {
     check_choice("--odometry", o.odometry, "visual", "synthetic");
     check_choice("--vo-residual", o.vo_residual, "pixels", "top-view");
     check_choice("--association", o.association, "jcbb", "nearest");
     if (o.seed_given && o.odometry == "visual" && o.landmarks_from == "stereo")
         throw InputError("--seed: visual odometry on stereo landmarks is deterministic, nothing is drawn");
+}
+
+void run_sequences(const SlamCommand& o) {
+    check_run_flags(o);
+    if (o.sequences.empty()) {   // the rig's pairs
+        run_one_sequence(o, {}, "", o.out);
+        return;
+    }
+    const fs::path kitti = frames::require_kitti_root(o.kitti, o.data, "slam --sequences needs KITTI data");
     const auto list = util::split_csv(o.sequences);
     if (list.empty()) throw InputError("--sequences '" + o.sequences + "' names no sequence");
+    if (list.size() > 1 && !o.truth.empty())
+        throw InputError("--truth '" + o.truth + "' is the ground truth of one sequence: --sequences names " +
+                         std::to_string(list.size()));
     if (list.size() == 1) {
         run_one_sequence(o, kitti, list[0], o.out);
         return;
     }
     std::vector<std::pair<std::string, SequenceRun>> runs;
     for (const auto& s : list) runs.emplace_back(s, run_one_sequence(o, kitti, s, fs::path(o.out) / s));
-    const std::string md = "# EKF-SLAM per sequence\n\nGround truth is used only to score.\n\n" +
+    int scored = 0;
+    for (const auto& [name, run] : runs) scored += !run.truth.empty();
+    const bool some_unscored = scored > 0 && scored < static_cast<int>(runs.size());
+    const std::string md = "# EKF-SLAM per sequence\n\n" + provenance(o, scored > 0) +
+                           (some_unscored ? " Sequences without a ground truth are not scored." : "") + "\n\n" +
                            sequences_markdown(runs, odometry_label(o));
     landmarks::write_atomic(fs::path(o.out) / "sequences.md", md);
     std::printf("%s", md.c_str());
@@ -195,7 +260,9 @@ void run_sequences(const SlamCommand& o) {
 void run_slam_command(const SlamCommand& o, const cluster::JobRunner& runner) {
     if (runner.sharded() && !o.simulate)
         throw InputError(cluster::sharding_flags_named() + " shard the Monte-Carlo seeds of --simulate only");
-    if (o.simulate == !o.sequences.empty()) throw InputError("give exactly one of --simulate and --sequences NN[,NN...]");
+    const bool rig = !o.calib.empty() || !o.left.empty() || !o.right.empty();
+    if (int(o.simulate) + int(!o.sequences.empty()) + int(rig) != 1)
+        throw InputError("give exactly one of --simulate, --sequences NN[,NN...] and --calib FILE --left ... --right ...");
     check_choice("--world", o.world, "cloister", "random");
     check_choice("--landmarks-from", o.landmarks_from, "stereo", "synthetic");
     o.simulate ? run_simulate(o, runner) : run_sequences(o);

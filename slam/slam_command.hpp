@@ -1,12 +1,14 @@
 // slam_command.hpp: `harris-cosim slam` as the command line hands it over: a Monte-Carlo
 // consistency run in the simulator (--simulate, in one process or its seeds in shards), or
-// KITTI sequences (--sequences) with stereo or synthetic landmarks and visual or synthetic
-// odometry, scored against the ground-truth poses (docs/slam.md).
+// KITTI-layout sequences (--sequences) or a calibrated rig's pairs (--calib --left --right) with
+// stereo or synthetic landmarks and visual or synthetic odometry, scored against a ground truth
+// when there is one (docs/slam.md).
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/cluster/runner.hpp"
 #include "slam/landmark_frames.hpp"
@@ -20,7 +22,7 @@ namespace hc::slam {
 /// KittiRunOptions); the angles are the command's, in degrees.
 struct SlamCommand {
     bool simulate = false;
-    std::string sequences, kitti, data, out = "slam-report", world = "cloister",
+    std::string sequences, kitti, data, out = "slam-report", world = "cloister", truth, calib,
         landmarks_from = KittiRunOptions{}.stereo_landmarks ? "stereo" : "synthetic", odometry = "visual",
         association = "jcbb", vo_residual = "pixels";
     int landmarks = SimConfig{}.landmarks, steps = SimConfig{}.steps, runs = 50,
@@ -45,6 +47,10 @@ struct SlamCommand {
     std::string corners = landmarks::detector_name(KittiRunOptions{}.pipeline.detector),
                 descriptor_name = landmarks::descriptor_name(KittiRunOptions{}.pipeline.descriptor), config;
     int g = KittiRunOptions{}.pipeline.grid.g, h = KittiRunOptions{}.pipeline.grid.h;
+    // a rig's pairs instead of a KITTI-layout sequence, the ground truth, the timestamps
+    std::vector<std::string> left, right;
+    bool score_overlap = KittiRunOptions{}.score_overlap;
+    double frame_period = KittiRunOptions{}.frame_period;
 };
 
 /// Runs the simulation or the sequences, writes the reports into c.out and prints their

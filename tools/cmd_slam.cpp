@@ -109,11 +109,26 @@ void add_landmark_flags(CLI::App* cmd, slam::SlamCommand& o) {
 
 void add_slam_command(CLI::App& app) {
     const auto [cmd, o] = add_command<Sharded<slam::SlamCommand>>(app,
-        "slam", "2-D EKF-SLAM (thesis 2.5, 5.4): Monte-Carlo consistency in the simulator, or a KITTI trajectory");
+        "slam", "2-D EKF-SLAM (thesis 2.5, 5.4): Monte-Carlo consistency in the simulator, or a trajectory of a KITTI sequence or a rig's stereo pairs");
     cmd->add_flag("--simulate", o->simulate, "Monte-Carlo runs in the simulator (NEES, RMSE, plots)");
     cmd->add_option("--sequences,--sequence", o->sequences,
                     "KITTI sequences, comma-separated (e.g. 01 or 01,02): stereo pairs of sequences/NN, "
-                    "ground truth poses/NN.txt (read only to score)");
+                    "ground truth poses/NN.txt when present (read only to score)");
+    cmd->add_option("--calib", o->calib,
+                    "a rig's calibration (calibrate's .yml/.json, or a KITTI-style calib.txt): run on --left/--right "
+                    "pairs instead of a KITTI sequence, keypoints rectified as landmarks --calib does");
+    cmd->add_option("--left", o->left, "the rig's left images: files, quoted glob patterns or folders (sorted by name)");
+    cmd->add_option("--right", o->right, "the rig's right images, paired with --left in order");
+    cmd->add_option("--truth", o->truth,
+                    "ground truth (KITTI: 12 numbers a line, or TUM: t tx ty tz qx qy qz qw; camera 0 in the first "
+                    "camera's frame, one pose per frame in order); default: the sequence's poses/NN.txt when present, "
+                    "else the run is not scored");
+    cmd->add_flag("--score-overlap", o->score_overlap,
+                  "a ground truth with another number of poses than stereo pairs: score the frames both cover "
+                  "(refused without this flag)");
+    cmd->add_option("--frame-period", o->frame_period,
+                    "TUM timestamps where the sequence has no times.txt (and on a rig): frame index x this (s)")
+        ->capture_default_str();
     cmd->add_option("--kitti", o->kitti, "KITTI odometry root holding poses/ (default: <data>/kitti)");
     cmd->add_option("--data", o->data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");
     cmd->add_option("--out", o->out, "output directory")->capture_default_str();

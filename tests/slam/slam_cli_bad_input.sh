@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # slam_cli_bad_input.sh: `harris-cosim slam` refuses bad input with a message naming it and
-# exit status 2: a non-positive noise, an empty world, a sequence without poses, and a
-# run that is neither --simulate nor --sequence.
+# exit status 2: a non-positive noise, an empty world, a sequence without poses or pairs, a
+# ground truth that cannot be read, and a run that is not exactly one of --simulate, --sequences
+# and a rig's --calib --left --right.
 # usage: slam_cli_bad_input.sh HARRIS_COSIM WORK_DIR
 set -u
 exe=$1
@@ -27,8 +28,12 @@ expect2 "zero range noise" "--sigma-range" --simulate --sigma-range 0
 expect2 "negative odometry noise" "--sigma-dx" --simulate --sigma-dx -0.1
 expect2 "empty world" "world is empty" --simulate --landmarks 0
 expect2 "sequence without poses" "holds no pose" --sequence 07 --kitti "$work/kitti"
-expect2 "missing poses file" "cannot read the poses file" --sequence 99 --kitti "$work/kitti"
+expect2 "sequence without pairs or poses" "sequence directory" --sequence 99 --kitti "$work/kitti"
+expect2 "missing ground-truth file" "cannot read the ground-truth file" --sequence 07 --kitti "$work/kitti" --truth "$work/none.txt"
 expect2 "neither mode" "exactly one of" --runs 3
+expect2 "two modes" "exactly one of" --sequences 01 --calib "$work/rig.yml" --left "$work/l" --right "$work/r"
+expect2 "a rig's images without its calibration" "give its --calib" --left "$work/l" --right "$work/r"
+expect2 "one ground truth for two sequences" "ground truth of one sequence" --sequences 05,06 --kitti "$work/kitti1" --truth "$work/kitti1/poses/05.txt"
 mkdir -p "$work/kitti1/poses" && printf '1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1 0 0 0 0 1 1\n' > "$work/kitti1/poses/05.txt"
 expect2 "unknown odometry" "neither visual nor synthetic" --sequences 05 --kitti "$work/kitti1" --odometry wheels
 expect2 "unknown association" "neither jcbb nor nearest" --sequences 05 --kitti "$work/kitti1" --association greedy

@@ -93,8 +93,8 @@ TEST_CASE("exact synthetic odometry on a trajectory gives exact dead reckoning",
 TEST_CASE("trajectories are written in the KITTI and TUM formats", "[slam]") {
     const std::vector<Pose> p = {Pose(0, 0, 0), Pose(2, -1, std::numbers::pi / 2)};
     CHECK(kitti_trajectory(p) == "1 0 -0 -0 0 1 0 0 0 0 1 0\n6.123234e-17 0 -1 1 0 1 0 0 1 0 6.123234e-17 2\n");
-    CHECK(tum_trajectory({p[1]}, {0.1}) == "0.1 1 0 2 0 -0.707106781 0 0.707106781\n");
-    CHECK_THROWS_AS(tum_trajectory(p, {0.0}), std::invalid_argument);
+    CHECK(tum_trajectory(std::vector<Mat34>{kitti_pose(p[1])}, {0.1}) == "0.1 1 0 2 0 -0.707106781 0 0.707106781\n");
+    CHECK_THROWS_AS(tum_trajectory(std::vector<Mat34>{kitti_pose(p[0]), kitti_pose(p[1])}, {0.0}), std::invalid_argument);
     CHECK(absolute_trajectory_error({Pose(0, 0, 0), Pose(3, 4, 0)}, {Pose(0, 0, 1), Pose(0, 0, 0)}) ==
           Approx(std::sqrt(25.0 / 2)));
 }

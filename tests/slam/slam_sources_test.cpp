@@ -1,0 +1,244 @@
+// slam_sources_test.cpp: where a run's pairs and ground truth come from, on KITTI 01's first
+// six stereo pairs laid out in a temporary folder: a KITTI-layout sequence without poses (the
+// trajectory written, nothing scored), with a ground truth of another length (refused naming
+// both counts, or scored on the overlap with score_overlap), with a times.txt (the TUM
+// timestamps), and the same pairs as a rig's plain images with a rig file converted from
+// calib.txt (zero distortion). Exits 77 (CTest: skipped) with a message without KITTI 01.
+#define CATCH_CONFIG_RUNNER
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "io/frames/frames.hpp"
+#include "slam/landmark_frames.hpp"
+#include "slam/landmarks/calib.hpp"
+#include "slam/slam.hpp"
+
+using namespace hc::slam;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kPairs = 6;
+fs::path g_kitti;   // the data's KITTI root
+fs::path g_work;    // this run's temporary folder
+
+std::string text_of(const fs::path& p) {
+    std::ifstream f(p);
+    std::ostringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+int lines_of(const fs::path& p) {
+    std::ifstream f(p);
+    std::string line;
+    int n = 0;
+    while (std::getline(f, line)) ++n;
+    return n;
+}
+
+/// The first `lines` lines of KITTI 01's poses.
+std::string poses_text(int lines) {
+    std::ifstream f(g_kitti / "poses/01.txt");
+    std::string line, out;
+    for (int k = 0; k < lines && std::getline(f, line); ++k) out += line + "\n";
+    return out;
+}
+
+/// A KITTI root `name` holding sequence 01's first kPairs pairs (links to the data's images)
+/// and its calib.txt, with `poses` as poses/01.txt and `times` as times.txt when not empty.
+fs::path kitti_layout(const std::string& name, const std::string& poses, const std::string& times) {
+    const fs::path root = g_work / name, seq = root / "sequences/01";
+    for (const char* cam : {"image_0", "image_1"}) {
+        fs::create_directories(seq / cam);
+        const auto src = g_kitti / "sequences/01" / cam;
+        for (int k = 0; k < kPairs; ++k) {
+            char file[16];
+            std::snprintf(file, sizeof file, "%06d.png", k);
+            fs::create_symlink(src / file, seq / cam / file);
+        }
+    }
+    fs::copy_file(g_kitti / "sequences/01/calib.txt", seq / "calib.txt");
+    if (!poses.empty()) {
+        fs::create_directories(root / "poses");
+        std::ofstream(root / "poses/01.txt") << poses;
+    }
+    if (!times.empty()) std::ofstream(seq / "times.txt") << times;
+    return root;
+}
+
+/// The command's defaults (OpenCV's corners, BRIEF, visual odometry on pixels).
+KittiRunOptions defaults() { return KittiRunOptions{}; }
+
+/// The run on the kPairs pairs with the first kPairs poses, computed once.
+const KittiRun& scored_run() {
+    static std::optional<KittiRun> r;
+    if (!r) r = run_kitti_sequence(kitti_layout("scored", poses_text(kPairs), ""), "01", defaults());
+    return *r;
+}
+
+fs::path report_of(const SequenceRun& run, const std::string& name) {
+    const fs::path out = g_work / ("out_" + name);
+    write_sequence_report(out, run, {"test " + name, "none", "visual odometry alone", "provenance"});
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("without a ground truth the run writes its trajectory, map and report, and scores nothing", "[slam][kitti]") {
+    const KittiRun r = run_kitti_sequence(kitti_layout("no_truth", "", ""), "01", defaults());
+    CHECK(r.run.truth.empty());
+    CHECK(r.run.estimate.size() == kPairs);
+    CHECK(r.run.slam_metrics.ape == 0);
+    CHECK(r.run.ape_3d_slam == 0);
+    CHECK_FALSE(r.run.map.empty());
+    // the estimate does not depend on the ground truth
+    CHECK(r.run.estimate == scored_run().run.estimate);
+    const fs::path out = report_of(r.run, "no_truth");
+    CHECK(lines_of(out / "estimate_kitti.txt") == kPairs);
+    CHECK(lines_of(out / "estimate_tum.txt") == kPairs);
+    CHECK_FALSE(fs::exists(out / "truth_kitti.txt"));
+    const auto j = nlohmann::json::parse(text_of(out / "summary.json"));
+    CHECK(j["ground_truth"] == false);
+    CHECK_FALSE(j.contains("ate_m"));
+    CHECK(text_of(out / "report.md").find("No ground truth") != std::string::npos);
+}
+
+TEST_CASE("a ground truth of another length than the pairs is refused naming both counts", "[slam][kitti]") {
+    const fs::path root = kitti_layout("short_truth", poses_text(4), "");
+    CHECK_THROWS_AS(run_kitti_sequence(root, "01", defaults()), hc::InputError);
+    CHECK_THROWS_WITH(run_kitti_sequence(root, "01", defaults()),
+                      Catch::Contains("4 poses") && Catch::Contains("6 stereo pairs") &&
+                          Catch::Contains("--score-overlap"));
+    KittiRunOptions o = defaults();   // a longer --truth file, in TUM's format
+    std::ostringstream tum;
+    for (int k = 0; k < 9; ++k) tum << k << " 0 0 " << k << " 0 0 0 1\n";
+    o.truth = g_work / "long_truth_tum.txt";
+    std::ofstream(o.truth) << tum.str();
+    CHECK_THROWS_WITH(run_kitti_sequence(root, "01", o), Catch::Contains("9 poses") && Catch::Contains("6 stereo pairs"));
+}
+
+TEST_CASE("with score_overlap a shorter ground truth scores the frames it covers", "[slam][kitti]") {
+    KittiRunOptions o = defaults();
+    o.score_overlap = true;
+    const KittiRun r = run_kitti_sequence(kitti_layout("overlap", poses_text(4), ""), "01", o);
+    REQUIRE(r.run.estimate.size() == kPairs);   // the run is not cut
+    REQUIRE(r.run.truth.size() == 4);
+    const SequenceRun& full = scored_run().run;
+    CHECK(r.run.estimate == full.estimate);
+    const std::vector<Pose> est4(full.estimate.begin(), full.estimate.begin() + 4), truth4(full.truth.begin(), full.truth.begin() + 4);
+    CHECK(r.run.slam_metrics.ape == Approx(absolute_trajectory_error(est4, truth4)).epsilon(1e-12));
+    CHECK(r.run.slam_metrics.ape > 0);
+    CHECK(r.run.truth_3d.size() == 4);
+    const fs::path out = report_of(r.run, "overlap");
+    CHECK(lines_of(out / "truth_kitti.txt") == 4);
+    CHECK(lines_of(out / "estimate_kitti.txt") == kPairs);
+    CHECK(text_of(out / "report.md").find("first 4 of the 6 frames") != std::string::npos);
+}
+
+TEST_CASE("the 3-D APE of the written KITTI files equals the report's, and differs from the 2-D one", "[slam][kitti]") {
+    const SequenceRun& r = scored_run().run;
+    REQUIRE(r.truth.size() == kPairs);
+    CHECK(r.spatial_from_odometry);
+    const fs::path out = report_of(r, "scored");
+    const double from_files = absolute_trajectory_error_3d(read_trajectory_file(out / "estimate_kitti.txt"),
+                                                           read_trajectory_file(out / "truth_kitti.txt"));
+    CHECK(from_files == Approx(r.ape_3d_slam).epsilon(1e-6));
+    const auto j = nlohmann::json::parse(text_of(out / "summary.json"));
+    CHECK(j["ape_3d_m"]["slam"].get<double>() == Approx(from_files).epsilon(1e-6));
+    CHECK(r.ape_3d_slam != r.slam_metrics.ape);
+    // the estimate's height comes from the odometry: not level at height 0
+    double max_height = 0;
+    for (const auto& T : r.estimate_3d) max_height = std::max(max_height, std::abs(T(1, 3)));
+    CHECK(max_height > 0);
+}
+
+TEST_CASE("TUM timestamps are the sequence's times.txt, or frame index times the period", "[slam][kitti]") {
+    const std::vector<double> times = {0, 0.103634, 0.207269, 0.310904, 0.414538, 0.518173};
+    std::ostringstream t;
+    t << std::scientific;
+    for (double v : times) t << v << "\n";
+    const KittiRun r = run_kitti_sequence(kitti_layout("times", "", t.str()), "01", defaults());
+    REQUIRE(r.run.timestamps.size() == kPairs);
+    for (int k = 0; k < kPairs; ++k) CHECK(r.run.timestamps[k] == Approx(times[k]).epsilon(1e-12));
+    CHECK(r.run.timestamps_from == "the sequence's times.txt");
+    std::ifstream tum(report_of(r.run, "times") / "estimate_tum.txt");
+    for (int k = 0; k < kPairs; ++k) {
+        double stamp = -1;
+        std::string rest;
+        tum >> stamp;
+        std::getline(tum, rest);
+        CHECK(stamp == Approx(times[k]).epsilon(1e-8));
+    }
+    const SequenceRun& no_times = scored_run().run;
+    CHECK(no_times.timestamps[3] == Approx(0.3));
+    CHECK(no_times.timestamps_from.find("frame index") != std::string::npos);
+    const fs::path short_times = kitti_layout("short_times", "", "0\n0.1\n");
+    CHECK_THROWS_WITH(run_kitti_sequence(short_times, "01", defaults()),
+                      Catch::Contains("2 timestamps") && Catch::Contains("6 frames"));
+}
+
+TEST_CASE("a rig's plain images with a rig file from calib.txt give the KITTI-layout run", "[slam][kitti]") {
+    // the rig: calib.txt's rectified pair as calibrate's YAML, zero distortion, identity
+    // rotations, marked unrectified so that every keypoint goes through cv::undistortPoints
+    hc::calib::Calibration c = hc::calib::read_kitti_calib(g_kitti / "sequences/01/calib.txt");
+    c.rectified_input = false;
+    c.rectified.width = 1241;
+    c.rectified.height = 376;
+    const fs::path rig_file = g_work / "rig.yml";
+    std::ofstream(rig_file) << hc::calib::to_opencv_storage(c, false);
+    const fs::path left = g_work / "rig_left", right = g_work / "rig_right";
+    fs::create_directories(left);
+    fs::create_directories(right);
+    for (int k = 0; k < kPairs; ++k) {
+        char file[16];
+        std::snprintf(file, sizeof file, "%06d.png", k);
+        fs::copy_file(g_kitti / "sequences/01/image_0" / file, left / file);
+        fs::copy_file(g_kitti / "sequences/01/image_1" / file, right / file);
+    }
+    KittiRunOptions o = defaults();
+    o.truth = g_work / "rig_truth.txt";
+    std::ofstream(o.truth) << poses_text(kPairs);
+    const KittiRun rig = run_rig_sequence({rig_file.string(), {left.string()}, {(right / "*.png").string()}}, o);
+    const SequenceRun& kitti = scored_run().run;
+    REQUIRE(rig.run.estimate.size() == kitti.estimate.size());
+    REQUIRE(rig.run.truth.size() == kPairs);
+    // undistortPoints with zero distortion moves a keypoint by float rounding only (cv::Point2f):
+    // the landmarks, and with them the poses, agree to well under a millimetre
+    double worst = 0;
+    for (size_t k = 0; k < kitti.estimate.size(); ++k)
+        worst = std::max(worst, (rig.run.estimate[k] - kitti.estimate[k]).head<2>().norm());
+    INFO("largest position difference " << worst << " m; APE rig " << rig.run.slam_metrics.ape << " m, KITTI layout "
+         << kitti.slam_metrics.ape << " m");
+    CHECK(worst < 1e-3);
+    CHECK(rig.run.slam_metrics.ape == Approx(kitti.slam_metrics.ape).margin(1e-3));
+    CHECK(rig.run.timestamps_from.find("frame index") != std::string::npos);
+    // the rig without its calibration, and a left list of another length, are refused
+    CHECK_THROWS_WITH(run_rig_sequence({"", {left.string()}, {right.string()}}, o), Catch::Contains("--calib"));
+    CHECK_THROWS_WITH(run_rig_sequence({rig_file.string(), {left.string()}, {(right / "00000[0-2].png").string()}}, o),
+                      Catch::Contains("6 left images but 3 right images"));
+}
+
+int main(int argc, char** argv) {
+    const auto d = hc::frames::data_dir("");
+    if (!d || !fs::exists(*d / "kitti/poses/01.txt") || !fs::exists(*d / "kitti/sequences/01/image_1/000005.png")) {
+        std::printf("SKIPPED: no KITTI 01 stereo pairs and poses in the data directory (set HARRIS_COSIM_DATA)\n");
+        return 77;
+    }
+    g_kitti = *d / "kitti";
+    g_work = fs::temp_directory_path() / ("slam_sources_test_" + std::to_string(::getpid()));
+    fs::remove_all(g_work);
+    fs::create_directories(g_work);
+    const int rc = Catch::Session().run(argc, argv);
+    fs::remove_all(g_work);
+    return rc;
+}
