@@ -392,7 +392,7 @@ void recheck(StageProof& p, const std::string& text, const fs::path& dir, int se
     std::string ans = fs::exists(out) ? util::read_file(out) : "";
     ans = ans.substr(0, ans.find('\n'));
     p.rechecked = ans == "unsat";
-    p.recheck = fmt::format("cvc5 --tlimit={}: {}", seconds * 1000, ans.empty() ? "no answer" : ans);
+    p.recheck = fmt::format("cvc5 --tlimit={}: {}", seconds * 1000, ans.empty() ? "no answer within its time limit" : ans);
     if (ans.rfind("(error", 0) == 0) p.recheck += " (" + util::log_tail(dir / "cvc5.log", 300) + ")";
     if (ans == "sat") throw std::logic_error(fmt::format("stage equivalence: z3 proves {} equal, cvc5 finds a difference", p.command));
 }
