@@ -20,6 +20,7 @@
 #include "model/harris/sobel_y.hpp"
 #include "model/harris/threshold.hpp"
 #include "io/util/util.hpp"
+#include "sweep/smt_word.hpp"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -505,64 +506,6 @@ Z3Answer run_z3(const std::string& smt, std::int64_t rlimit, const std::vector<s
 namespace {
 
 // ---- the solver: the exact question as an SMT-LIB bit-vector query ----------------------
-
-/// The definitions of one query, in the order they are made.
-struct SmtQuery {
-    std::string text;
-    int next = 0;
-};
-thread_local SmtQuery* smt_query = nullptr;
-
-/// A hardware word as an SMT-LIB bit-vector term with numeric_std's semantics (the number
-/// type that runs the shared stage functions to write the query): each operation defines a
-/// new term in the query in scope (its bits; `s` says how they are read).
-struct SmtWord {
-    std::string e;
-    int w = 1;
-    bool s = false;
-    static SmtWord def(const std::string& expr, int width, bool is_signed) {
-        SmtQuery& q = *smt_query;
-        std::string name = fmt::format("t{}", q.next++);
-        q.text += fmt::format("(define-fun {} () (_ BitVec {}) {})\n", name, width, expr);
-        return {name, width, is_signed};
-    }
-    /// An 8-bit pixel variable (already unsigned 8 bits).
-    static SmtWord uns(const SmtWord& p, int width) {
-        if (width != p.w) throw std::logic_error("SmtWord::uns: a pixel is 8 bits");
-        return p;
-    }
-    static SmtWord constant(std::int64_t v, int width) {
-        const std::uint64_t bits = width >= 64 ? static_cast<std::uint64_t>(v)
-                                               : static_cast<std::uint64_t>(v) & ((std::uint64_t{1} << width) - 1);
-        return def(fmt::format("(_ bv{} {})", bits, width), width, true);
-    }
-    int width() const { return w; }
-};
-
-SmtWord extend(const SmtWord& x, int n) {
-    if (n == x.w) return x;
-    return SmtWord::def(fmt::format("((_ {}_extend {}) {})", x.s ? "sign" : "zero", n - x.w, x.e), n, x.s);
-}
-SmtWord resize(const SmtWord& x, int n) {
-    if (n >= x.w) return extend(x, n);
-    if (!x.s) return SmtWord::def(fmt::format("((_ extract {} 0) {})", n - 1, x.e), n, false);
-    if (n == 1) return SmtWord::def(fmt::format("((_ extract {0} {0}) {1})", x.w - 1, x.e), 1, true);
-    // numeric_std's signed shrink: the sign bit and the n-1 LSBs
-    return SmtWord::def(fmt::format("(concat ((_ extract {0} {0}) {1}) ((_ extract {2} 0) {1}))", x.w - 1, x.e, n - 2), n, true);
-}
-SmtWord slice(const SmtWord& x, int hi, int lo) {
-    if (lo == 0 && hi == x.w - 1) return x;
-    return SmtWord::def(fmt::format("((_ extract {} {}) {})", hi, lo, x.e), hi - lo + 1, x.s);
-}
-SmtWord as_signed(const SmtWord& x) { return {x.e, x.w, true}; }
-SmtWord binary(const char* op, const SmtWord& a, const SmtWord& b, int n) {
-    const SmtWord x = resize(a, n), y = resize(b, n);
-    return SmtWord::def(fmt::format("({} {} {})", op, x.e, y.e), n, a.s);
-}
-SmtWord operator+(const SmtWord& a, const SmtWord& b) { return binary("bvadd", a, b, std::max(a.w, b.w)); }
-SmtWord operator-(const SmtWord& a, const SmtWord& b) { return binary("bvsub", a, b, std::max(a.w, b.w)); }
-SmtWord operator-(const SmtWord& a) { return SmtWord::def(fmt::format("(bvneg {})", a.e), a.w, true); }
-SmtWord operator*(const SmtWord& a, const SmtWord& b) { return binary("bvmul", a, b, a.w + b.w); }   // full precision
 
 /// 64-bit integers (every exact value fits): the register's exact value beside its hardware value.
 constexpr int kExactW = 64;

@@ -8,6 +8,7 @@
 
 #include "io/util/util.hpp"
 #include "model/harris/formats_json.hpp"
+#include "sweep/stage_equivalence.hpp"
 #include "sweep/sweep_config.hpp"
 
 namespace fs = std::filesystem;
@@ -35,6 +36,14 @@ void run_ranges_command(const RangesCommand& c) {
         nlohmann::json j = range_report_to_json(r);
         j["name"] = cfg.name;
         all.push_back(j);
+        if (!c.stages.empty()) {
+            StageOptions so;
+            so.dir = fs::path(c.stages) / file_stem(cfg.name);
+            const StageEquivalence se = stage_equivalence(cfg.formats, so);
+            std::fprintf(stderr, "ranges: %s: stages: %s\n", cfg.name.c_str(), se.summary().c_str());
+            md += stage_equivalence_markdown(cfg.name, se) + "\n";
+            all.back()["stages"] = stage_equivalence_to_json(se);
+        }
         if (!c.witnesses.empty())
             for (const auto& w : write_witnesses(cfg.name, r, c.witnesses))
                 lines.push_back(w.regression_line(c.set_dir.empty() ? fs::path("golden") : fs::path(c.set_dir)));

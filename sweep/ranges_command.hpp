@@ -16,6 +16,7 @@ struct RangesCommand {
     RangeOptions ro;   ///< the solver limits (--search-windows, --solver-rlimit, ...)
     bool no_netlist = false;
     std::string netlist_dir;
+    std::string stages;   ///< --stages DIR: stage equivalence too, its netlists and queries kept under DIR/<config>/<stage>
 };
 
 /// Analyses every configuration, writes --json, --out (else prints the Markdown) and the

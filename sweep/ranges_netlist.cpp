@@ -22,19 +22,6 @@ constexpr int idx(Reg r) { return static_cast<int>(r); }
 
 // ---- the netlists ------------------------------------------------------------------------
 
-/// The generics of each stage entity at formats `f` (the entities take only their own).
-std::vector<std::string> entity_generics(const std::string& e, const Formats& f) {
-    std::vector<std::pair<const char*, int>> g;
-    if (e == "sobel_x" || e == "sobel_y") g = {{"SOBEL_W", f.sobel_w}};
-    if (e == "m_products") g = {{"SOBEL_W", f.sobel_w}, {"M_PROD_W", f.m_prod_w}, {"M_DROP", f.m_drop}};
-    if (e == "block_filter") g = {{"IN_W", f.m_w()}, {"BF_SUM_W", f.bf_sum_w}, {"BF_DROP", f.bf_drop}};
-    if (e == "harris_response")
-        g = {{"BF_W", f.bf_w()}, {"RESP_W", f.resp_w}, {"KTR_W", f.ktr_w}, {"K_SHIFT1", f.k_shift1}, {"K_SHIFT2", f.k_shift2}};
-    std::vector<std::string> v;
-    for (const auto& [name, val] : g) v.push_back(fmt::format("-g{}={}", name, val));
-    return v;
-}
-
 /// A register replaced by its input: the pipeline's value once its inputs have held still
 /// for as many writes as it is deep (every enable and reset tied to its active and inactive
 /// level, so that yosys has folded them away before this map applies).
@@ -555,6 +542,19 @@ std::vector<SignedShrink> signed_shrinks(const RangeReport& rep) {
     add("resize(ac, RESP_W) in harris_response", f.prod_w(), f.resp_w, {Reg::det, Reg::response}, product(a, c, false));
     add("resize(bb, RESP_W) in harris_response", f.prod_w(), f.resp_w, {Reg::det, Reg::response}, product(b, b, true));
     add("resize(ktr2, RESP_W) in harris_response", f.ktr_w, f.resp_w, {Reg::response}, seen(rep, Reg::k_term));
+    return v;
+}
+
+std::vector<std::string> entity_generics(const std::string& e, const Formats& f) {
+    std::vector<std::pair<const char*, int>> g;
+    if (e == "sobel_x" || e == "sobel_y") g = {{"SOBEL_W", f.sobel_w}};
+    if (e == "m_products") g = {{"SOBEL_W", f.sobel_w}, {"M_PROD_W", f.m_prod_w}, {"M_DROP", f.m_drop}};
+    if (e == "block_filter") g = {{"IN_W", f.m_w()}, {"BF_SUM_W", f.bf_sum_w}, {"BF_DROP", f.bf_drop}};
+    if (e == "harris_response")
+        g = {{"BF_W", f.bf_w()}, {"RESP_W", f.resp_w}, {"KTR_W", f.ktr_w}, {"K_SHIFT1", f.k_shift1}, {"K_SHIFT2", f.k_shift2}};
+    if (e == "threshold") g = {{"RESP_W", f.resp_w}};
+    std::vector<std::string> v;
+    for (const auto& [name, val] : g) v.push_back(fmt::format("-g{}={}", name, val));
     return v;
 }
 

@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PKGS=(cmake g++ make pkg-config
-      ghdl ghdl-gcc ghdl-llvm ghdl-mcode verilator yosys z3
+      ghdl ghdl-gcc ghdl-llvm ghdl-mcode verilator yosys z3 cvc5
       catch2 librapidcheck-dev libbenchmark-dev
       libopencv-dev opencv-doc libcli11-dev nlohmann-json3-dev libfmt-dev libtbb-dev libeigen3-dev
       gnuplot-nox graphviz slurm-wlm munge gcovr jq clang libclang-rt-14-dev)

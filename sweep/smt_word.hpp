@@ -1,0 +1,99 @@
+// smt_word.hpp: a hardware word as an SMT-LIB bit-vector term with numeric_std's semantics,
+// the number type on which the shared stage functions (model/harris/*.hpp) write their
+// arithmetic into a solver query: the derived ranges' model route (ranges.cpp) and the
+// stage-equivalence proofs (stage_equivalence.cpp) run the model's own stage functions on it.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+namespace hc::sweep {
+
+/// A signed resize to fewer bits in the query: its source term, the widths, and a Boolean
+/// term that is true where numeric_std's result (sign bit kept) and plain truncation differ.
+struct SmtShrink {
+    std::string source;
+    int from = 0, to = 0;
+    std::string overflow;
+};
+
+/// The definitions of one query, in the order they are made.
+struct SmtQuery {
+    std::string text;
+    int next = 0;
+    /// write a signed resize to fewer bits as a plain truncation (what GHDL 2.0's synthesis
+    /// makes of it) instead of numeric_std's (sign bit and the LSBs)
+    bool truncate_signed_shrink = false;
+    std::vector<SmtShrink> shrinks;   ///< every signed shrink the query made
+    /// write a sign extension as yosys's write_smt2 does (the sign bit concatenated once per
+    /// added bit) rather than as sign_extend: the same terms as a netlist's, which a solver
+    /// that does not rewrite one into the other (cvc5) then sees as equal
+    bool yosys_sign_extend = false;
+};
+inline thread_local SmtQuery* smt_query = nullptr;
+
+/// A hardware word as an SMT-LIB bit-vector term with numeric_std's semantics (the number
+/// type that runs the shared stage functions to write the query): each operation defines a
+/// new term in the query in scope (its bits; `s` says how they are read).
+struct SmtWord {
+    std::string e;
+    int w = 1;
+    bool s = false;
+    static SmtWord def(const std::string& expr, int width, bool is_signed) {
+        SmtQuery& q = *smt_query;
+        std::string name = fmt::format("t{}", q.next++);
+        q.text += fmt::format("(define-fun {} () (_ BitVec {}) {})\n", name, width, expr);
+        return {name, width, is_signed};
+    }
+    /// An 8-bit pixel variable (already unsigned 8 bits).
+    static SmtWord uns(const SmtWord& p, int width) {
+        if (width != p.w) throw std::logic_error("SmtWord::uns: a pixel is 8 bits");
+        return p;
+    }
+    static SmtWord constant(std::int64_t v, int width) {
+        const std::uint64_t bits = width >= 64 ? static_cast<std::uint64_t>(v)
+                                               : static_cast<std::uint64_t>(v) & ((std::uint64_t{1} << width) - 1);
+        return def(fmt::format("(_ bv{} {})", bits, width), width, true);
+    }
+    int width() const { return w; }
+};
+
+inline SmtWord extend(const SmtWord& x, int n) {
+    if (n == x.w) return x;
+    if (x.s && smt_query->yosys_sign_extend) {
+        std::string e = x.e;
+        for (int k = x.w; k < n; ++k) e = fmt::format("(concat ((_ extract {0} {0}) {1}) {2})", x.w - 1, x.e, e);
+        return SmtWord::def(e, n, true);
+    }
+    return SmtWord::def(fmt::format("((_ {}_extend {}) {})", x.s ? "sign" : "zero", n - x.w, x.e), n, x.s);
+}
+inline SmtWord resize(const SmtWord& x, int n) {
+    if (n >= x.w) return extend(x, n);
+    if (!x.s) return SmtWord::def(fmt::format("((_ extract {} 0) {})", n - 1, x.e), n, false);
+    SmtQuery& q = *smt_query;
+    q.shrinks.push_back({x.e, x.w, n,
+                         fmt::format("(distinct ((_ extract {0} {0}) {1}) ((_ extract {2} {2}) {1}))", x.w - 1, x.e, n - 1)});
+    if (q.truncate_signed_shrink) return SmtWord::def(fmt::format("((_ extract {} 0) {})", n - 1, x.e), n, true);
+    if (n == 1) return SmtWord::def(fmt::format("((_ extract {0} {0}) {1})", x.w - 1, x.e), 1, true);
+    // numeric_std's signed shrink: the sign bit and the n-1 LSBs
+    return SmtWord::def(fmt::format("(concat ((_ extract {0} {0}) {1}) ((_ extract {2} 0) {1}))", x.w - 1, x.e, n - 2), n, true);
+}
+inline SmtWord slice(const SmtWord& x, int hi, int lo) {
+    if (lo == 0 && hi == x.w - 1) return x;
+    return SmtWord::def(fmt::format("((_ extract {} {}) {})", hi, lo, x.e), hi - lo + 1, x.s);
+}
+inline SmtWord as_signed(const SmtWord& x) { return {x.e, x.w, true}; }
+inline SmtWord binary(const char* op, const SmtWord& a, const SmtWord& b, int n) {
+    const SmtWord x = resize(a, n), y = resize(b, n);
+    return SmtWord::def(fmt::format("({} {} {})", op, x.e, y.e), n, a.s);
+}
+inline SmtWord operator+(const SmtWord& a, const SmtWord& b) { return binary("bvadd", a, b, std::max(a.w, b.w)); }
+inline SmtWord operator-(const SmtWord& a, const SmtWord& b) { return binary("bvsub", a, b, std::max(a.w, b.w)); }
+inline SmtWord operator-(const SmtWord& a) { return SmtWord::def(fmt::format("(bvneg {})", a.e), a.w, true); }
+inline SmtWord operator*(const SmtWord& a, const SmtWord& b) { return binary("bvmul", a, b, a.w + b.w); }   // full precision
+
+}  // namespace hc::sweep

@@ -1,0 +1,601 @@
+// stage_equivalence.cpp: the miter of each datapath entity's netlist against the model's
+// stage function (see stage_equivalence.hpp).
+#include "sweep/stage_equivalence.hpp"
+
+#include <chrono>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <type_traits>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cosim/cosim.hpp"
+#include "io/util/errors.hpp"
+#include "io/util/util.hpp"
+#include "model/fixed/word.hpp"
+#include "model/harris/block_filter.hpp"
+#include "model/harris/formats_json.hpp"
+#include "model/harris/harris_response.hpp"
+#include "model/harris/m_products.hpp"
+#include "model/harris/sobel_x.hpp"
+#include "model/harris/sobel_y.hpp"
+#include "model/harris/threshold.hpp"
+#include "sweep/ranges.hpp"
+#include "sweep/smt_word.hpp"
+
+namespace fs = std::filesystem;
+
+namespace hc::sweep {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// ---- the stages ------------------------------------------------------------------------
+
+/// One input of a stage: the name of its variable in the query, its term on the netlist,
+/// its width and signedness, and the registers whose range is its domain (none: any value).
+struct Input {
+    std::string name, netlist;
+    int w = 1;
+    bool is_signed = true;
+    std::vector<Reg> domain;
+};
+/// One next register of a stage: its name and the candidate names of its `.d` output on the netlist.
+struct Output {
+    std::string name;
+    std::vector<std::string> netlist;
+};
+struct Spec {
+    std::string entity, wrapper;
+    std::vector<Input> in;
+    std::vector<Output> out;
+};
+
+std::string wire(const std::string& n) { return fmt::format("(|stage_n {}| s)", n); }
+
+/// Element (i, j) (from 0) of a 3x3 matrix port of `w`-bit elements as GHDL packs it:
+/// element (1, 1) in the top bits, row by row.
+std::string element(const std::string& port, int i, int j, int w) {
+    const int hi = 9 * w - 1 - w * (3 * i + j);
+    return fmt::format("((_ extract {} {}) {})", hi, hi - w + 1, wire(port));
+}
+
+std::string tied(const std::string& entity, const std::string& ports) {
+    return fmt::format("  {} u(.clk(clk), .rst(1'b1), .write(1'b1), {});\n", entity, ports);
+}
+
+/// The wrapper module `stage`, its inputs and its next registers.
+Spec spec_of(EqStage s, const Formats& f) {
+    const int sw = f.sobel_w, mw = f.m_w(), bw = f.bf_w(), rw = f.resp_w;
+    Spec sp;
+    sp.entity = kEqStageNames[static_cast<int>(s)];
+    switch (s) {
+        case EqStage::sobel_x: case EqStage::sobel_y: {
+            const std::string o = s == EqStage::sobel_x ? "ix" : "iy";
+            sp.wrapper = fmt::format("module stage(input clk, input [71:0] a, output signed [{}:0] {});\n", sw - 1, o) +
+                         tied(sp.entity, fmt::format(".en(1'b1), .a(a), .{0}({0})", o)) + "endmodule\n";
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) sp.in.push_back({fmt::format("p_{}_{}", i, j), element("a", i, j, 8), 8, false, {}});
+            sp.out = {{o, {o, "u." + o}}};
+            break;
+        }
+        case EqStage::m_products:
+            sp.wrapper = fmt::format("module stage(input clk, input signed [{0}:0] ix, iy, output signed [{1}:0] a, b, c);\n", sw - 1, mw - 1) +
+                         tied(sp.entity, ".en(1'b1), .ix(ix), .iy(iy), .a(a), .b(b), .c(c)") + "endmodule\n";
+            sp.in = {{"ix", wire("ix"), sw, true, {Reg::sobel_x}}, {"iy", wire("iy"), sw, true, {Reg::sobel_y}}};
+            sp.out = {{"a", {"a", "u.a"}}, {"b", {"b", "u.b"}}, {"c", {"c", "u.c"}}};
+            break;
+        case EqStage::block_filter:
+            sp.wrapper = fmt::format("module stage(input clk, input [{}:0] a, output signed [{}:0] sum);\n", 9 * mw - 1, bw - 1) +
+                         tied(sp.entity, ".en(1'b1), .a(a), .sum(sum)") + "endmodule\n";
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                    sp.in.push_back({fmt::format("m_{}_{}", i, j), element("a", i, j, mw), mw, true, {Reg::m_a, Reg::m_b, Reg::m_c}});
+            sp.out = {{"sum", {"sum", "u.sum"}}};
+            break;
+        case EqStage::harris_response:
+            sp.wrapper = fmt::format("module stage(input clk, input signed [{}:0] a, b, c, output signed [{}:0] r);\n", bw - 1, rw - 1) +
+                         "  harris_response u(.clk(clk), .rst(1'b1), .en0(1'b1), .en1(1'b1), .write(1'b1), .a(a), .b(b), .c(c), .r(r));\n"
+                         "endmodule\n";
+            sp.in = {{"a", wire("a"), bw, true, {Reg::block_a}},        {"b", wire("b"), bw, true, {Reg::block_b}},
+                     {"c", wire("c"), bw, true, {Reg::block_c}},        {"ac", "@u.ac", 2 * bw, true, {}},
+                     {"bb", "@u.bb", 2 * bw, true, {}},          {"ktr2", "@u.ktr2", f.ktr_w, true, {}}};
+            sp.out = {{"ac", {"u.ac"}}, {"bb", {"u.bb"}}, {"ktr2", {"u.ktr2"}}, {"r", {"r", "u.r"}}};
+            break;
+        case EqStage::threshold:
+            sp.wrapper = fmt::format("module stage(input clk, input signed [{0}:0] r0, thr, output signed [{0}:0] r1);\n", rw - 1) +
+                         tied(sp.entity, ".en(1'b1), .r0(r0), .thr(thr), .r1(r1)") + "endmodule\n";
+            sp.in = {{"r0", wire("r0"), rw, true, {}}, {"thr", wire("thr"), rw, true, {}}, {"r0_delay", "@u.r0_delay", rw, true, {}}};
+            sp.out = {{"r0_delay", {"u.r0_delay"}}, {"r1", {"r1", "u.r1"}}};
+            break;
+        case EqStage::count: break;
+    }
+    return sp;
+}
+
+/// The model's next registers of stage `s` from its inputs (Spec order), on Word or SmtWord.
+template <class T>
+std::vector<T> model_outputs(EqStage s, const std::vector<T>& in, const Formats& f) {
+    const auto m3 = [&](size_t at) {
+        std::array<std::array<T, 3>, 3> m;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) m[i][j] = in[at + 3 * i + j];
+        return m;
+    };
+    switch (s) {
+        case EqStage::sobel_x: case EqStage::sobel_y: {
+            if constexpr (std::is_same_v<T, Word>) {
+                Pixels3 p{};
+                for (int i = 0; i < 3; ++i)
+                    for (int j = 0; j < 3; ++j) p[i][j] = static_cast<Pixel>(in[3 * i + j].value());
+                return {s == EqStage::sobel_x ? sobel_x<Word>(p, f) : sobel_y<Word>(p, f)};
+            } else {
+                const auto p = m3(0);
+                return {s == EqStage::sobel_x ? sobel_x<T>(p, f) : sobel_y<T>(p, f)};
+            }
+        }
+        case EqStage::m_products: {
+            const MProductsT<T> m = m_products(in[0], in[1], f);
+            return {m.a, m.b, m.c};
+        }
+        case EqStage::block_filter: return {block_filter(m3(0), f)};
+        case EqStage::harris_response: {
+            const ResponseTermsT<T> t = harris_response_terms(in[0], in[1], in[2], f);
+            return {t.ac, t.bb, t.ktr2, harris_response(ResponseTermsT<T>{in[3], in[4], in[5]}, f)};
+        }
+        case EqStage::threshold: {
+            // r1 <= r0_delay when r0_delay >= thr else 0 (enable high)
+            if constexpr (std::is_same_v<T, Word>) return {in[0], threshold(in[2], in[1])};
+            else
+                return {in[0], T::def(fmt::format("(ite (bvsge {0} {1}) {0} (_ bv0 {2}))", in[2].e, in[1].e, in[2].w), in[2].w, true)};
+        }
+        case EqStage::count: break;
+    }
+    throw std::logic_error("model_outputs: no such stage");
+}
+
+// ---- the netlist -----------------------------------------------------------------------
+
+/// The yosys script: the wrapper over GHDL's module, registers everted into inputs (.q) and outputs (.d).
+std::string eq_script(const std::string& entity) {
+    return "read_verilog " + entity + ".v stage.v\nhierarchy -top stage\nproc\nflatten\nopt -nosdff -nodffe\n"
+           // every register must have folded to a plain flop (enables and resets tied)
+           "select -assert-none t:$*latch* t:$sr t:$mem* t:$*dff* t:$dff %d\n"
+           "opt_clean -purge\nexpose -evert-dff\nopt_clean\nselect -assert-none t:$dff\n"
+           "write_smt2 -wires stage.smt2\n";
+}
+
+/// Synthesises the stage in `dir`: its SMT-LIB text (module `stage`).
+std::string synthesise(const Spec& sp, const Formats& f, const fs::path& dir, const fs::path& rtl_dir) {
+    fs::create_directories(dir / "work");
+    const std::vector<std::string> g = entity_generics(sp.entity, f);
+    std::vector<std::string> argv = {"ghdl", "--synth", "--std=08", "--workdir=" + (dir / "work").string()};
+    argv.insert(argv.end(), g.begin(), g.end());
+    argv.push_back("--out=verilog");
+    std::string sources, gens;
+    for (const auto& s : cosim::rtl_sources(rtl_dir)) {
+        argv.push_back(s.string());
+        sources += " " + s.string();
+    }
+    argv.insert(argv.end(), {"-e", sp.entity});
+    for (const auto& x : g) gens += " " + x;
+    const fs::path log = dir / "synth.log";
+    if (util::run_process(argv, {.log = log, .stdout_file = dir / (sp.entity + ".v")}) != 0)
+        throw SimulatorError("ghdl --synth of " + sp.entity + " failed: " + util::log_tail(log, 1500));
+    util::write_file_atomic(dir / "stage.v", sp.wrapper);
+    util::write_file_atomic(dir / "stage.ys", eq_script(sp.entity));
+    const fs::path ylog = dir / "yosys.log";
+    fs::remove(ylog);
+    if (util::run_process({"yosys", "-q", "-s", "stage.ys"}, {.cwd = dir, .log = ylog}) != 0)
+        throw SimulatorError("yosys could not write " + sp.entity + "'s transition as SMT-LIB: " + util::log_tail(ylog, 1500));
+    util::write_file_atomic(dir / "commands.txt",
+                            fmt::format("ghdl --synth --std=08 --workdir=work{} --out=verilog{} -e {} > {}.v\n"
+                                        "yosys -q -s stage.ys    # writes stage.smt2\n",
+                                        gens, sources, sp.entity, sp.entity));
+    return util::read_file(dir / "stage.smt2");
+}
+
+/// The names yosys declares as ports (`; yosys-smt2-input|output NAME W`).
+std::set<std::string> ports_of(const std::string& smt) {
+    std::set<std::string> names;
+    std::istringstream in(smt);
+    std::string line;
+    for (std::string kind, name; std::getline(in, line);)
+        if (line.rfind("; yosys-smt2-input ", 0) == 0 || line.rfind("; yosys-smt2-output ", 0) == 0) {
+            std::istringstream l(line.substr(2));
+            l >> kind >> name;
+            names.insert(name);
+        }
+    return names;
+}
+
+/// GHDL's register nets by the signal they drive: "assign ac = n32_q; // (signal)" gives ac -> n32_q.
+std::map<std::string, std::string> register_aliases(const std::string& verilog) {
+    std::map<std::string, std::string> a;
+    std::istringstream in(verilog);
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream l(line);
+        std::string assign, name, eq, net;
+        if (!(l >> assign >> name >> eq >> net) || assign != "assign" || eq != "=") continue;
+        if (net.size() > 3 && net.compare(net.size() - 3, 3, "_q;") == 0) a[name] = net.substr(0, net.size() - 1);
+    }
+    return a;
+}
+
+/// The name under which yosys everted register `base` ("r", "u.ac"): itself, or the GHDL net
+/// it aliases (opt_clean -purge keeps one of the two); "" when the netlist has neither.
+std::string flop(const std::string& base, const std::set<std::string>& ports, const std::map<std::string, std::string>& aliases) {
+    if (ports.count(base + ".d")) return base;
+    const size_t dot = base.rfind('.');
+    const std::string prefix = dot == std::string::npos ? "" : base.substr(0, dot + 1);
+    if (const auto a = aliases.find(base.substr(prefix.size())); a != aliases.end() && ports.count(prefix + a->second + ".d"))
+        return prefix + a->second;
+    return "";
+}
+
+/// The stage with its register names resolved on the netlist: every register input's term
+/// (<flop>.q) and every next register's `.d` output (in `next`).
+Spec resolve(Spec sp, const std::string& netlist, const std::string& verilog, std::vector<std::string>& next) {
+    const std::set<std::string> ports = ports_of(netlist);
+    const auto aliases = register_aliases(verilog);
+    for (auto& x : sp.in) {
+        if (x.netlist.rfind("@", 0) != 0) continue;
+        const std::string f = flop(x.netlist.substr(1), ports, aliases);
+        if (f.empty())
+            throw std::logic_error(fmt::format("stage equivalence: {}'s netlist has no register {}", sp.entity, x.netlist.substr(1)));
+        x.netlist = wire(f + ".q");
+    }
+    next.clear();
+    for (const auto& o : sp.out) {
+        std::string found;
+        for (const auto& c : o.netlist)
+            if (found.empty()) found = flop(c, ports, aliases);
+        if (found.empty())
+            throw std::logic_error(fmt::format("stage equivalence: {}'s netlist has no next value of {} (looked for {}.d)", sp.entity,
+                                               o.name, o.netlist.front()));
+        next.push_back(found + ".d");
+    }
+    return sp;
+}
+
+// ---- the queries -----------------------------------------------------------------------
+
+/// `v` as a `w`-bit literal (two's complement).
+std::string literal(std::int64_t v, int w) {
+    const std::uint64_t bits = w >= 64 ? static_cast<std::uint64_t>(v) : static_cast<std::uint64_t>(v) & ((std::uint64_t{1} << w) - 1);
+    return fmt::format("(_ bv{} {})", bits, w);
+}
+
+struct Miter {
+    std::string text;                  ///< without check-sat
+    std::vector<std::string> get;      ///< inputs, model outputs m_<k>, netlist outputs n_<k>, shrinks ovf_<k>
+    std::vector<SmtShrink> shrinks;
+};
+
+/// numeric_std (truncate false) or GHDL's truncation of signed shrinks; `domain`: the inputs' assumed ranges.
+Miter miter(EqStage s, const Formats& f, const Spec& sp, const std::string& netlist, const std::vector<std::string>& next,
+            bool truncate, const std::map<std::string, Interval>& domain) {
+    Miter m;
+    m.text = "(set-logic ALL)\n" + netlist + "(declare-fun s () |stage_s|)\n(assert (|stage_h| s))\n";
+    std::vector<SmtWord> in;
+    for (const auto& x : sp.in) {
+        m.text += fmt::format("(define-fun {} () (_ BitVec {}) {})\n", x.name, x.w, x.netlist);
+        in.push_back({x.name, x.w, x.is_signed});
+        m.get.push_back(x.name);
+        if (const auto d = domain.find(x.name); d != domain.end())
+            m.text += fmt::format("(assert (and (bvsge {0} {1}) (bvsle {0} {2})))\n", x.name, literal(d->second.lo, x.w),
+                                  literal(d->second.hi, x.w));
+    }
+    SmtQuery q;
+    q.text = m.text;
+    q.truncate_signed_shrink = truncate;
+    q.yosys_sign_extend = true;
+    smt_query = &q;
+    std::vector<SmtWord> out;
+    try {
+        out = model_outputs<SmtWord>(s, in, f);
+    } catch (...) {
+        smt_query = nullptr;
+        throw;
+    }
+    smt_query = nullptr;
+    m.text = q.text;
+    m.shrinks = q.shrinks;
+    std::string any;
+    for (size_t k = 0; k < out.size(); ++k) {
+        m.text += fmt::format("(define-fun m_{0} () (_ BitVec {1}) {2})\n(define-fun n_{0} () (_ BitVec {1}) {3})\n", k, out[k].w,
+                              out[k].e, wire(next[k]));
+        any += fmt::format(" (distinct m_{0} n_{0})", k);
+        m.get.push_back(fmt::format("m_{}", k));
+        m.get.push_back(fmt::format("n_{}", k));
+    }
+    for (size_t k = 0; k < m.shrinks.size(); ++k) {
+        m.text += fmt::format("(define-fun ovf_{} () (_ BitVec 1) (ite {} #b1 #b0))\n", k, m.shrinks[k].overflow);
+        m.get.push_back(fmt::format("ovf_{}", k));
+    }
+    m.text += fmt::format("(assert (or{}))\n", any);
+    return m;
+}
+
+std::int64_t as_signed_bits(std::int64_t bits, int w) {
+    const std::uint64_t u = static_cast<std::uint64_t>(bits) & (w >= 64 ? ~0ULL : ((1ULL << w) - 1));
+    return w < 64 && (u >> (w - 1)) ? static_cast<std::int64_t>(u) - (std::int64_t{1} << w) : static_cast<std::int64_t>(u);
+}
+
+/// The counterexample's inputs as numbers (signed inputs read as signed).
+std::map<std::string, std::int64_t> inputs_at(const Spec& sp, const Z3Answer& z) {
+    std::map<std::string, std::int64_t> v;
+    for (const auto& x : sp.in) v[x.name] = x.is_signed ? as_signed_bits(z.values.at(x.name), x.w) : z.values.at(x.name);
+    return v;
+}
+
+/// The model's next registers at the counterexample on Word must be what the query's model side says; returns
+/// "r: model -123, netlist 456" for the first output that differs.
+std::string check_in_model(EqStage s, const Formats& f, const Spec& sp, const Z3Answer& z) {
+    std::vector<Word> in;
+    const auto vals = inputs_at(sp, z);
+    for (const auto& x : sp.in) in.push_back(x.is_signed ? Word::sgn(vals.at(x.name), x.w) : Word::uns(vals.at(x.name), x.w));
+    const std::vector<Word> out = model_outputs<Word>(s, in, f);
+    std::string first;
+    for (size_t k = 0; k < out.size(); ++k) {
+        const int w = out[k].width();
+        const std::int64_t smt = as_signed_bits(z.values.at(fmt::format("m_{}", k)), w);
+        const std::int64_t net = as_signed_bits(z.values.at(fmt::format("n_{}", k)), w);
+        const std::int64_t word = as_signed_bits(out[k].value(), w);
+        if (smt != word)
+            throw std::logic_error(fmt::format("stage equivalence: {}'s {} at the counterexample is {} in the query, {} in the model",
+                                               sp.entity, sp.out[k].name, smt, word));
+        if (first.empty() && word != net) first = fmt::format("{}: model {}, netlist {}", sp.out[k].name, word, net);
+    }
+    if (first.empty())
+        throw std::logic_error(fmt::format("stage equivalence: {}'s counterexample does not differ in the model", sp.entity));
+    return first;
+}
+
+/// The signed shrinks that overflow at the counterexample: "resize of ac (32 -> 27 bits)".
+std::string overflowing(const Miter& m, const Spec& sp, const Z3Answer& z) {
+    std::string s;
+    for (size_t k = 0; k < m.shrinks.size(); ++k) {
+        if (z.values.at(fmt::format("ovf_{}", k)) == 0) continue;
+        const SmtShrink& x = m.shrinks[k];
+        std::string what = fmt::format("a {}-bit term", x.from);
+        for (const auto& in : sp.in)
+            if (in.name == x.source) what = in.name;
+        const std::string one = fmt::format("resize of {} ({} -> {} bits)", what, x.from, x.to);
+        if (s.find(one) == std::string::npos) s += (s.empty() ? "" : ", ") + one;
+    }
+    return s;
+}
+
+std::string values_text(const std::map<std::string, std::int64_t>& v) {
+    std::string s;
+    for (const auto& [k, x] : v) s += fmt::format("{}{}={}", s.empty() ? "" : " ", k, x);
+    return s;
+}
+
+/// cvc5 on the same query (check-sat only), within its resource limit.
+void recheck(StageProof& p, const std::string& text, const fs::path& dir, int seconds) {
+    const fs::path file = dir / "query-cvc5.smt2", out = dir / "cvc5-answer.txt";
+    util::write_file_atomic(file, text + "(check-sat)\n");
+    try {
+        util::run_process({"cvc5", "--lang=smt2", fmt::format("--tlimit={}", seconds * 1000), file.string()},
+                          {.log = dir / "cvc5.log", .stdout_file = out});
+    } catch (const SimulatorError& e) {
+        p.recheck = std::string("cvc5: not run: ") + e.what();
+        return;
+    }
+    std::string ans = fs::exists(out) ? util::read_file(out) : "";
+    ans = ans.substr(0, ans.find('\n'));
+    p.rechecked = ans == "unsat";
+    p.recheck = fmt::format("cvc5 --tlimit={}: {}", seconds * 1000, ans.empty() ? "no answer within its time limit" : ans);
+    if (ans.rfind("(error", 0) == 0) p.recheck += " (" + util::log_tail(dir / "cvc5.log", 300) + ")";
+    if (ans == "sat") throw std::logic_error(fmt::format("stage equivalence: z3 proves {} equal, cvc5 finds a difference", p.command));
+}
+
+/// The inputs' domain: the interval bound of the registers that feed them, where it fits (the register cannot wrap).
+std::map<std::string, Interval> domain_of(const Spec& sp, const Formats& f) {
+    const RangeReport r = interval_ranges(f);
+    std::map<std::string, Interval> d;
+    for (const auto& x : sp.in) {
+        if (x.domain.empty()) continue;
+        Interval hull{std::numeric_limits<std::int64_t>::max(), std::numeric_limits<std::int64_t>::min()};
+        bool fits = true;
+        for (Reg reg : x.domain) {
+            const RegisterRange& rr = r.at(reg);
+            fits = fits && rr.bound_fits;
+            hull = {std::min(hull.lo, rr.bound.lo), std::max(hull.hi, rr.bound.hi)};
+        }
+        if (fits) d[x.name] = hull;
+    }
+    return d;
+}
+
+std::string domain_text(const std::map<std::string, Interval>& d) {
+    std::string s;
+    for (const auto& [k, v] : d) s += fmt::format("{}{} in [{}, {}]", s.empty() ? "" : ", ", k, v.lo, v.hi);
+    return s;
+}
+
+}  // namespace
+
+EqStage eq_stage(const std::string& name) {
+    for (int k = 0; k < kEqStageCount; ++k)
+        if (name == kEqStageNames[k]) return static_cast<EqStage>(k);
+    throw InputError("no stage named '" + name + "' (sobel_x, sobel_y, m_products, block_filter, harris_response, threshold)");
+}
+
+const char* eq_verdict_name(EqVerdict v) {
+    switch (v) {
+        case EqVerdict::equal: return "proven equal";
+        case EqVerdict::counterexample: return "counterexample";
+        case EqVerdict::netlist_differs: return "netlist differs from the VHDL";
+        case EqVerdict::open: return "open";
+    }
+    return "?";
+}
+
+namespace {
+
+/// One z3 query of the stage, kept as <dir>/query-<k>.smt2; the command that reruns it.
+struct Asked {
+    Z3Answer z;
+    std::string command, text;
+};
+Asked ask(StageProof& p, const Miter& m, const fs::path& dir, int k, std::int64_t rlimit) {
+    const fs::path file = dir / fmt::format("query-{}.smt2", k);
+    Asked a{run_z3(m.text, rlimit, m.get, file), fmt::format("z3 -smt2 rlimit={} {}", rlimit, file.string()), m.text};
+    p.rlimit += a.z.rlimit;
+    return a;
+}
+
+void proven(StageProof& p, const Asked& a, const fs::path& dir, const StageOptions& o) {
+    p.verdict = EqVerdict::equal;
+    p.command = a.command;
+    if (o.recheck) recheck(p, a.text, dir, o.recheck_seconds);
+}
+
+}  // namespace
+
+StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
+    f.validate();
+    const auto t0 = Clock::now();
+    const util::ScratchDir scratch;
+    const fs::path dir = fs::absolute(o.dir.empty() ? scratch.path() : o.dir);
+    StageProof p;
+    p.stage = s;
+    const std::string netlist = synthesise(spec_of(s, f), f, dir, o.rtl_dir);
+    std::vector<std::string> next;
+    const Spec sp = resolve(spec_of(s, f), netlist, util::read_file(dir / (std::string(kEqStageNames[static_cast<int>(s)]) + ".v")), next);
+    const Miter m0 = miter(s, f, sp, netlist, next, false, {});
+    const Asked a0 = ask(p, m0, dir, 1, o.rlimit);
+    p.command = a0.command;
+    if (a0.z.sat == Sat::unsat) {
+        proven(p, a0, dir, o);
+        if (!m0.shrinks.empty()) p.detail = "no signed shrink overflows on any input: the proof holds for the VHDL";
+    } else if (a0.z.sat == Sat::unknown) {
+        p.detail = a0.z.why;
+    } else {
+        p.counterexample = inputs_at(sp, a0.z);
+        const std::string differ = check_in_model(s, f, sp, a0.z);
+        const std::string shrink = overflowing(m0, sp, a0.z);
+        // GHDL's synthesis of a signed shrink: the same question with truncations
+        const Asked a1 = ask(p, miter(s, f, sp, netlist, next, true, {}), dir, 2, o.rlimit);
+        if (a1.z.sat != Sat::unsat || shrink.empty()) {
+            p.verdict = a1.z.sat == Sat::unknown ? EqVerdict::open : EqVerdict::counterexample;
+            p.detail = fmt::format("{} at {}{}", differ, values_text(p.counterexample),
+                                   a1.z.sat == Sat::unknown ? "; with truncating shrinks: " + a1.z.why : "");
+        } else if (const auto d = domain_of(sp, f); !d.empty()) {
+            const Miter m2 = miter(s, f, sp, netlist, next, false, d);
+            const Asked a2 = ask(p, m2, dir, 3, o.rlimit);
+            p.assumed = domain_text(d);
+            if (a2.z.sat == Sat::unsat) {
+                proven(p, a2, dir, o);
+                p.detail = fmt::format("signed {} overflows only outside the inputs' domain ({} at {}): the proof holds for the "
+                                       "VHDL because the shrink cannot overflow on the domain",
+                                       shrink, differ, values_text(p.counterexample));
+            } else {
+                p.verdict = a2.z.sat == Sat::sat ? EqVerdict::netlist_differs : EqVerdict::open;
+                if (a2.z.sat == Sat::sat) {
+                    p.counterexample = inputs_at(sp, a2.z);
+                    p.detail = fmt::format("signed {} overflows on the domain: {} at {}", overflowing(m2, sp, a2.z),
+                                           check_in_model(s, f, sp, a2.z), values_text(p.counterexample));
+                    p.command = a2.command;
+                } else {
+                    p.detail = "on the domain: " + a2.z.why;
+                }
+            }
+        } else {
+            p.verdict = EqVerdict::netlist_differs;
+            p.detail = fmt::format("signed {} overflows: {} at {}", shrink, differ, values_text(p.counterexample));
+        }
+    }
+    p.seconds = since(t0);
+    return p;
+}
+
+StageEquivalence stage_equivalence(const Formats& f, const StageOptions& o) {
+    const auto t0 = Clock::now();
+    StageEquivalence r;
+    r.formats = f;
+    for (int k = 0; k < kEqStageCount; ++k) {
+        StageOptions one = o;
+        if (!o.dir.empty()) one.dir = o.dir / kEqStageNames[k];
+        r.stages.push_back(prove_stage(static_cast<EqStage>(k), f, one));
+    }
+    r.seconds = since(t0);
+    return r;
+}
+
+std::string StageEquivalence::summary() const {
+    int equal = 0;
+    std::string rest;
+    for (const auto& p : stages) {
+        if (p.verdict == EqVerdict::equal) ++equal;
+        else rest += fmt::format(", {}: {}", kEqStageNames[static_cast<int>(p.stage)], eq_verdict_name(p.verdict));
+    }
+    return fmt::format("{} proven equal{}", equal, rest);
+}
+
+std::string stage_equivalence_markdown(const std::string& config, const StageEquivalence& r) {
+    std::string s = fmt::format("### Stage equivalence: {}\n\n{} ({:.1f} s)\n\n", config, r.summary(), r.seconds);
+    s += "| stage | verdict | solver | second solver | z3 rlimit | seconds | assumed | detail | rerun |\n"
+         "|---|---|---|---|---:|---:|---|---|---|\n";
+    for (const auto& p : r.stages)
+        s += fmt::format("| {} | {} | {} | {} | {} | {:.1f} | {} | {} | `{}` |\n", kEqStageNames[static_cast<int>(p.stage)],
+                         eq_verdict_name(p.verdict), p.solver, p.recheck.empty() ? "-" : p.recheck, p.rlimit, p.seconds,
+                         p.assumed.empty() ? "every input" : p.assumed, p.detail.empty() ? "-" : p.detail, p.command);
+    return s;
+}
+
+nlohmann::json stage_equivalence_to_json(const StageEquivalence& r) {
+    nlohmann::json j;
+    j["formats"] = nlohmann::json::parse(formats_to_json(r.formats));
+    j["seconds"] = r.seconds;
+    j["stages"] = nlohmann::json::array();
+    for (const auto& p : r.stages)
+        j["stages"].push_back({{"stage", kEqStageNames[static_cast<int>(p.stage)]},
+                               {"verdict", eq_verdict_name(p.verdict)},
+                               {"solver", p.solver},
+                               {"rlimit", p.rlimit},
+                               {"seconds", p.seconds},
+                               {"assumed", p.assumed},
+                               {"recheck", p.recheck},
+                               {"rechecked", p.rechecked},
+                               {"counterexample", p.counterexample},
+                               {"detail", p.detail},
+                               {"command", p.command}});
+    return j;
+}
+
+StageEquivalence stage_equivalence_from_json(const nlohmann::json& j) {
+    StageEquivalence r;
+    r.formats = formats_from_json(j.at("formats"), "stage-equivalence report");
+    r.seconds = j.at("seconds").get<double>();
+    for (const auto& x : j.at("stages")) {
+        StageProof p;
+        p.stage = eq_stage(x.at("stage").get<std::string>());
+        const std::string v = x.at("verdict").get<std::string>();
+        bool known = false;
+        for (EqVerdict e : {EqVerdict::equal, EqVerdict::counterexample, EqVerdict::netlist_differs, EqVerdict::open})
+            if (v == eq_verdict_name(e)) p.verdict = e, known = true;
+        if (!known) throw std::runtime_error("stage equivalence: unknown verdict '" + v + "'");
+        p.solver = x.at("solver").get<std::string>();
+        p.rlimit = x.at("rlimit").get<std::int64_t>();
+        p.seconds = x.at("seconds").get<double>();
+        p.assumed = x.at("assumed").get<std::string>();
+        p.recheck = x.at("recheck").get<std::string>();
+        p.rechecked = x.at("rechecked").get<bool>();
+        p.counterexample = x.at("counterexample").get<std::map<std::string, std::int64_t>>();
+        p.detail = x.at("detail").get<std::string>();
+        p.command = x.at("command").get<std::string>();
+        r.stages.push_back(p);
+    }
+    return r;
+}
+
+}  // namespace hc::sweep
