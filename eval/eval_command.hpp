@@ -18,7 +18,7 @@ struct EvalCommand {
     int threads = 0;
     bool threads_given = false;   ///< --threads was given (a shard otherwise runs on one)
     bool ablation = true;
-    std::string command_line;     ///< the command as the user typed it, for the report
+    std::string command_line;     ///< the command as the user typed it (less the sharding flags), for the report
 };
 
 /// Runs the evaluation, writes the report into c.out and prints its totals. Without images,

@@ -1,6 +1,7 @@
 // cli.cpp: the flags several commands share (commands.hpp) and the runner they hand to
 // their libraries.
 #include <filesystem>
+#include <set>
 
 #include "tools/commands.hpp"
 #include "tools/registry.hpp"
@@ -17,17 +18,33 @@ std::filesystem::path& program() {
 void set_program_path(const char* argv0) { program() = cluster::resolve_program(argv0); }
 
 namespace {
-std::string& command_line() {
-    static std::string c;
-    return c;
+std::vector<std::string>& typed_arguments() {
+    static std::vector<std::string> a;
+    return a;
 }
 }  // namespace
 
 void set_command_line(int argc, char** argv) {
-    command_line() = util::shell_command_line("harris-cosim", std::vector<std::string>(argv + std::min(argc, 1), argv + argc));
+    typed_arguments().assign(argv + std::min(argc, 1), argv + argc);
 }
 
-const std::string& typed_command_line() { return command_line(); }
+std::string typed_command_line(const CLI::App* cmd) {
+    std::set<std::string> valued, bare;   // the sharding flags of `cmd` (add_runner_flags' group)
+    for (const CLI::Option* o : cmd->get_options([](const CLI::Option* o) { return o->get_group() == "Sharding"; }))
+        for (const std::string& n : o->get_lnames()) (o->get_type_size() == 0 ? bare : valued).insert("--" + n);
+    std::vector<std::string> kept;
+    const std::vector<std::string>& a = typed_arguments();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const std::string name = a[i].substr(0, a[i].find('='));
+        if (bare.count(name)) continue;
+        if (valued.count(name)) {
+            if (a[i].find('=') == std::string::npos) ++i;   // its value follows
+            continue;
+        }
+        kept.push_back(a[i]);
+    }
+    return util::shell_command_line("harris-cosim", kept);
+}
 
 CLI::Validator whole_number(long min) {
     return CLI::Validator(

@@ -56,9 +56,12 @@ cluster::JobRunner job_runner(const CLI::App* cmd, cluster::RunnerSettings s, bo
 
 /// The path of this executable (main's argv[0], resolved), the runner's worker program.
 void set_program_path(const char* argv0);
-/// The command line as typed (harris-cosim and argv[1..], shell-quoted), for the reports.
+/// The command line as typed, for the reports: set_command_line keeps argv[1..];
+/// typed_command_line gives `harris-cosim` and them, shell-quoted, less the sharding flags of
+/// `cmd` (the "Sharding" group of add_runner_flags: they say where the work runs, not what it
+/// computes, so a report made in shards equals the one made in one process byte for byte).
 void set_command_line(int argc, char** argv);
-const std::string& typed_command_line();
+std::string typed_command_line(const CLI::App* cmd);
 
 void add_rtl_command(CLI::App& app);        // GHDL co-simulation (cmd_rtl.cpp)
 void add_model_command(CLI::App& app);      // cycle model alone (cmd_rtl.cpp)

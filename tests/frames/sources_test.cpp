@@ -198,7 +198,7 @@ void write_kitti_standin(const fs::path& root, int pairs) {
 
 }  // namespace
 
-TEST_CASE("--frames N counts frames and --pairs a:b picks pairs the same way whatever a command streams when none is named",
+TEST_CASE("a frame count (--frames N) and a pair range (--pairs a:b) pick the same frames whatever a command streams when none is named",
           "[frames]") {
     const fs::path root = sources_scratch("kitti-standin");
     write_kitti_standin(root, 3);

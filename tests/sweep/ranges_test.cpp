@@ -194,7 +194,7 @@ TEST_CASE("a block sum narrowed by one bit is reachable, with the exact maximum 
 }
 
 TEST_CASE("a response one or two bits too narrow for the interval bound: det and the response proven through the block sums' "
-          "relations, every register decided; one more bit less wraps",
+          "relations and every register decided but one more bit less wraps",
           "[model][sweep][ranges]") {
     for (int w : {29, 28}) {
         Formats f;
