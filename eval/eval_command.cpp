@@ -32,19 +32,6 @@ std::vector<int> parse_list(const std::string& s) {
     return v;
 }
 
-/// The stereo pairs of each KITTI sequence of a job: --pairs (--frames N is refused: a job
-/// splits whole stereo pairs into parts).
-util::Range pair_range(const frames::FrameSource& s) {
-    if (s.frames > 0)
-        throw InputError("--frames " + std::to_string(s.frames) +
-                         " counts the frames of one stream; --sequences and sharded runs take stereo pairs: give --pairs a:b");
-    return s.pairs.empty() ? util::Range{0, 1 << 30} : util::parse_range(s.pairs, "--pairs");
-}
-
-std::string pairs_flag(const frames::FrameSource& s) {
-    return "--pairs " + (s.pairs.empty() ? std::string("(all)") : s.pairs);
-}
-
 void print_totals(const Report& rep, const std::string& out, const std::string& timing) {
     std::fprintf(stderr, "eval: %s: recall %.6f precision %.6f (TP %llu FP %llu FN %llu)%s; report in %s\n",
                  rep.source.c_str(), rep.total.recall(), rep.total.precision(), (unsigned long long)rep.total.tp,
@@ -65,8 +52,8 @@ void run_job(const EvalCommand& c, const cluster::JobRunner& runner) {
     j.source = source_name(parse_source(c.source));
     j.kitti = kitti;
     j.sequences = c.sequences.empty() ? std::vector<std::string>{s.sequence} : frames::parse_sequences(c.sequences);
-    j.pairs = pair_range(s);
-    j.pairs_flag = pairs_flag(s);
+    j.pairs = frames::job_pair_range(s);
+    j.pairs_flag = frames::pairs_flag(s);
     j.ablation = c.ablation;
     j.shards = runner.sharded() ? runner.settings().shards : 0;
     // a shard is one process on one core unless --threads says otherwise

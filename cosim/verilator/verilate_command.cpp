@@ -35,9 +35,8 @@ void run_job(const VerilateCommand& a, const cluster::JobRunner& runner) {
     VerilateJob j;
     j.kitti = frames::require_kitti_root(a.src.kitti, a.src.data, "--sequences needs KITTI data");
     j.sequences = a.sequences.empty() ? std::vector<std::string>{a.src.sequence} : frames::parse_sequences(a.sequences);
-    if (!a.src.pairs.empty()) j.pairs = util::parse_range(a.src.pairs, "--pairs");
-    if (a.src.frames > 0) j.pairs.last = std::min(j.pairs.last, j.pairs.first + (a.src.frames + 1) / 2);
-    j.pairs_flag = "--pairs " + (a.src.pairs.empty() ? std::string("(all)") : a.src.pairs);
+    j.pairs = frames::job_pair_range(a.src);
+    j.pairs_flag = frames::pairs_flag(a.src);
     j.formats = a.config.empty() ? Formats{} : formats_from_file(a.config);
     j.cache = a.cache;
     j.keep_going = a.keep_going;

@@ -193,6 +193,14 @@ struct LoadedFrames {
     std::string description;
 };
 
+/// How errors name the stereo pairs `o` picks: "--pairs a:b", or "--pairs (all)" without the flag.
+std::string pairs_flag(const FrameSource& o);
+/// The stereo pairs `o` picks: its --pairs range, or every pair (an open end) without the flag.
+util::Range pair_range(const FrameSource& o);
+/// pair_range for a job that splits whole stereo pairs into parts (KITTI --sequences, sharded
+/// runs): --frames N, a count of one stream's frames, is refused there (InputError).
+util::Range job_pair_range(const FrameSource& o);
+
 /// True when `p` names a video file by its extension (.avi, .mp4, .mkv, .mov, ...).
 bool is_video_file(const std::filesystem::path& p);
 

@@ -144,14 +144,8 @@ FrameFeed image_feed(const FrameSource& o, int cw, int ch) {
     });
 }
 
-/// The pairs a --pairs flag names ("--pairs (all)" without it), as errors name them.
-std::string pairs_what(const FrameSource& o) {
-    return "--pairs " + (o.pairs.empty() ? std::string("(all)") : o.pairs);
-}
-
 FrameFeed kitti_feed(const fs::path& root, const FrameSource& o, int cw, int ch, int min_pairs) {
-    const util::Range r = o.pairs.empty() ? util::Range{0, 1 << 30} : util::parse_range(o.pairs, "--pairs");
-    return open_kitti_feed(root, o.sequence, r, pairs_what(o), min_pairs, {o.frames, cw, ch});
+    return open_kitti_feed(root, o.sequence, pair_range(o), pairs_flag(o), min_pairs, {o.frames, cw, ch});
 }
 
 /// Frames [0, n) of a stream of paths (names `names`, stereo pairs from `first_pair`), each
@@ -212,6 +206,21 @@ std::vector<std::string> parse_sequences(const std::string& s) {
     }
     if (out.empty()) throw bad("no sequence");
     return out;
+}
+
+std::string pairs_flag(const FrameSource& o) {
+    return "--pairs " + (o.pairs.empty() ? std::string("(all)") : o.pairs);
+}
+
+util::Range pair_range(const FrameSource& o) {
+    return o.pairs.empty() ? util::Range{0, 1 << 30} : util::parse_range(o.pairs, "--pairs");
+}
+
+util::Range job_pair_range(const FrameSource& o) {
+    if (o.frames > 0)
+        throw InputError("--frames " + std::to_string(o.frames) +
+                         " counts the frames of one stream; --sequences and sharded runs take stereo pairs: give --pairs a:b");
+    return pair_range(o);
 }
 
 bool is_video_file(const fs::path& p) {
@@ -294,7 +303,7 @@ FrameFeed open_feed(const FrameSource& o, WhenNone none, int min_pairs) {
         if (none == WhenNone::stereo) {
             const fs::path root = kitti_root(o.kitti, o.data);
             if (!root.empty()) return kitti_feed(root, o, cw, ch, min_pairs);
-            return default_stereo_feed(o.pairs.empty() ? util::Range{0, 1 << 30} : util::parse_range(o.pairs, "--pairs"),
+            return default_stereo_feed(pair_range(o),
                                        o.frames);
         }
     }
