@@ -72,8 +72,10 @@ Findings findings(const SweepResult& r) {
 }
 
 std::string to_csv(const SweepResult& r) {
-    std::string s =
-        "name,sobel_w,m_prod_w,m_drop,bf_sum_w,bf_drop,resp_w,ktr_w,k_shift1,k_shift2,thr_shift1,thr_shift2,"
+    // the formats columns are the rows of format_fields(), in its order
+    std::string s = "name,";
+    for (const auto& fld : format_fields()) s.append(fld.name).append(",");
+    s +=
         "recall,precision,f1,tp,fp,fn,luts,inv,ffs,dsps,carry4,muxf,srl,register_bits,wraps,"
         "wrap_sobel,wrap_m_resize,wrap_block_sum,wrap_k_term,wrap_response,pareto,"
         "rtl_runs,rtl_failed,rtl_mismatches,verilator_runs,verilator_failed,verilator_mismatches,synth_seconds,"
@@ -82,8 +84,8 @@ std::string to_csv(const SweepResult& r) {
         "trajectory_ape_slam,trajectory_ape_odometry,trajectory_path_length,trajectory_odometry_failures\n";
     for (const auto& p : r.points) {
         const Formats& f = p.config.formats;
-        s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},", p.config.name, f.sobel_w, f.m_prod_w, f.m_drop, f.bf_sum_w,
-                         f.bf_drop, f.resp_w, f.ktr_w, f.k_shift1, f.k_shift2, f.thr_shift1, f.thr_shift2);
+        s += p.config.name + ",";
+        for (const auto& fld : format_fields()) s += fmt::format("{},", f.*(fld.member));
         s += fmt::format("{:.6f},{:.6f},{:.6f},{},{},{},", p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(),
                          p.accuracy.tp, p.accuracy.fp, p.accuracy.fn);
         s += fmt::format("{},{},{},{},{},{},{},{},{},", p.cost.luts, p.cost.inv, p.cost.ffs, p.cost.dsps, p.cost.carry4,

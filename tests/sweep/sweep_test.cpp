@@ -196,6 +196,15 @@ TEST_CASE("the sweep report shows each checked point's three-way gate in its Gat
     CHECK_THAT(md, Catch::Contains("| - |  | - | - | - |"));
     CHECK_THAT(md, Catch::Contains("| **wraps at sobel_x** (witnesses/sobel_w-10_sobel_x.pgm) (interval 12, search 2; netlist not run) |  | - | - | - |"));
     const std::string csv = sweep::to_csv(r);
+    // after the name, one column per row of the formats table, in its order, with the
+    // configuration's values (here the point sobel_w=10)
+    std::string fields = "name", values = "sobel_w=10";
+    for (const auto& fld : format_fields()) {
+        fields += std::string(",") + fld.name;
+        values += "," + std::to_string(narrow.config.formats.*(fld.member));
+    }
+    CHECK(csv.rfind(fields + ",recall,", 0) == 0);
+    CHECK_THAT(csv, Catch::Contains("\n" + values + ","));
     CHECK_THAT(csv, Catch::Contains("gate_passed,gate_seconds,ranges,ranges_first_wrap,trajectory_ape_slam,"
                                     "trajectory_ape_odometry,trajectory_path_length,trajectory_odometry_failures\n"));
     // the four trajectory columns stay empty: no trajectory was scored
