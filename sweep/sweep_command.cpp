@@ -95,9 +95,7 @@ void run_sweep_command(const SweepCommand& c, const cluster::JobRunner& runner) 
         r = run_sweep(o);
     }
     if (!c.regression_set.empty()) r.regression_set = c.regression_set;
-    r.command = fmt::format("harris-cosim sweep --config {} --out {}{}{}", c.config, c.out,
-                            c.regression_set.empty() ? "" : " --regression-set " + c.regression_set,
-                            c.no_rtl ? " --no-rtl" : "");
+    r.command = c.command_line;
     write_reports(r, o.out);
     std::fprintf(stderr, "sweep: %zu configurations in %.1f s; reports in %s (sweep.md, sweep.csv, sweep.json, pareto.png)\n",
                  r.points.size(), r.seconds_total, o.out.string().c_str());

@@ -14,6 +14,7 @@ struct SweepCommand {
     std::string config, out = "sweep-report", cache, kitti, data, backend, middlebury, regression_set;
     int threads = 0;
     bool no_rtl = false, quiet = false;
+    std::string command_line;   ///< the command as typed, less its sharding flags: the reports quote it
 };
 
 /// Runs the sweep and writes its reports into c.out. The runner's --jobs is also the
