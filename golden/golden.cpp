@@ -10,7 +10,7 @@
 
 namespace fs = std::filesystem;
 
-namespace hc::regress {
+namespace hc::golden {
 
 namespace {
 
@@ -114,4 +114,4 @@ std::string compare_golden(const GoldenFile& now) {
     return now.path.string() + ": differs";
 }
 
-}  // namespace hc::regress
+}  // namespace hc::golden

@@ -15,7 +15,7 @@
 #include "model/image/image.hpp"
 #include "io/util/util.hpp"
 
-namespace hc::regress {
+namespace hc::golden {
 
 /// One golden file: where it goes and what it holds.
 struct GoldenFile {
@@ -41,4 +41,4 @@ std::string compare_golden(const GoldenFile& now);
 /// (each difference on stderr). Prints a summary line; MismatchError when a file differs.
 void run_golden_command(const std::filesystem::path& dir, const std::string& set, bool check);
 
-}  // namespace hc::regress
+}  // namespace hc::golden

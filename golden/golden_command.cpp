@@ -6,7 +6,7 @@
 
 namespace fs = std::filesystem;
 
-namespace hc::regress {
+namespace hc::golden {
 
 void run_golden_command(const fs::path& dir, const std::string& set_file, bool check) {
     const auto set = util::read_regression_set(set_file.empty() ? dir / "regression-set.txt" : fs::path(set_file));
@@ -31,4 +31,4 @@ void run_golden_command(const fs::path& dir, const std::string& set_file, bool c
     if (bad) throw MismatchError(std::to_string(bad) + " golden file(s) differ from the cycle model");
 }
 
-}  // namespace hc::regress
+}  // namespace hc::golden

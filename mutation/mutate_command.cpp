@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "io/frames/frames.hpp"
-#include "mutation/mutants_job.hpp"
+#include "mutation/mutate_generated_job.hpp"
 #include "mutation/mutate_job.hpp"
 #include "mutation/mutation.hpp"
 

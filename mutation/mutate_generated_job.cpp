@@ -1,6 +1,6 @@
-// mutants_job.cpp: the job kind "mutants" (mutants_job.hpp): shards of generated mutants,
+// mutate_generated_job.cpp: the job kind "mutate-generated" (mutate_generated_job.hpp): shards of generated mutants,
 // each judged by run_mutant (co-simulation, then a proof of the survivors).
-#include "mutation/mutants_job.hpp"
+#include "mutation/mutate_generated_job.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -63,7 +63,7 @@ json merge_mutants(const json&, const std::vector<json>& data) {
 
 cluster::Manifest mutants_manifest(const MutantsJob& p) {
     cluster::Manifest m;
-    m.job = "mutants";
+    m.job = "mutate-generated";
     m.common = {{"rtl_hash", rtl_hash()},
                 {"quick", to_json(p.quick)},
                 {"longer", stimuli_json(p.longer)},
@@ -89,12 +89,12 @@ std::vector<Result> mutants_results(const json& merged) {
     return v;
 }
 
-void add_mutants_job(cluster::JobRegistry& r) { r.add({"mutants", run_shard_mutants, merge_mutants}); }
+void add_mutate_generated_job(cluster::JobRegistry& r) { r.add({"mutate-generated", run_shard_mutants, merge_mutants}); }
 
 MutantsProgress mutants_finished(const fs::path& dir) {
     const cluster::Manifest m = cluster::read_manifest(dir);
-    if (m.job != "mutants")
-        throw cluster::ClusterInputError("run directory " + dir.string() + " holds a '" + m.job + "' run, not 'mutants'");
+    if (m.job != "mutate-generated")
+        throw cluster::ClusterInputError("run directory " + dir.string() + " holds a '" + m.job + "' run, not 'mutate-generated'");
     MutantsProgress p;
     p.quick = stimulus_from_json(m.common.at("quick"));
     for (const auto& s : m.common.at("longer")) p.longer.push_back(stimulus_from_json(s));

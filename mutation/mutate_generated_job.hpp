@@ -1,5 +1,5 @@
-// mutants_job.hpp: the job kind "mutants" of hc::cluster, the generated campaign in shards
-// (mutants_job.cpp): the named mutants of generate_all(), `per_shard` to a shard, each judged
+// mutate_generated_job.hpp: the job kind "mutate-generated" of hc::cluster, the generated campaign in shards
+// (mutate_generated_job.cpp): the named mutants of generate_all(), `per_shard` to a shard, each judged
 // by run_mutant; the merge lists every result in the mutants' order ({"results": [...]}).
 // The manifest carries a hash of rtl/, so a run is never resumed or merged against other RTL.
 #pragma once
@@ -27,8 +27,8 @@ struct MutantsJob {
 cluster::Manifest mutants_manifest(const MutantsJob& p);
 /// The merged data's results, in order.
 std::vector<Result> mutants_results(const nlohmann::json& merged);
-/// Adds the kind "mutants" to `r`.
-void add_mutants_job(cluster::JobRegistry& r);
+/// Adds the kind "mutate-generated" to `r`.
+void add_mutate_generated_job(cluster::JobRegistry& r);
 
 /// The finished shards of the mutants run in `dir` (`mutate --generate --render`): their
 /// results in the generator's order, the manifest's stimuli and shard count, and the seconds

@@ -458,7 +458,7 @@ void ghdl_check(CheckOutcome& c, const Config& config, const util::RegressionStr
     c.log = rel / (tag + ".log");
     fs::remove(o.out / c.log);
     cosim::GhdlRun run;
-    run.frames = regress::stream_frames(s);
+    run.frames = golden::stream_frames(s);
     for (int f = 0; f < s.frames; ++f) run.frame_names.push_back(s.stem() + "#" + std::to_string(f));
     run.formats = config.formats;
     run.backend = o.ghdl_backend;

@@ -15,7 +15,7 @@ void add_golden_command(CLI::App& app) {
     cmd->add_option("--out", o->out, "golden directory")->capture_default_str();
     cmd->add_option("--set", o->set, "regression-set file (default <out>/regression-set.txt)");
     cmd->add_flag("--check", o->check, "compare instead of writing; exit 1 on any difference");
-    cmd->callback([o] { regress::run_golden_command(o->out, o->set, o->check); });
+    cmd->callback([o] { golden::run_golden_command(o->out, o->set, o->check); });
 }
 
 }  // namespace hc::tools

@@ -3,7 +3,7 @@
 
 #include "cosim/verilator/verilate_job.hpp"
 #include "eval/eval_job.hpp"
-#include "mutation/mutants_job.hpp"
+#include "mutation/mutate_generated_job.hpp"
 #include "mutation/mutate_job.hpp"
 #include "slam/landmarks/landmarks_job.hpp"
 #include "slam/slam_job.hpp"
@@ -21,7 +21,7 @@ const cluster::JobRegistry& registry() {
         mutation::add_mutate_job(r);
         landmarks::add_landmarks_job(r);
         slam::add_slam_job(r);
-        mutation::add_mutants_job(r);
+        mutation::add_mutate_generated_job(r);
         return r;
     }();
     return reg;

@@ -10,7 +10,7 @@
 #include "model/driver/host_driver.hpp"
 #include "model/harris/find_max.hpp"
 #include "model/harris/harris_top.hpp"
-#include "mutation/mutants_job.hpp"
+#include "mutation/mutate_generated_job.hpp"
 #include "mutation/mutation.hpp"
 #include "tools/registry.hpp"
 
@@ -141,12 +141,12 @@ TEST_CASE("the mutants job splits the named mutants into shards in order", "[mut
     for (int i = 0; i < 10; ++i) j.names.push_back("m" + std::to_string(i));
     j.per_shard = 4;
     const cluster::Manifest m = mutation::mutants_manifest(j);
-    CHECK(m.job == "mutants");
+    CHECK(m.job == "mutate-generated");
     REQUIRE(m.shards.size() == 3);
     CHECK(m.shards[0]["names"].size() == 4);
     CHECK(m.shards[2]["names"].back() == "m9");
     const auto kinds = tools::registry().names();
-    CHECK(std::find(kinds.begin(), kinds.end(), "mutants") != kinds.end());
+    CHECK(std::find(kinds.begin(), kinds.end(), "mutate-generated") != kinds.end());
 }
 
 /// The frames of the longer stimulus `name` (without the data directory's streams).
