@@ -24,6 +24,7 @@
 #include "model/harris/threshold.hpp"
 #include "sweep/ranges.hpp"
 #include "sweep/smt_word.hpp"
+#include "sweep/stage_stimulus.hpp"
 
 namespace fs = std::filesystem;
 
@@ -79,7 +80,7 @@ Spec spec_of(EqStage s, const Formats& f) {
             sp.wrapper = fmt::format("module stage(input clk, input [71:0] a, output signed [{}:0] {});\n", sw - 1, o) +
                          tied(sp.entity, fmt::format(".en(1'b1), .a(a), .{0}({0})", o)) + "endmodule\n";
             for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j) sp.in.push_back({fmt::format("p_{}_{}", i, j), element("a", i, j, 8), 8, false, {}});
+                for (int j = 0; j < 3; ++j) sp.in.push_back({pixel_input(i, j), element("a", i, j, 8), 8, false, {}});
             sp.out = {{o, {o, "u." + o}}};
             break;
         }
@@ -423,6 +424,8 @@ std::string domain_text(const std::map<std::string, Interval>& d) {
 
 }  // namespace
 
+std::string pixel_input(int i, int j) { return fmt::format("p_{}_{}", i, j); }
+
 EqStage eq_stage(const std::string& name) {
     for (int k = 0; k < kEqStageCount; ++k)
         if (name == kEqStageNames[k]) return static_cast<EqStage>(k);
@@ -489,6 +492,10 @@ StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
             p.verdict = a1.z.sat == Sat::unknown ? EqVerdict::open : EqVerdict::counterexample;
             p.detail = fmt::format("{} at {}{}", differ, values_text(p.counterexample),
                                    a1.z.sat == Sat::unknown ? "; with truncating shrinks: " + a1.z.why : "");
+            if (p.verdict == EqVerdict::counterexample && !o.dir.empty())
+                if (const auto st = write_stage_stimulus(p, f, dir / "stimulus", o.config + "_" + kEqStageNames[static_cast<int>(s)],
+                                                         o.rlimit))
+                    p.stimulus = st->set.string();
         } else if (const auto d = domain_of(sp, f); !d.empty()) {
             const Miter m2 = miter(s, f, sp, netlist, next, false, d);
             const Asked a2 = ask(p, m2, dir, 3, o.rlimit);
@@ -543,12 +550,13 @@ std::string StageEquivalence::summary() const {
 
 std::string stage_equivalence_markdown(const std::string& config, const StageEquivalence& r) {
     std::string s = fmt::format("### Stage equivalence: {}\n\n{} ({:.1f} s)\n\n", config, r.summary(), r.seconds);
-    s += "| stage | verdict | solver | second solver | z3 rlimit | seconds | assumed | detail | rerun |\n"
-         "|---|---|---|---|---:|---:|---|---|---|\n";
+    s += "| stage | verdict | solver | second solver | z3 rlimit | seconds | assumed | detail | rerun | stimulus |\n"
+         "|---|---|---|---|---:|---:|---|---|---|---|\n";
     for (const auto& p : r.stages)
-        s += fmt::format("| {} | {} | {} | {} | {} | {:.1f} | {} | {} | `{}` |\n", kEqStageNames[static_cast<int>(p.stage)],
+        s += fmt::format("| {} | {} | {} | {} | {} | {:.1f} | {} | {} | `{}` | {} |\n", kEqStageNames[static_cast<int>(p.stage)],
                          eq_verdict_name(p.verdict), p.solver, p.recheck.empty() ? "-" : p.recheck, p.rlimit, p.seconds,
-                         p.assumed.empty() ? "every input" : p.assumed, p.detail.empty() ? "-" : p.detail, p.command);
+                         p.assumed.empty() ? "every input" : p.assumed, p.detail.empty() ? "-" : p.detail, p.command,
+                         p.stimulus.empty() ? "-" : "`" + p.stimulus + "`");
     return s;
 }
 
@@ -568,7 +576,8 @@ nlohmann::json stage_equivalence_to_json(const StageEquivalence& r) {
                                {"rechecked", p.rechecked},
                                {"counterexample", p.counterexample},
                                {"detail", p.detail},
-                               {"command", p.command}});
+                               {"command", p.command},
+                               {"stimulus", p.stimulus}});
     return j;
 }
 
@@ -593,6 +602,7 @@ StageEquivalence stage_equivalence_from_json(const nlohmann::json& j) {
         p.counterexample = x.at("counterexample").get<std::map<std::string, std::int64_t>>();
         p.detail = x.at("detail").get<std::string>();
         p.command = x.at("command").get<std::string>();
+        p.stimulus = x.at("stimulus").get<std::string>();
         r.stages.push_back(p);
     }
     return r;
