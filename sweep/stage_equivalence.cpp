@@ -54,6 +54,9 @@ struct Spec {
     std::string entity, wrapper;
     std::vector<Input> in;
     std::vector<Output> out;
+    /// harris_response: the block sums of the write before (free variables, not netlist terms)
+    /// whose step 1 the current registers ac, bb, ktr2 hold (reachable_registers)
+    std::vector<Input> prior;
 };
 
 std::string wire(const std::string& n) { return fmt::format("(|stage_n {}| s)", n); }
@@ -106,6 +109,8 @@ Spec spec_of(EqStage s, const Formats& f) {
                      {"c", wire("c"), bw, true, {Reg::block_c}},        {"ac", "@u.ac", 2 * bw, true, {}},
                      {"bb", "@u.bb", 2 * bw, true, {}},          {"ktr2", "@u.ktr2", f.ktr_w, true, {}}};
             sp.out = {{"ac", {"u.ac"}}, {"bb", {"u.bb"}}, {"ktr2", {"u.ktr2"}}, {"r", {"r", "u.r"}}};
+            sp.prior = {{"a_prev", "", bw, true, {Reg::block_a}}, {"b_prev", "", bw, true, {Reg::block_b}},
+                        {"c_prev", "", bw, true, {Reg::block_c}}};
             break;
         case EqStage::threshold:
             sp.wrapper = fmt::format("module stage(input clk, input signed [{0}:0] r0, thr, output signed [{0}:0] r1);\n", rw - 1) +
@@ -278,6 +283,17 @@ struct Miter {
     std::vector<SmtShrink> shrinks;
 };
 
+/// harris_response: the current step-1 registers (in[3..5]) are what step 1 makes of the block
+/// sums of the write before (sp.prior), the model's step 1 on the same shrinks as the query's
+/// (the netlist's step 1 is proven equal to it in the same query): the two steps together.
+void reachable_registers(EqStage s, const Spec& sp, const std::vector<SmtWord>& in, const Formats& f) {
+    if (s != EqStage::harris_response) return;
+    std::vector<SmtWord> prev;
+    for (const auto& x : sp.prior) prev.push_back({x.name, x.w, x.is_signed});
+    const ResponseTermsT<SmtWord> t = harris_response_terms(prev[0], prev[1], prev[2], f);
+    smt_query->text += fmt::format("(assert (and (= {} {}) (= {} {}) (= {} {})))\n", in[3].e, t.ac.e, in[4].e, t.bb.e, in[5].e, t.ktr2.e);
+}
+
 /// numeric_std (truncate false) or GHDL's truncation of signed shrinks; `domain`: the inputs' assumed ranges.
 Miter miter(EqStage s, const Formats& f, const Spec& sp, const std::string& netlist, const std::vector<std::string>& next,
             bool truncate, const std::map<std::string, Interval>& domain) {
@@ -292,6 +308,13 @@ Miter miter(EqStage s, const Formats& f, const Spec& sp, const std::string& netl
             m.text += fmt::format("(assert (and (bvsge {0} {1}) (bvsle {0} {2})))\n", x.name, literal(d->second.lo, x.w),
                                   literal(d->second.hi, x.w));
     }
+    for (const auto& x : sp.prior) {
+        m.text += fmt::format("(declare-fun {} () (_ BitVec {}))\n", x.name, x.w);
+        m.get.push_back(x.name);
+        if (const auto d = domain.find(x.name); d != domain.end())
+            m.text += fmt::format("(assert (and (bvsge {0} {1}) (bvsle {0} {2})))\n", x.name, literal(d->second.lo, x.w),
+                                  literal(d->second.hi, x.w));
+    }
     SmtQuery q;
     q.text = m.text;
     q.truncate_signed_shrink = truncate;
@@ -299,6 +322,7 @@ Miter miter(EqStage s, const Formats& f, const Spec& sp, const std::string& netl
     smt_query = &q;
     std::vector<SmtWord> out;
     try {
+        reachable_registers(s, sp, in, f);
         out = model_outputs<SmtWord>(s, in, f);
     } catch (...) {
         smt_query = nullptr;
@@ -331,7 +355,8 @@ std::int64_t as_signed_bits(std::int64_t bits, int w) {
 /// The counterexample's inputs as numbers (signed inputs read as signed).
 std::map<std::string, std::int64_t> inputs_at(const Spec& sp, const Z3Answer& z) {
     std::map<std::string, std::int64_t> v;
-    for (const auto& x : sp.in) v[x.name] = x.is_signed ? as_signed_bits(z.values.at(x.name), x.w) : z.values.at(x.name);
+    for (const auto* list : {&sp.in, &sp.prior})
+        for (const auto& x : *list) v[x.name] = x.is_signed ? as_signed_bits(z.values.at(x.name), x.w) : z.values.at(x.name);
     return v;
 }
 
@@ -402,7 +427,9 @@ void recheck(StageProof& p, const std::string& text, const fs::path& dir, int se
 std::map<std::string, Interval> domain_of(const Spec& sp, const Formats& f) {
     const RangeReport r = interval_ranges(f);
     std::map<std::string, Interval> d;
-    for (const auto& x : sp.in) {
+    std::vector<Input> all = sp.in;
+    all.insert(all.end(), sp.prior.begin(), sp.prior.end());
+    for (const auto& x : all) {
         if (x.domain.empty()) continue;
         Interval hull{std::numeric_limits<std::int64_t>::max(), std::numeric_limits<std::int64_t>::min()};
         bool fits = true;
@@ -416,10 +443,16 @@ std::map<std::string, Interval> domain_of(const Spec& sp, const Formats& f) {
     return d;
 }
 
-std::string domain_text(const std::map<std::string, Interval>& d) {
+/// What the stage assumes beside its inputs' domain `d`: the current registers step 1 can hold (sp.prior).
+std::string domain_text(const Spec& sp, const std::map<std::string, Interval>& d) {
     std::string s;
-    for (const auto& [k, v] : d) s += fmt::format("{}{} in [{}, {}]", s.empty() ? "" : ", ", k, v.lo, v.hi);
-    return s;
+    if (!sp.prior.empty()) {
+        s = "ac, bb, ktr2 are step 1's of";
+        for (size_t k = 0; k < sp.prior.size(); ++k) s += (k ? ", " : " ") + sp.prior[k].name;
+    }
+    std::string dom;
+    for (const auto& [k, v] : d) dom += fmt::format("{}{} in [{}, {}]", dom.empty() ? "" : ", ", k, v.lo, v.hi);
+    return s.empty() || dom.empty() ? s + dom : s + "; " + dom;
 }
 
 }  // namespace
@@ -477,6 +510,7 @@ StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
     const Miter m0 = miter(s, f, sp, netlist, next, false, {});
     const Asked a0 = ask(p, m0, dir, 1, o.rlimit);
     p.command = a0.command;
+    p.assumed = domain_text(sp, {});
     if (a0.z.sat == Sat::unsat) {
         proven(p, a0, dir, o);
         if (!m0.shrinks.empty()) p.detail = "no signed shrink overflows on any input: the proof holds for the VHDL";
@@ -499,7 +533,7 @@ StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
         } else if (const auto d = domain_of(sp, f); !d.empty()) {
             const Miter m2 = miter(s, f, sp, netlist, next, false, d);
             const Asked a2 = ask(p, m2, dir, 3, o.rlimit);
-            p.assumed = domain_text(d);
+            p.assumed = domain_text(sp, d);
             if (a2.z.sat == Sat::unsat) {
                 proven(p, a2, dir, o);
                 p.detail = fmt::format("signed {} overflows only outside the inputs' domain ({} at {}): the proof holds for the "

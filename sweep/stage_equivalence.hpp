@@ -18,9 +18,11 @@
 //          registers that feed it, proven where the bound fits), the proof is asked again on
 //          that domain, and holds for the VHDL because the shrink cannot overflow there;
 //   unknown: open (z3's resource limit reached).
-// Stages: sobel_x, sobel_y, m_products, block_filter, harris_response (both steps: the
-// products and the k-term from a, b, c; the response from the current step-1 registers),
-// threshold (r0_delay and r1 from r0, thr and the current r0_delay, enable high).
+// Stages: sobel_x, sobel_y, m_products, block_filter, harris_response (both steps together:
+// the products and the k-term from a, b, c; the response from the current step-1 registers,
+// which hold step 1's values of the block sums of the write before, a_prev, b_prev, c_prev,
+// free or in their domain as a, b, c are), threshold (r0_delay and r1 from r0, thr and the
+// current r0_delay, enable high).
 #pragma once
 
 #include <array>
