@@ -39,8 +39,12 @@ void run_ranges_command(const RangesCommand& c) {
         if (!c.stages.empty()) {
             StageOptions so;
             so.dir = fs::path(c.stages) / file_stem(cfg.name);
+            so.config = cfg.name;
             const StageEquivalence se = stage_equivalence(cfg.formats, so);
             std::fprintf(stderr, "ranges: %s: stages: %s\n", cfg.name.c_str(), se.summary().c_str());
+            for (const auto& p : se.stages)
+                if (!p.stimulus.empty()) std::fprintf(stderr, "ranges: %s: %s: counterexample stimulus: %s\n", cfg.name.c_str(),
+                                                      kEqStageNames[static_cast<int>(p.stage)], p.stimulus.c_str());
             md += stage_equivalence_markdown(cfg.name, se) + "\n";
             all.back()["stages"] = stage_equivalence_to_json(se);
         }

@@ -24,6 +24,7 @@
 #include "model/harris/threshold.hpp"
 #include "sweep/ranges.hpp"
 #include "sweep/smt_word.hpp"
+#include "sweep/stage_stimulus.hpp"
 
 namespace fs = std::filesystem;
 
@@ -53,6 +54,9 @@ struct Spec {
     std::string entity, wrapper;
     std::vector<Input> in;
     std::vector<Output> out;
+    /// harris_response: the block sums of the write before (free variables, not netlist terms)
+    /// whose step 1 the current registers ac, bb, ktr2 hold (reachable_registers)
+    std::vector<Input> prior;
 };
 
 std::string wire(const std::string& n) { return fmt::format("(|stage_n {}| s)", n); }
@@ -79,7 +83,7 @@ Spec spec_of(EqStage s, const Formats& f) {
             sp.wrapper = fmt::format("module stage(input clk, input [71:0] a, output signed [{}:0] {});\n", sw - 1, o) +
                          tied(sp.entity, fmt::format(".en(1'b1), .a(a), .{0}({0})", o)) + "endmodule\n";
             for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j) sp.in.push_back({fmt::format("p_{}_{}", i, j), element("a", i, j, 8), 8, false, {}});
+                for (int j = 0; j < 3; ++j) sp.in.push_back({pixel_input(i, j), element("a", i, j, 8), 8, false, {}});
             sp.out = {{o, {o, "u." + o}}};
             break;
         }
@@ -105,6 +109,8 @@ Spec spec_of(EqStage s, const Formats& f) {
                      {"c", wire("c"), bw, true, {Reg::block_c}},        {"ac", "@u.ac", 2 * bw, true, {}},
                      {"bb", "@u.bb", 2 * bw, true, {}},          {"ktr2", "@u.ktr2", f.ktr_w, true, {}}};
             sp.out = {{"ac", {"u.ac"}}, {"bb", {"u.bb"}}, {"ktr2", {"u.ktr2"}}, {"r", {"r", "u.r"}}};
+            sp.prior = {{"a_prev", "", bw, true, {Reg::block_a}}, {"b_prev", "", bw, true, {Reg::block_b}},
+                        {"c_prev", "", bw, true, {Reg::block_c}}};
             break;
         case EqStage::threshold:
             sp.wrapper = fmt::format("module stage(input clk, input signed [{0}:0] r0, thr, output signed [{0}:0] r1);\n", rw - 1) +
@@ -277,6 +283,17 @@ struct Miter {
     std::vector<SmtShrink> shrinks;
 };
 
+/// harris_response: the current step-1 registers (in[3..5]) are what step 1 makes of the block
+/// sums of the write before (sp.prior), the model's step 1 on the same shrinks as the query's
+/// (the netlist's step 1 is proven equal to it in the same query): the two steps together.
+void reachable_registers(EqStage s, const Spec& sp, const std::vector<SmtWord>& in, const Formats& f) {
+    if (s != EqStage::harris_response) return;
+    std::vector<SmtWord> prev;
+    for (const auto& x : sp.prior) prev.push_back({x.name, x.w, x.is_signed});
+    const ResponseTermsT<SmtWord> t = harris_response_terms(prev[0], prev[1], prev[2], f);
+    smt_query->text += fmt::format("(assert (and (= {} {}) (= {} {}) (= {} {})))\n", in[3].e, t.ac.e, in[4].e, t.bb.e, in[5].e, t.ktr2.e);
+}
+
 /// numeric_std (truncate false) or GHDL's truncation of signed shrinks; `domain`: the inputs' assumed ranges.
 Miter miter(EqStage s, const Formats& f, const Spec& sp, const std::string& netlist, const std::vector<std::string>& next,
             bool truncate, const std::map<std::string, Interval>& domain) {
@@ -291,6 +308,13 @@ Miter miter(EqStage s, const Formats& f, const Spec& sp, const std::string& netl
             m.text += fmt::format("(assert (and (bvsge {0} {1}) (bvsle {0} {2})))\n", x.name, literal(d->second.lo, x.w),
                                   literal(d->second.hi, x.w));
     }
+    for (const auto& x : sp.prior) {
+        m.text += fmt::format("(declare-fun {} () (_ BitVec {}))\n", x.name, x.w);
+        m.get.push_back(x.name);
+        if (const auto d = domain.find(x.name); d != domain.end())
+            m.text += fmt::format("(assert (and (bvsge {0} {1}) (bvsle {0} {2})))\n", x.name, literal(d->second.lo, x.w),
+                                  literal(d->second.hi, x.w));
+    }
     SmtQuery q;
     q.text = m.text;
     q.truncate_signed_shrink = truncate;
@@ -298,6 +322,7 @@ Miter miter(EqStage s, const Formats& f, const Spec& sp, const std::string& netl
     smt_query = &q;
     std::vector<SmtWord> out;
     try {
+        reachable_registers(s, sp, in, f);
         out = model_outputs<SmtWord>(s, in, f);
     } catch (...) {
         smt_query = nullptr;
@@ -330,7 +355,8 @@ std::int64_t as_signed_bits(std::int64_t bits, int w) {
 /// The counterexample's inputs as numbers (signed inputs read as signed).
 std::map<std::string, std::int64_t> inputs_at(const Spec& sp, const Z3Answer& z) {
     std::map<std::string, std::int64_t> v;
-    for (const auto& x : sp.in) v[x.name] = x.is_signed ? as_signed_bits(z.values.at(x.name), x.w) : z.values.at(x.name);
+    for (const auto* list : {&sp.in, &sp.prior})
+        for (const auto& x : *list) v[x.name] = x.is_signed ? as_signed_bits(z.values.at(x.name), x.w) : z.values.at(x.name);
     return v;
 }
 
@@ -401,7 +427,9 @@ void recheck(StageProof& p, const std::string& text, const fs::path& dir, int se
 std::map<std::string, Interval> domain_of(const Spec& sp, const Formats& f) {
     const RangeReport r = interval_ranges(f);
     std::map<std::string, Interval> d;
-    for (const auto& x : sp.in) {
+    std::vector<Input> all = sp.in;
+    all.insert(all.end(), sp.prior.begin(), sp.prior.end());
+    for (const auto& x : all) {
         if (x.domain.empty()) continue;
         Interval hull{std::numeric_limits<std::int64_t>::max(), std::numeric_limits<std::int64_t>::min()};
         bool fits = true;
@@ -415,13 +443,21 @@ std::map<std::string, Interval> domain_of(const Spec& sp, const Formats& f) {
     return d;
 }
 
-std::string domain_text(const std::map<std::string, Interval>& d) {
+/// What the stage assumes beside its inputs' domain `d`: the current registers step 1 can hold (sp.prior).
+std::string domain_text(const Spec& sp, const std::map<std::string, Interval>& d) {
     std::string s;
-    for (const auto& [k, v] : d) s += fmt::format("{}{} in [{}, {}]", s.empty() ? "" : ", ", k, v.lo, v.hi);
-    return s;
+    if (!sp.prior.empty()) {
+        s = "ac, bb, ktr2 are step 1's of";
+        for (size_t k = 0; k < sp.prior.size(); ++k) s += (k ? ", " : " ") + sp.prior[k].name;
+    }
+    std::string dom;
+    for (const auto& [k, v] : d) dom += fmt::format("{}{} in [{}, {}]", dom.empty() ? "" : ", ", k, v.lo, v.hi);
+    return s.empty() || dom.empty() ? s + dom : s + "; " + dom;
 }
 
 }  // namespace
+
+std::string pixel_input(int i, int j) { return fmt::format("p_{}_{}", i, j); }
 
 EqStage eq_stage(const std::string& name) {
     for (int k = 0; k < kEqStageCount; ++k)
@@ -474,6 +510,7 @@ StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
     const Miter m0 = miter(s, f, sp, netlist, next, false, {});
     const Asked a0 = ask(p, m0, dir, 1, o.rlimit);
     p.command = a0.command;
+    p.assumed = domain_text(sp, {});
     if (a0.z.sat == Sat::unsat) {
         proven(p, a0, dir, o);
         if (!m0.shrinks.empty()) p.detail = "no signed shrink overflows on any input: the proof holds for the VHDL";
@@ -489,10 +526,14 @@ StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
             p.verdict = a1.z.sat == Sat::unknown ? EqVerdict::open : EqVerdict::counterexample;
             p.detail = fmt::format("{} at {}{}", differ, values_text(p.counterexample),
                                    a1.z.sat == Sat::unknown ? "; with truncating shrinks: " + a1.z.why : "");
+            if (p.verdict == EqVerdict::counterexample && !o.dir.empty())
+                if (const auto st = write_stage_stimulus(p, f, dir / "stimulus", o.config + "_" + kEqStageNames[static_cast<int>(s)],
+                                                         o.rlimit))
+                    p.stimulus = st->set.string();
         } else if (const auto d = domain_of(sp, f); !d.empty()) {
             const Miter m2 = miter(s, f, sp, netlist, next, false, d);
             const Asked a2 = ask(p, m2, dir, 3, o.rlimit);
-            p.assumed = domain_text(d);
+            p.assumed = domain_text(sp, d);
             if (a2.z.sat == Sat::unsat) {
                 proven(p, a2, dir, o);
                 p.detail = fmt::format("signed {} overflows only outside the inputs' domain ({} at {}): the proof holds for the "
@@ -543,12 +584,13 @@ std::string StageEquivalence::summary() const {
 
 std::string stage_equivalence_markdown(const std::string& config, const StageEquivalence& r) {
     std::string s = fmt::format("### Stage equivalence: {}\n\n{} ({:.1f} s)\n\n", config, r.summary(), r.seconds);
-    s += "| stage | verdict | solver | second solver | z3 rlimit | seconds | assumed | detail | rerun |\n"
-         "|---|---|---|---|---:|---:|---|---|---|\n";
+    s += "| stage | verdict | solver | second solver | z3 rlimit | seconds | assumed | detail | rerun | stimulus |\n"
+         "|---|---|---|---|---:|---:|---|---|---|---|\n";
     for (const auto& p : r.stages)
-        s += fmt::format("| {} | {} | {} | {} | {} | {:.1f} | {} | {} | `{}` |\n", kEqStageNames[static_cast<int>(p.stage)],
+        s += fmt::format("| {} | {} | {} | {} | {} | {:.1f} | {} | {} | `{}` | {} |\n", kEqStageNames[static_cast<int>(p.stage)],
                          eq_verdict_name(p.verdict), p.solver, p.recheck.empty() ? "-" : p.recheck, p.rlimit, p.seconds,
-                         p.assumed.empty() ? "every input" : p.assumed, p.detail.empty() ? "-" : p.detail, p.command);
+                         p.assumed.empty() ? "every input" : p.assumed, p.detail.empty() ? "-" : p.detail, p.command,
+                         p.stimulus.empty() ? "-" : "`" + p.stimulus + "`");
     return s;
 }
 
@@ -568,7 +610,8 @@ nlohmann::json stage_equivalence_to_json(const StageEquivalence& r) {
                                {"rechecked", p.rechecked},
                                {"counterexample", p.counterexample},
                                {"detail", p.detail},
-                               {"command", p.command}});
+                               {"command", p.command},
+                               {"stimulus", p.stimulus}});
     return j;
 }
 
@@ -593,6 +636,7 @@ StageEquivalence stage_equivalence_from_json(const nlohmann::json& j) {
         p.counterexample = x.at("counterexample").get<std::map<std::string, std::int64_t>>();
         p.detail = x.at("detail").get<std::string>();
         p.command = x.at("command").get<std::string>();
+        p.stimulus = x.at("stimulus").get<std::string>();
         r.stages.push_back(p);
     }
     return r;

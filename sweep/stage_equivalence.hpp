@@ -18,9 +18,11 @@
 //          registers that feed it, proven where the bound fits), the proof is asked again on
 //          that domain, and holds for the VHDL because the shrink cannot overflow there;
 //   unknown: open (z3's resource limit reached).
-// Stages: sobel_x, sobel_y, m_products, block_filter, harris_response (both steps: the
-// products and the k-term from a, b, c; the response from the current step-1 registers),
-// threshold (r0_delay and r1 from r0, thr and the current r0_delay, enable high).
+// Stages: sobel_x, sobel_y, m_products, block_filter, harris_response (both steps together:
+// the products and the k-term from a, b, c; the response from the current step-1 registers,
+// which hold step 1's values of the block sums of the write before, a_prev, b_prev, c_prev,
+// free or in their domain as a, b, c are), threshold (r0_delay and r1 from r0, thr and the
+// current r0_delay, enable high).
 #pragma once
 
 #include <array>
@@ -42,6 +44,9 @@ inline constexpr std::array<const char*, kEqStageCount> kEqStageNames{"sobel_x",
                                                                       "block_filter", "harris_response", "threshold"};
 /// The stage named `name`; InputError naming it otherwise.
 EqStage eq_stage(const std::string& name);
+/// The name of the Sobel stages' input pixel (i, j) of the 3x3 window (row i, column j, from 0)
+/// in their queries and counterexamples: "p_<i>_<j>".
+std::string pixel_input(int i, int j);
 
 enum class EqVerdict { equal, counterexample, netlist_differs, open };
 /// "proven equal", "counterexample", "netlist differs from the VHDL", "open"
@@ -59,6 +64,10 @@ struct StageProof {
     std::map<std::string, std::int64_t> counterexample;   ///< input (and current register) values, by name
     std::string detail;                 ///< the differing output (model and netlist values), the shrink, the note
     std::string command;                ///< the one command that reruns the proof
+    /// a counterexample written as a co-simulation stimulus (stage_stimulus.hpp): its
+    /// regression-set file, "" where there is none (no counterexample, no options dir, or
+    /// inputs no pixel window gives)
+    std::string stimulus;
 };
 
 struct StageOptions {
@@ -73,6 +82,9 @@ struct StageOptions {
     /// rerun commands name them); empty: a scratch directory, and the command names files gone
     std::filesystem::path dir;
     std::filesystem::path rtl_dir;             ///< the VHDL (empty: the project's rtl/)
+    /// the configuration's name: a counterexample's stimulus is written (when `dir` is set) as
+    /// <dir>/stimulus/<config>_<stage>.pgm with its regression-set file and golden files
+    std::string config = "thesis";
 };
 
 /// The proof of one stage at formats `f`. SimulatorError when GHDL or yosys fails; a
