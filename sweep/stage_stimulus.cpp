@@ -102,7 +102,7 @@ std::optional<StageStimulus> write_stage_stimulus(const StageProof& p, const For
     util::write_file_atomic(s.set, fmt::format("# the counterexample of {}'s stage proof as a stimulus (docs/stage-equivalence.md)\n{}\n",
                                                kEqStageNames[static_cast<int>(p.stage)], s.line));
     const std::vector<util::RegressionStream> streams = util::read_regression_set(s.set);
-    for (const auto& g : regress::golden_files(streams, dir)) {
+    for (const auto& g : golden::golden_files(streams, dir)) {
         // golden_files adds the tiny streams' register dumps, which are not this stream's
         if (g.path.filename().string().rfind("stages_", 0) == 0) continue;
         util::write_file_atomic(g.path, g.text);

@@ -27,7 +27,7 @@ namespace {
 cosim::GhdlResult cosimulate(const mutation::FileEdit* edit, const util::RegressionStream& stream, const fs::path& work,
                              const fs::path& reads) {
     cosim::GhdlRun run;
-    run.frames = regress::stream_frames(stream);
+    run.frames = golden::stream_frames(stream);
     run.frame_names.assign(run.frames.size(), stream.stem());
     run.idle_every = stream.idle_every;
     run.reads_csv = reads;
@@ -84,9 +84,9 @@ TEST_CASE("a killed sobel_x mutant: its stage counterexample as a stimulus fails
     CHECK(p.detail.rfind("ix: model " + std::to_string(sobel_x<Word>(px, Formats{}).value()) + ", netlist ", 0) == 0);
 
     // the golden reads beside it are the unmutated model's (harris-cosim golden's files of that stream)
-    const fs::path golden = o.dir / "stimulus" / ("reads_" + s.stem() + ".csv");
-    REQUIRE(fs::exists(golden));
-    CHECK(util::read_file(golden) == regress::golden_files(set, o.dir / "stimulus").front().text);
+    const fs::path golden_reads = o.dir / "stimulus" / ("reads_" + s.stem() + ".csv");
+    REQUIRE(fs::exists(golden_reads));
+    CHECK(util::read_file(golden_reads) == golden::golden_files(set, o.dir / "stimulus").front().text);
 
     // the mutated RTL fails the co-simulation on it, first in sobel_x
     const cosim::GhdlResult bad = cosimulate(&edit, s, dir.path() / "mutant-run", dir.path() / "mutant-reads.csv");
@@ -97,7 +97,7 @@ TEST_CASE("a killed sobel_x mutant: its stage counterexample as a stimulus fails
     const cosim::GhdlResult good = cosimulate(nullptr, s, dir.path() / "rtl-run", dir.path() / "rtl-reads.csv");
     CHECK(good.summary.pass());
     CHECK(good.summary.complete);
-    CHECK(cosim::reads_equal(golden.string(), good.reads_csv));
+    CHECK(cosim::reads_equal(golden_reads.string(), good.reads_csv));
 }
 
 TEST_CASE("an m_products counterexample's gradients become a pixel window whose Sobel gradients are them", "[stage-stimulus]") {
