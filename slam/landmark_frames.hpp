@@ -59,9 +59,10 @@ struct KittiRun {
     VisualOdometry vo;   ///< with visual_odometry: the motions and how many estimates failed
 };
 /// Reads the ground truth (o.truth, else frames::kitti_poses_file when present; read only to
-/// score, and for the synthetic odometry and landmarks, which are made from it), makes the
-/// sequence's frames (its stereo pairs, or synthetic landmarks: one frame per true pose) and
-/// runs the filter; TUM timestamps from the sequence's times.txt when present, else frame index
+/// score, and for the synthetic odometry and landmarks, which are made from it), and runs the
+/// filter frame by frame on the sequence's frames (its stereo pairs, their corners streamed
+/// pair by pair by landmarks::PairCornerStream, or synthetic landmarks: one frame per true
+/// pose, SyntheticFrames), none held once used (run_visual_stream, FilterRun); TUM timestamps from the sequence's times.txt when present, else frame index
 /// × o.frame_period. InputError (slam's or landmarks') for fewer than 2 pairs, a ground truth
 /// with another number of poses than stereo pairs (both counts named) unless o.score_overlap,
 /// synthetic landmarks or odometry without a true pose per frame, a times.txt shorter than the
