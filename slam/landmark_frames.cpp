@@ -46,6 +46,23 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std
     return as_frames(landmarks::acquire_dataset(ds, kp, o));
 }
 
+FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const stereo::RectifiedRig& calib,
+                            const landmarks::PipelineOptions& o) {
+    auto one = std::make_shared<landmarks::Dataset>();
+    one->calib = {calib};
+    one->pairs.resize(1);
+    auto corners = std::make_shared<landmarks::PairCornerStream>(o.detector, pairs, std::move(pair_at), o.corners);
+    return [one, corners, o](StereoFrame& frame) {
+        landmarks::PairKeypoints kp;
+        if (!corners->next(one->pairs.front(), kp)) return false;
+        const auto l = landmarks::acquire_dataset(*one, {kp}, o);
+        frame.clear();
+        frame.reserve(l.front().size());
+        for (const auto& x : l.front()) frame.push_back(to_observation(x));
+        return true;
+    };
+}
+
 namespace {
 
 /// A file's name in quotes, for messages.
@@ -73,30 +90,15 @@ void report_landmarks(const KittiRunOptions& o, int pairs, const std::string& of
                    " descriptor)");
 }
 
-/// The landmark pipeline on the sequence's first `pairs` stereo pairs, pair by pair: each pair
-/// loaded, its corners taken from the corner source's stream (landmarks::PairCornerStream), its
-/// landmarks made with the first pair's calibration (`rig`, the sequence's calib.txt) and given
-/// out; nothing of a pair is kept once it is.
+/// The landmark pipeline on the sequence's first `pairs` stereo pairs (landmark_stream); `rig`,
+/// the first pair's calibration (the sequence's calib.txt).
 FrameSource stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, int pairs,
                           const KittiRunOptions& o, stereo::RectifiedRig& rig) {
-    const landmarks::PipelineOptions& po = o.pipeline;
     report_landmarks(o, pairs, sequence);
-    auto one = std::make_shared<landmarks::Dataset>(landmarks::kitti_dataset(kitti, sequence, {0, 1}));
-    rig = one->calib.front();
-    auto corners = std::make_shared<landmarks::PairCornerStream>(
-        po.detector, pairs,
-        [kitti, sequence](int k) { return landmarks::kitti_dataset(kitti, sequence, {k, k + 1}).pairs.front(); },
-        po.corners);
-    return [one, corners, po](StereoFrame& frame) {
-        landmarks::PairKeypoints kp;
-        one->pairs.resize(1);
-        if (!corners->next(one->pairs.front(), kp)) return false;
-        const auto l = landmarks::acquire_dataset(*one, {kp}, po);
-        frame.clear();
-        frame.reserve(l.front().size());
-        for (const auto& x : l.front()) frame.push_back(to_observation(x));
-        return true;
-    };
+    rig = landmarks::kitti_dataset(kitti, sequence, {0, 1}).calib.front();
+    return landmark_stream(
+        pairs, [kitti, sequence](int k) { return landmarks::kitti_dataset(kitti, sequence, {k, k + 1}).pairs.front(); },
+        rig, o.pipeline);
 }
 
 /// The ground truth a run scores with, for `frames` frames: `truth` itself when it has one

@@ -22,6 +22,14 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const lan
 std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std::vector<landmarks::PairKeypoints>& kp,
                                          const landmarks::PipelineOptions& o);
 
+/// The landmark pipeline's stereo frames over `pairs` pairs loaded as they are reached
+/// (`pair_at(k)`, in order), pair by pair: corners from the source's stream
+/// (landmarks::PairCornerStream, a hardware source's threshold carried from pair to pair),
+/// then description, matching and triangulation through `calib`; nothing of a pair is kept
+/// once its frame is given out.
+FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const stereo::RectifiedRig& calib,
+                            const landmarks::PipelineOptions& o);
+
 /// One KITTI odometry sequence through the filter (`harris-cosim slam --sequences`): where the
 /// landmarks come from, where the motion comes from, the association. Every default is the
 /// owning struct's.
