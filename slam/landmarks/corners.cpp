@@ -136,7 +136,8 @@ std::unique_ptr<vl::VerilatedDesign> rtl_design(const Geometry& g, const Formats
 /// The stream: for spec, the model run pair by pair with the previous frame's maximum carried;
 /// for cycle and rtl, one host-driver stream (seed pair, the pairs, flush pair: stream frames
 /// 0-1, 2k+2 and 2k+3 for pair k, then 2n+2 and 2n+3) whose frames are loaded as it reaches
-/// them; a frame's corners are complete once the next frame's body (not its preload) starts.
+/// them; a frame's corners are complete once the next frame's body (not its preload) starts, so
+/// the last pair is complete when the flush pair's body starts, and the stream stops there.
 struct PairCornerStream::Impl {
     Detector d;
     int n;
