@@ -8,7 +8,9 @@
 #include "slam/landmarks/stereo.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <random>
+#include <unordered_map>
 #include <utility>
 
 namespace hc::slam {
@@ -188,6 +190,10 @@ public:
     const std::vector<std::pair<int, int>>& last_matches() const { return last_matches_; }
     /// Where landmark `id` was first observed: (frame number, index in that frame).
     std::pair<int, int> origin(int id) const { return origin_.at(id); }
+    /// The last frame's new landmarks: (index of the observation in the frame, landmark id).
+    const std::vector<std::pair<int, int>>& last_added() const { return last_added_; }
+    /// The landmarks the last frame removed (unseen for forget_after frames).
+    const std::vector<int>& last_removed() const { return last_removed_; }
 
 private:
     FrameStats observe(const StereoFrame& frame);
@@ -219,7 +225,8 @@ private:
     std::unordered_map<int, std::vector<uint8_t>> descriptors_;
     std::unordered_map<int, int> last_seen_, hints_;
     std::unordered_map<int, std::pair<int, int>> origin_;
-    std::vector<std::pair<int, int>> last_matches_;
+    std::vector<std::pair<int, int>> last_matches_, last_added_;
+    std::vector<int> last_removed_;
 };
 
 /// Number of differing bits; descriptors of different lengths differ in every extra bit.
@@ -258,6 +265,35 @@ struct SequenceRun {
     /// by (VisualOdometry::noise_scale); 1 otherwise.
     double noise_scale = 1;
 };
+/// Stereo frames in order: fills `frame` with the next one; false after the last.
+using FrameSource = std::function<bool(StereoFrame& frame)>;
+/// The frames of a vector, in order (they are referenced, not copied).
+FrameSource frames_of(const std::vector<StereoFrame>& frames);
+
+/// run_filter frame by frame: each frame is used as it comes and not kept. Kept per frame: the
+/// poses, covariances, motions and counts (SequenceRun's). The wrong-association check against
+/// `truth` is made as frames come, with the world point of each landmark's first observation
+/// (under the true pose of its frame) held while the landmark is mapped.
+class FilterRun {
+public:
+    FilterRun(const Pose& start, const AssociationConfig& association, std::vector<Pose> truth);
+    void first_frame(const StereoFrame& frame);
+    /// A later frame: the motion from the previous one, its covariance, the frame.
+    void next_frame(const Motion& u, const Mat3& Q, const StereoFrame& frame);
+    size_t frames() const { return run_.frames.size(); }
+    /// The run as run_filter returns it. InputError on fewer than 2 frames or a truth longer
+    /// than the frames.
+    SequenceRun finish();
+
+private:
+    void after_frame(const FrameStats& st, const StereoFrame& frame);
+    LandmarkSlam slam_;
+    std::vector<Pose> truth_;
+    SequenceRun run_;
+    double wrong_gate_;
+    std::unordered_map<int, std::pair<Vec2, Mat2>> first_seen_;   // landmark id -> world point, covariance
+};
+
 /// The filter over frames with the given motions (motions.size() == frames.size() − 1),
 /// started at `start`, then scored against `truth` (used only after the run, for the metrics
 /// and the wrong-association counts): one pose per frame, or fewer (the first truth.size()
@@ -276,6 +312,10 @@ void score_spatial(SequenceRun& run, const std::vector<Mat34>& truth);
 /// started at the first true pose. Throws InputError on a size mismatch or fewer than 2 poses.
 SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<StereoFrame>& frames,
                          const SyntheticOdometry& odometry, const AssociationConfig& association, uint64_t seed);
+/// The same frame by frame (FilterRun): InputError as above, the count of frames checked
+/// when the source ends.
+SequenceRun run_sequence(const std::vector<Mat34>& poses, const FrameSource& frames, const SyntheticOdometry& odometry,
+                         const AssociationConfig& association, uint64_t seed);
 
 /// The rig of the synthetic landmarks: KITTI's rectified cameras 0 and 1 (sequences 00-02):
 /// fx = fy = 718.856 px, principal point (607.1928, 185.2157) px for both, the right camera
@@ -292,6 +332,25 @@ stereo::RectifiedRig synthetic_rig();
 std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const stereo::RectifiedRig& rig,
                                                   const stereo::PixelNoise& noise, int count, int flip_bits,
                                                   uint64_t seed);
+/// synthesize_stereo_frames frame by frame (the same frames, drawn as they are asked for):
+/// the world is laid out on construction (InputError as above), next() gives frame k of
+/// poses[k].
+class SyntheticFrames {
+public:
+    SyntheticFrames(std::vector<Mat34> poses, const stereo::RectifiedRig& rig, const stereo::PixelNoise& noise,
+                    int count, int flip_bits, uint64_t seed);
+    bool next(StereoFrame& frame);
+
+private:
+    std::vector<Mat34> poses_;
+    stereo::RectifiedRig rig_;
+    stereo::PixelNoise noise_;
+    int flip_bits_;
+    std::mt19937_64 rng_;
+    std::vector<Eigen::Vector3d> world_;
+    std::vector<std::vector<uint8_t>> desc_;
+    size_t next_ = 0;
+};
 /// A triangulated point (stereo::triangulate) as a filter observation: p_cam and cov (zero
 /// when the disparity is not positive); no descriptor, no id hint.
 StereoLandmarkObs to_observation(const stereo::Point3& t);

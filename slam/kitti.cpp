@@ -322,6 +322,8 @@ std::vector<RangeBearing> select_observations(const StereoFrame& frame, const As
 
 FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
     FrameStats st;
+    last_added_.clear();
+    last_removed_.clear();
     std::vector<int> src;   // index in the frame
     const std::vector<RangeBearing> obs = select_observations(frame, cfg_, src);
     st.observed = static_cast<int>(obs.size());
@@ -414,6 +416,7 @@ void LandmarkSlam::add_unmatched(const StereoFrame& frame, const std::vector<Ran
         hints_[id] = frame[src[i]].id_hint;
         last_seen_[id] = frame_;
         origin_[id] = {frame_, src[i]};
+        last_added_.emplace_back(src[i], id);
         ++st.added;
     }
 }
@@ -427,6 +430,7 @@ void LandmarkSlam::forget_unseen(FrameStats& st) {
             last_seen_.erase(id);
             hints_.erase(id);
             origin_.erase(id);
+            last_removed_.push_back(id);
             ++st.removed;
         }
     }
@@ -445,12 +449,8 @@ std::pair<Vec2, Mat2> world_point(const StereoLandmarkObs& o, const Pose& truth)
 
 namespace {
 /// Scores `run` against `truth` (its first truth.size() frames): the metrics of the estimate and
-/// of the odometry alone, and each match whose frame and landmark origin are both scored
-/// checked against the true poses. `matches`: per frame, (observation index, landmark id);
-/// `origins`: where each matched landmark was first observed.
-void score_run(SequenceRun& run, const std::vector<StereoFrame>& frames, const std::vector<Pose>& truth,
-               const std::vector<std::vector<std::pair<int, int>>>& matches,
-               const std::unordered_map<int, std::pair<int, int>>& origins) {
+/// of the odometry alone.
+void score_run(SequenceRun& run, const std::vector<Pose>& truth) {
     const size_t n = truth.size();
     run.truth = truth;
     if (n == 0) return;
@@ -465,19 +465,67 @@ void score_run(SequenceRun& run, const std::vector<StereoFrame>& frames, const s
     run.odometry_metrics = score_trajectory(first(run.dead_reckoning), truth, dr_cov);
     run.ate_slam = run.slam_metrics.ape;
     run.ate_dead_reckoning = run.odometry_metrics.ape;
-    const double gate = chi2_quantile(0.999, 2);
-    for (size_t k = 0; k < n; ++k) {
-        for (const auto& [i, id] : matches[k]) {
-            const auto [f0, i0] = origins.at(id);
-            const auto [p, C] = world_point(frames[k][i], truth[k]);
-            const auto [p0, C0] = world_point(frames[f0][i0], truth[f0]);
-            const Vec2 e = p - p0;
-            ++run.frames[k].matched_checked;
-            run.frames[k].matched_wrong += e.dot((C + C0).ldlt().solve(e)) > gate;
-        }
-    }
 }
 }  // namespace
+
+FrameSource frames_of(const std::vector<StereoFrame>& frames) {
+    return [&frames, k = size_t{0}](StereoFrame& f) mutable {
+        if (k >= frames.size()) return false;
+        f = frames[k++];
+        return true;
+    };
+}
+
+FilterRun::FilterRun(const Pose& start, const AssociationConfig& association, std::vector<Pose> truth)
+    : slam_(start, association), truth_(std::move(truth)), wrong_gate_(chi2_quantile(0.999, 2)) {
+    run_.dead_reckoning.push_back(start);
+}
+
+void FilterRun::first_frame(const StereoFrame& frame) { after_frame(slam_.first_frame(frame), frame); }
+
+void FilterRun::next_frame(const Motion& u, const Mat3& Q, const StereoFrame& frame) {
+    run_.odometry.push_back(u);
+    run_.odometry_cov.push_back(Q);
+    run_.dead_reckoning.push_back(compose(run_.dead_reckoning.back(), u));
+    after_frame(slam_.next_frame(u, Q, frame), frame);
+}
+
+void FilterRun::after_frame(const FrameStats& stats, const StereoFrame& frame) {
+    const size_t k = run_.frames.size();
+    FrameStats st = stats;
+    if (k < truth_.size()) {   // scored: each match against its landmark's first observation
+        for (const auto& [i, id] : slam_.last_matches()) {
+            const auto& [p0, C0] = first_seen_.at(id);
+            const auto [p, C] = world_point(frame[static_cast<size_t>(i)], truth_[k]);
+            const Vec2 e = p - p0;
+            ++st.matched_checked;
+            st.matched_wrong += e.dot((C + C0).ldlt().solve(e)) > wrong_gate_;
+        }
+        for (const auto& [i, id] : slam_.last_added())
+            first_seen_.emplace(id, world_point(frame[static_cast<size_t>(i)], truth_[k]));
+    }
+    for (int id : slam_.last_removed()) first_seen_.erase(id);
+    run_.frames.push_back(st);
+    run_.estimate.push_back(slam_.filter().pose());
+    run_.pose_cov.push_back(slam_.filter().pose_covariance());
+}
+
+SequenceRun FilterRun::finish() {
+    const size_t n = run_.frames.size();
+    if (n < 2) throw InputError("a sequence needs at least 2 frames, got " + std::to_string(n));
+    if (truth_.size() > n)
+        throw InputError("a sequence needs at most one landmark frame per pose: " + std::to_string(n) + " frames, " +
+                         std::to_string(truth_.size()) + " poses");
+    for (int id : slam_.filter().landmark_ids()) {
+        run_.map.push_back(slam_.filter().landmark(id));
+        run_.map_cov.push_back(slam_.filter().landmark_covariance(id));
+    }
+    run_.estimate_3d = spatial_poses(run_.estimate);
+    run_.dead_reckoning_3d = spatial_poses(run_.dead_reckoning);
+    // scoring against the ground truth, after the run
+    score_run(run_, truth_);
+    return std::move(run_);
+}
 
 SequenceRun run_filter(const std::vector<StereoFrame>& frames, const std::vector<Motion>& motions,
                        const std::vector<Mat3>& motion_cov, const Pose& start, const AssociationConfig& association,
@@ -488,32 +536,10 @@ SequenceRun run_filter(const std::vector<StereoFrame>& frames, const std::vector
     if (truth.size() > frames.size())
         throw InputError("a sequence needs at most one landmark frame per pose: " + std::to_string(frames.size()) +
                          " frames, " + std::to_string(truth.size()) + " poses");
-    SequenceRun run;
-    run.odometry = motions;
-    run.odometry_cov = motion_cov;
-    run.dead_reckoning = slam::dead_reckoning(start, motions);
-    // the run: frames and motions only
-    LandmarkSlam slam(start, association);
-    std::vector<std::vector<std::pair<int, int>>> matches;   // per frame: (obs index, landmark id)
-    std::unordered_map<int, std::pair<int, int>> origins;
-    const auto after_frame = [&](const FrameStats& st) {
-        run.frames.push_back(st);
-        run.estimate.push_back(slam.filter().pose());
-        run.pose_cov.push_back(slam.filter().pose_covariance());
-        matches.push_back(slam.last_matches());
-        for (const auto& [i, id] : slam.last_matches()) origins.emplace(id, slam.origin(id));
-    };
-    after_frame(slam.first_frame(frames[0]));
-    for (size_t k = 1; k < frames.size(); ++k) after_frame(slam.next_frame(motions[k - 1], motion_cov[k - 1], frames[k]));
-    for (int id : slam.filter().landmark_ids()) {
-        run.map.push_back(slam.filter().landmark(id));
-        run.map_cov.push_back(slam.filter().landmark_covariance(id));
-    }
-    run.estimate_3d = spatial_poses(run.estimate);
-    run.dead_reckoning_3d = spatial_poses(run.dead_reckoning);
-    // scoring against the ground truth, after the run
-    score_run(run, frames, truth, matches, origins);
-    return run;
+    FilterRun run(start, association, truth);
+    run.first_frame(frames[0]);
+    for (size_t k = 1; k < frames.size(); ++k) run.next_frame(motions[k - 1], motion_cov[k - 1], frames[k]);
+    return run.finish();
 }
 
 void score_spatial(SequenceRun& run, const std::vector<Mat34>& truth) {
@@ -528,17 +554,34 @@ void score_spatial(SequenceRun& run, const std::vector<Mat34>& truth) {
 
 SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<StereoFrame>& frames,
                          const SyntheticOdometry& odometry, const AssociationConfig& association, uint64_t seed) {
-    if (poses.size() < 2) throw InputError("a sequence needs at least 2 poses, got " + std::to_string(poses.size()));
-    if (frames.size() != poses.size())
+    if (poses.size() >= 2 && frames.size() != poses.size())
         throw InputError("a sequence needs one landmark frame per pose: " + std::to_string(frames.size()) +
                          " frames, " + std::to_string(poses.size()) + " poses");
+    return run_sequence(poses, frames_of(frames), odometry, association, seed);
+}
+
+SequenceRun run_sequence(const std::vector<Mat34>& poses, const FrameSource& frames, const SyntheticOdometry& odometry,
+                         const AssociationConfig& association, uint64_t seed) {
+    if (poses.size() < 2) throw InputError("a sequence needs at least 2 poses, got " + std::to_string(poses.size()));
     odometry.validate();
     std::vector<Pose> truth;
     for (const auto& T : poses) truth.push_back(planar_pose(T));
     const std::vector<Motion> u = noisy_odometry(truth, odometry, seed);
-    SequenceRun run = run_filter(frames, u, std::vector<Mat3>(u.size(), odometry.covariance()), truth[0], association, truth);
-    score_spatial(run, poses);
-    return run;
+    const Mat3 Q = odometry.covariance();
+    FilterRun run(truth[0], association, truth);
+    StereoFrame frame;
+    size_t count = 0;
+    for (; frames(frame); ++count) {
+        if (count >= poses.size()) continue;   // counted, not run: refused below
+        if (count == 0) run.first_frame(frame);
+        else run.next_frame(u[count - 1], Q, frame);
+    }
+    if (count != poses.size())
+        throw InputError("a sequence needs one landmark frame per pose: " + std::to_string(count) + " frames, " +
+                         std::to_string(poses.size()) + " poses");
+    SequenceRun r = run.finish();
+    score_spatial(r, poses);
+    return r;
 }
 
 stereo::RectifiedRig synthetic_rig() {
@@ -561,49 +604,58 @@ StereoLandmarkObs to_observation(const stereo::Point3& t) {
     return o;
 }
 
+SyntheticFrames::SyntheticFrames(std::vector<Mat34> poses, const stereo::RectifiedRig& rig,
+                                 const stereo::PixelNoise& noise, int count, int flip_bits, uint64_t seed)
+    : poses_(std::move(poses)), rig_(rig), noise_(noise), flip_bits_(flip_bits), rng_(seed) {
+    if (poses_.empty()) throw InputError("synthetic landmarks need at least one pose");
+    if (rig.width < 1 || rig.height < 1) throw InputError("synthetic landmarks need a rig with an image size");
+    if (count < 1) throw InputError("the synthetic world is empty: the landmark count must be at least 1");
+    std::uniform_int_distribution<int> pick(0, static_cast<int>(poses_.size()) - 1), byte(0, 255);
+    std::uniform_real_distribution<double> lateral(4, 30), forward(0, 40), height(-3, 1), side(0, 1);
+    for (int i = 0; i < count; ++i) {
+        const Mat34& T = poses_[pick(rng_)];
+        const double s = side(rng_) < 0.5 ? -1 : 1;
+        const Eigen::Vector3d pc(s * lateral(rng_), height(rng_), forward(rng_));
+        world_.push_back(T.leftCols<3>() * pc + T.col(3));
+        std::vector<uint8_t> d(32);
+        for (auto& b : d) b = static_cast<uint8_t>(byte(rng_));
+        desc_.push_back(std::move(d));
+    }
+}
+
+bool SyntheticFrames::next(StereoFrame& f) {
+    if (next_ >= poses_.size()) return false;
+    const Mat34& T = poses_[next_++];
+    std::uniform_int_distribution<int> bit(0, 255);
+    f.clear();
+    const Eigen::Matrix3d Rt = T.leftCols<3>().transpose();
+    for (size_t i = 0; i < world_.size(); ++i) {
+        const Eigen::Vector3d p = Rt * (world_[i] - T.col(3));
+        if (p.z() < 2 || p.z() > 60) continue;
+        const double q[3] = {p.x(), p.y(), p.z()};
+        const stereo::StereoPixels m = stereo::project(rig_, q);
+        if (m.u_l < 0 || m.u_l >= rig_.width || m.u_r < 0 || m.v_l < 0 || m.v_l >= rig_.height) continue;
+        const stereo::StereoPixels n = noise_.perturb(m, rng_);
+        if (n.u_l - n.u_r < 1) continue;
+        StereoLandmarkObs o = to_observation(stereo::triangulate(rig_, n, noise_));
+        o.descriptor = desc_[i];
+        o.id_hint = static_cast<int>(i);
+        for (int b = 0; b < flip_bits_; ++b) {
+            const int k = bit(rng_);
+            o.descriptor[static_cast<size_t>(k / 8)] ^= static_cast<uint8_t>(1u << (k % 8));
+        }
+        f.push_back(std::move(o));
+    }
+    return true;
+}
+
 std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const stereo::RectifiedRig& rig,
                                                   const stereo::PixelNoise& noise, int count, int flip_bits,
                                                   uint64_t seed) {
-    if (poses.empty()) throw InputError("synthetic landmarks need at least one pose");
-    if (rig.width < 1 || rig.height < 1) throw InputError("synthetic landmarks need a rig with an image size");
-    if (count < 1) throw InputError("the synthetic world is empty: the landmark count must be at least 1");
-    std::mt19937_64 rng(seed);
-    std::uniform_int_distribution<int> pick(0, static_cast<int>(poses.size()) - 1), byte(0, 255), bit(0, 255);
-    std::uniform_real_distribution<double> lateral(4, 30), forward(0, 40), height(-3, 1), side(0, 1);
-    std::vector<Eigen::Vector3d> world;
-    std::vector<std::vector<uint8_t>> desc;
-    for (int i = 0; i < count; ++i) {
-        const Mat34& T = poses[pick(rng)];
-        const double s = side(rng) < 0.5 ? -1 : 1;
-        const Eigen::Vector3d pc(s * lateral(rng), height(rng), forward(rng));
-        world.push_back(T.leftCols<3>() * pc + T.col(3));
-        std::vector<uint8_t> d(32);
-        for (auto& b : d) b = static_cast<uint8_t>(byte(rng));
-        desc.push_back(std::move(d));
-    }
+    SyntheticFrames source(poses, rig, noise, count, flip_bits, seed);
     std::vector<StereoFrame> frames;
-    for (const auto& T : poses) {
-        StereoFrame f;
-        const Eigen::Matrix3d Rt = T.leftCols<3>().transpose();
-        for (int i = 0; i < count; ++i) {
-            const Eigen::Vector3d p = Rt * (world[i] - T.col(3));
-            if (p.z() < 2 || p.z() > 60) continue;
-            const double q[3] = {p.x(), p.y(), p.z()};
-            const stereo::StereoPixels m = stereo::project(rig, q);
-            if (m.u_l < 0 || m.u_l >= rig.width || m.u_r < 0 || m.v_l < 0 || m.v_l >= rig.height) continue;
-            const stereo::StereoPixels n = noise.perturb(m, rng);
-            if (n.u_l - n.u_r < 1) continue;
-            StereoLandmarkObs o = to_observation(stereo::triangulate(rig, n, noise));
-            o.descriptor = desc[i];
-            o.id_hint = i;
-            for (int b = 0; b < flip_bits; ++b) {
-                const int k = bit(rng);
-                o.descriptor[k / 8] ^= static_cast<uint8_t>(1u << (k % 8));
-            }
-            f.push_back(std::move(o));
-        }
-        frames.push_back(std::move(f));
-    }
+    StereoFrame f;
+    while (source.next(f)) frames.push_back(std::move(f));
     return frames;
 }
 

@@ -46,6 +46,23 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std
     return as_frames(landmarks::acquire_dataset(ds, kp, o));
 }
 
+FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const stereo::RectifiedRig& calib,
+                            const landmarks::PipelineOptions& o) {
+    auto one = std::make_shared<landmarks::Dataset>();
+    one->calib = {calib};
+    one->pairs.resize(1);
+    auto corners = std::make_shared<landmarks::PairCornerStream>(o.detector, pairs, std::move(pair_at), o.corners);
+    return [one, corners, o](StereoFrame& frame) {
+        landmarks::PairKeypoints kp;
+        if (!corners->next(one->pairs.front(), kp)) return false;
+        const auto l = landmarks::acquire_dataset(*one, {kp}, o);
+        frame.clear();
+        frame.reserve(l.front().size());
+        for (const auto& x : l.front()) frame.push_back(to_observation(x));
+        return true;
+    };
+}
+
 namespace {
 
 /// A file's name in quotes, for messages.
@@ -73,25 +90,15 @@ void report_landmarks(const KittiRunOptions& o, int pairs, const std::string& of
                    " descriptor)");
 }
 
-/// The landmark pipeline on the sequence's first `pairs` stereo pairs; `rig`, the rig of the
-/// first pair.
-std::vector<StereoFrame> stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, int pairs,
-                                       const KittiRunOptions& o, stereo::RectifiedRig& rig) {
-    const landmarks::PipelineOptions& po = o.pipeline;
+/// The landmark pipeline on the sequence's first `pairs` stereo pairs (landmark_stream); `rig`,
+/// the first pair's calibration (the sequence's calib.txt).
+FrameSource stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, int pairs,
+                          const KittiRunOptions& o, stereo::RectifiedRig& rig) {
     report_landmarks(o, pairs, sequence);
-    // The co-processor's sources stream the sequence as one (each frame's threshold comes from
-    // the frame before), so they take it whole; the others detect image by image, and take
-    // it kPairsAtOnce pairs at a time, so that the images held do not grow with its length.
-    constexpr int kPairsAtOnce = 32;
-    const int step = landmarks::is_hardware(po.detector) ? pairs : kPairsAtOnce;
-    std::vector<StereoFrame> frames;
-    frames.reserve(static_cast<size_t>(pairs));
-    for (int first = 0; first < pairs; first += step) {
-        const auto ds = landmarks::kitti_dataset(kitti, sequence, {first, std::min(first + step, pairs)});
-        if (first == 0) rig = ds.calib.front();
-        for (auto& f : landmark_frames(ds, po)) frames.push_back(std::move(f));
-    }
-    return frames;
+    rig = landmarks::kitti_dataset(kitti, sequence, {0, 1}).calib.front();
+    return landmark_stream(
+        pairs, [kitti, sequence](int k) { return landmarks::kitti_dataset(kitti, sequence, {k, k + 1}).pairs.front(); },
+        rig, o.pipeline);
 }
 
 /// The ground truth a run scores with, for `frames` frames: `truth` itself when it has one
@@ -123,18 +130,18 @@ VisualOdometryConfig checked_options(const KittiRunOptions& o) {
 
 /// The filter over `frames` with the odometry of `o`, scored against `truth` (none, one per
 /// frame, or the first frames').
-KittiRun run_frames(const std::vector<StereoFrame>& frames, const std::vector<Mat34>& truth,
+KittiRun run_frames(const FrameSource& frames, size_t count, const std::vector<Mat34>& truth,
                     const VisualOdometryConfig& vo, const KittiRunOptions& o) {
     KittiRun r;
     if (o.visual_odometry) {
         std::vector<Pose> planar;
         for (const auto& T : truth) planar.push_back(planar_pose(T));
-        r.run = run_visual_sequence(frames, planar, vo, o.association, &r.vo);
+        r.run = run_visual_stream(frames, planar, vo, o.association, &r.vo);
         score_spatial(r.run, truth);
     } else {
-        if (truth.size() != frames.size())
+        if (truth.size() != count)
             throw InputError("--odometry synthetic is made from the ground truth: it needs one true pose per frame, "
-                             "got " + std::to_string(truth.size()) + " poses for " + std::to_string(frames.size()) +
+                             "got " + std::to_string(truth.size()) + " poses for " + std::to_string(count) +
                              " frames");
         r.run = run_sequence(truth, frames, o.synthetic, o.association, o.seed);
     }
@@ -169,22 +176,27 @@ KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::strin
                                                 : std::vector<Mat34>{};
     const std::string truth_name = quoted(own_truth ? poses_file : o.truth);
     VisualOdometryConfig vo = checked_options(o);
-    std::vector<StereoFrame> frames;
+    FrameSource frames;
+    size_t count = 0;
     const frames::KittiSequence seq = o.stereo_landmarks ? frames::open_kitti(kitti, sequence) : frames::KittiSequence{};
     if (o.stereo_landmarks) {
         const int pairs = seq.pairs();
         if (pairs < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
         truth = reconcile_truth(std::move(truth), static_cast<size_t>(pairs), truth_name, o);
         frames = stereo_frames(kitti, sequence, pairs, o, *vo.rig);
+        count = static_cast<size_t>(pairs);
     } else {
         if (truth.empty())
             throw InputError("--landmarks-from synthetic lays its points along the ground truth: sequence " + sequence +
                              " has no " + poses_file.string() + "; give --truth FILE");
         if (truth.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
         if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
-        frames = synthesize_stereo_frames(truth, *vo.rig, {}, o.synthetic_count, o.flip_bits, o.seed);
+        auto synthetic = std::make_shared<SyntheticFrames>(truth, *vo.rig, stereo::PixelNoise{}, o.synthetic_count,
+                                                           o.flip_bits, o.seed);
+        frames = [synthetic](StereoFrame& f) { return synthetic->next(f); };
+        count = truth.size();
     }
-    KittiRun r = run_frames(frames, truth, vo, o);
+    KittiRun r = run_frames(frames, count, truth, vo, o);
     set_timestamps(r.run, frames::kitti_sequence_dir(kitti, sequence) / "times.txt", o);
     return r;
 }
@@ -205,7 +217,8 @@ KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o) {
     truth = reconcile_truth(std::move(truth), ds.pairs.size(), quoted(o.truth), o);
     report_landmarks(o, static_cast<int>(ds.pairs.size()), "the rig");
     vo.rig = ds.calib.front();
-    KittiRun r = run_frames(landmark_frames(ds, o.pipeline), truth, vo, o);
+    const std::vector<StereoFrame> frames = landmark_frames(ds, o.pipeline);
+    KittiRun r = run_frames(frames_of(frames), frames.size(), truth, vo, o);
     set_timestamps(r.run, {}, o);
     return r;
 }

@@ -22,6 +22,14 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const lan
 std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std::vector<landmarks::PairKeypoints>& kp,
                                          const landmarks::PipelineOptions& o);
 
+/// The landmark pipeline's stereo frames over `pairs` pairs loaded as they are reached
+/// (`pair_at(k)`, in order), pair by pair: corners from the source's stream
+/// (landmarks::PairCornerStream, a hardware source's threshold carried from pair to pair),
+/// then description, matching and triangulation through `calib`; nothing of a pair is kept
+/// once its frame is given out.
+FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const stereo::RectifiedRig& calib,
+                            const landmarks::PipelineOptions& o);
+
 /// One KITTI odometry sequence through the filter (`harris-cosim slam --sequences`): where the
 /// landmarks come from, where the motion comes from, the association. Every default is the
 /// owning struct's.
@@ -59,9 +67,10 @@ struct KittiRun {
     VisualOdometry vo;   ///< with visual_odometry: the motions and how many estimates failed
 };
 /// Reads the ground truth (o.truth, else frames::kitti_poses_file when present; read only to
-/// score, and for the synthetic odometry and landmarks, which are made from it), makes the
-/// sequence's frames (its stereo pairs, or synthetic landmarks: one frame per true pose) and
-/// runs the filter; TUM timestamps from the sequence's times.txt when present, else frame index
+/// score, and for the synthetic odometry and landmarks, which are made from it), and runs the
+/// filter frame by frame on the sequence's frames (its stereo pairs, their corners streamed
+/// pair by pair by landmarks::PairCornerStream, or synthetic landmarks: one frame per true
+/// pose, SyntheticFrames), none held once used (run_visual_stream, FilterRun); TUM timestamps from the sequence's times.txt when present, else frame index
 /// × o.frame_period. InputError (slam's or landmarks') for fewer than 2 pairs, a ground truth
 /// with another number of poses than stereo pairs (both counts named) unless o.score_overlap,
 /// synthetic landmarks or odometry without a true pose per frame, a times.txt shorter than the

@@ -554,37 +554,43 @@ MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& c
     return est;
 }
 
-VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const VisualOdometryConfig& cfg) {
-    cfg.validate();
-    VisualOdometry vo;
-    Motion last = Motion::Zero();
-    const Mat3 fail = Eigen::Vector3d(cfg.fail_sigma_xy * cfg.fail_sigma_xy, cfg.fail_sigma_xy * cfg.fail_sigma_xy,
-                                      cfg.fail_sigma_theta * cfg.fail_sigma_theta)
-                          .asDiagonal();
-    DisparityPrior offset;   // the posterior of the last step that estimated c
-    const bool level = cfg.level && cfg.residual == OdometryResidual::pixels;
-    Mat3 A = Mat3::Identity();   // the tilt of the camera before the step
-    vo.tilt.push_back(A);
-    for (size_t k = 1; k < frames.size(); ++k) {
-        MotionEstimate e = estimate_motion(frames[k - 1], frames[k], cfg, offset);
-        if (e.ok) {
-            Mat3 Q = e.cov;
-            last = level ? levelled_motion(A, e.rotation, e.translation, e.cov6, &Q) : e.u;
-            if (level) A = tilt_of(A * e.rotation);
-            vo.motions.push_back(last);
-            vo.covariances.push_back(Q);
-            if (e.disparity_offset_sigma > 0) offset = {e.disparity_offset, e.disparity_offset_sigma};
-        } else {
-            ++vo.failures;
-            vo.motions.push_back(last);
-            vo.covariances.push_back(fail);
-        }
-        vo.disparity_offset.push_back(applied_offset(offset, cfg));
-        vo.tilt.push_back(A);
-        vo.estimates.push_back(std::move(e));
+VisualOdometryStream::VisualOdometryStream(const VisualOdometryConfig& cfg)
+    : cfg_(cfg),
+      fail_(Eigen::Vector3d(cfg.fail_sigma_xy * cfg.fail_sigma_xy, cfg.fail_sigma_xy * cfg.fail_sigma_xy,
+                            cfg.fail_sigma_theta * cfg.fail_sigma_theta)
+                .asDiagonal()),
+      level_(cfg.level && cfg.residual == OdometryResidual::pixels) {
+    cfg_.validate();
+    vo_.tilt.push_back(tilt_);
+}
+
+void VisualOdometryStream::step(const StereoFrame& previous, const StereoFrame& current) {
+    MotionEstimate e = estimate_motion(previous, current, cfg_, offset_);
+    if (e.ok) {
+        Mat3 Q = e.cov;
+        last_ = level_ ? levelled_motion(tilt_, e.rotation, e.translation, e.cov6, &Q) : e.u;
+        if (level_) tilt_ = tilt_of(tilt_ * e.rotation);
+        vo_.motions.push_back(last_);
+        vo_.covariances.push_back(Q);
+        if (e.disparity_offset_sigma > 0) offset_ = {e.disparity_offset, e.disparity_offset_sigma};
+    } else {
+        ++vo_.failures;
+        vo_.motions.push_back(last_);
+        vo_.covariances.push_back(fail_);
     }
     // frame 0 takes step 1's correction, frame k step k's
-    vo.disparity_offset.insert(vo.disparity_offset.begin(), vo.disparity_offset.empty() ? 0 : vo.disparity_offset[0]);
+    const double c = applied_offset(offset_, cfg_);
+    if (vo_.disparity_offset.empty()) vo_.disparity_offset.push_back(c);
+    vo_.disparity_offset.push_back(c);
+    vo_.tilt.push_back(tilt_);
+    vo_.estimates.push_back(std::move(e));
+}
+
+VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const VisualOdometryConfig& cfg) {
+    VisualOdometryStream s(cfg);
+    for (size_t k = 1; k < frames.size(); ++k) s.step(frames[k - 1], frames[k]);
+    VisualOdometry vo = s.take();
+    if (vo.disparity_offset.empty()) vo.disparity_offset.push_back(0);
     return vo;
 }
 
@@ -667,6 +673,57 @@ SpatialTrack spatial_track(const VisualOdometry& vo) {
     return s;
 }
 
+namespace {
+
+/// The frame the filter sees of frame k: corrected by the step's disparity correction when it
+/// has one, levelled by its tilt; `f` itself when neither applies (else built in `buf`).
+const StereoFrame& seen_frame(const StereoFrame& f, size_t k, const VisualOdometry& vo, const VisualOdometryConfig& cfg,
+                              StereoFrame& buf) {
+    const bool pixels = cfg.residual == OdometryResidual::pixels;
+    const bool offset = pixels && cfg.estimate_disparity_offset, level = pixels && cfg.level;
+    if (!offset && !level) return f;
+    const bool corrected = offset && vo.disparity_offset[k] != 0;   // a frame given no correction is seen as measured
+    if (!level) return corrected ? buf = with_disparity_offset(f, *cfg.rig, vo.disparity_offset[k]) : f;
+    return buf = levelled(corrected ? with_disparity_offset(f, *cfg.rig, vo.disparity_offset[k]) : f, vo.tilt[k]);
+}
+
+/// run_visual_stream's loop on frames whose noise is as given (`noise_scale` is recorded).
+SequenceRun visual_run(const FrameSource& frames, const std::vector<Pose>& truth, const VisualOdometryConfig& cfg,
+                       const AssociationConfig& association, VisualOdometry* odometry, double noise_scale) {
+    VisualOdometryStream vos(cfg);
+    FilterRun filter(Pose::Zero(), association, truth);
+    StereoFrame previous, current, buf;
+    size_t k = 0;
+    if (frames(previous)) {
+        for (k = 1; frames(current); ++k) {
+            vos.step(previous, current);
+            const VisualOdometry& vo = vos.odometry();
+            if (k == 1) filter.first_frame(seen_frame(previous, 0, vo, cfg, buf));
+            filter.next_frame(vo.motions.back(), vo.covariances.back(), seen_frame(current, k, vo, cfg, buf));
+            std::swap(previous, current);
+        }
+    }
+    if (k < 2) throw InputError("a sequence needs at least 2 frames, got " + std::to_string(k));
+    if (truth.size() > k)
+        throw InputError("a sequence needs at most one pose per frame to score: " + std::to_string(k) + " frames, " +
+                         std::to_string(truth.size()) + " poses");
+    SequenceRun run = filter.finish();
+    VisualOdometry vo = vos.take();
+    if (cfg.residual == OdometryResidual::pixels && cfg.estimate_disparity_offset) run.disparity_offset = vo.disparity_offset;
+    vo.noise_scale = noise_scale;
+    run.noise_scale = noise_scale;
+    if (cfg.residual == OdometryResidual::pixels) {
+        const SpatialTrack s = spatial_track(vo);
+        run.estimate_3d = spatial_poses(run.estimate, s.tilt, s.height);
+        run.dead_reckoning_3d = spatial_poses(run.dead_reckoning, s.tilt, s.height);
+        run.spatial_from_odometry = true;
+    }
+    if (odometry) *odometry = std::move(vo);
+    return run;
+}
+
+}  // namespace
+
 SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames_in, const std::vector<Pose>& truth,
                                 const VisualOdometryConfig& cfg, const AssociationConfig& association,
                                 VisualOdometry* odometry) {
@@ -675,34 +732,22 @@ SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames_in, const
     if (truth.size() > frames_in.size())
         throw InputError("a sequence needs at most one pose per frame to score: " + std::to_string(frames_in.size()) +
                          " frames, " + std::to_string(truth.size()) + " poses");
+    cfg.validate();
     std::vector<StereoFrame> scaled;
-    VisualOdometry vo = odometry_on_measured_noise(frames_in, cfg, scaled);
-    const std::vector<StereoFrame>& frames = scaled.empty() ? frames_in : scaled;
-    const bool pixels = cfg.residual == OdometryResidual::pixels;
-    const bool offset = pixels && cfg.estimate_disparity_offset, level = pixels && cfg.level;
-    SequenceRun run;
-    if (offset || level) {
-        std::vector<StereoFrame> seen;
-        seen.reserve(frames.size());
-        for (size_t k = 0; k < frames.size(); ++k) {   // a frame given no correction is seen as measured
-            const bool corrected = offset && vo.disparity_offset[k] != 0;
-            StereoFrame f = corrected ? with_disparity_offset(frames[k], *cfg.rig, vo.disparity_offset[k]) : frames[k];
-            seen.push_back(level ? levelled(f, vo.tilt[k]) : std::move(f));
-        }
-        run = run_filter(seen, vo.motions, vo.covariances, Pose::Zero(), association, truth);
-    } else {
-        run = run_filter(frames, vo.motions, vo.covariances, Pose::Zero(), association, truth);
-    }
-    if (offset) run.disparity_offset = vo.disparity_offset;
-    run.noise_scale = vo.noise_scale;
-    if (pixels) {
-        const SpatialTrack s = spatial_track(vo);
-        run.estimate_3d = spatial_poses(run.estimate, s.tilt, s.height);
-        run.dead_reckoning_3d = spatial_poses(run.dead_reckoning, s.tilt, s.height);
-        run.spatial_from_odometry = true;
-    }
-    if (odometry) *odometry = std::move(vo);
-    return run;
+    double scale = 1;
+    if (cfg.noise_from_residuals) scale = odometry_on_measured_noise(frames_in, cfg, scaled).noise_scale;
+    // the odometry is run again on the frames it settled on (deterministic: the same motions)
+    return visual_run(frames_of(scaled.empty() ? frames_in : scaled), truth, cfg, association, odometry, scale);
+}
+
+SequenceRun run_visual_stream(const FrameSource& frames, const std::vector<Pose>& truth, const VisualOdometryConfig& cfg,
+                              const AssociationConfig& association, VisualOdometry* odometry) {
+    cfg.validate();
+    if (!cfg.noise_from_residuals) return visual_run(frames, truth, cfg, association, odometry, 1);
+    std::vector<StereoFrame> all;
+    StereoFrame f;
+    while (frames(f)) all.push_back(std::move(f));
+    return run_visual_sequence(all, truth, cfg, association, odometry);
 }
 
 }  // namespace hc::slam

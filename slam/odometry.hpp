@@ -146,6 +146,26 @@ struct VisualOdometry {
 };
 VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const VisualOdometryConfig& config = {});
 
+/// visual_odometry step by step: step(previous, current) for each pair of consecutive frames
+/// extends odometry() by one motion (and after the first step, frame 0's and frame 1's
+/// disparity correction and tilt; after step k, frame k's).
+class VisualOdometryStream {
+public:
+    explicit VisualOdometryStream(const VisualOdometryConfig& config);   ///< InputError as validate()
+    void step(const StereoFrame& previous, const StereoFrame& current);
+    const VisualOdometry& odometry() const { return vo_; }
+    VisualOdometry take() { return std::move(vo_); }
+
+private:
+    VisualOdometryConfig cfg_;
+    VisualOdometry vo_;
+    Motion last_ = Motion::Zero();
+    Mat3 fail_;
+    DisparityPrior offset_;        // the posterior of the last step that estimated c
+    bool level_;
+    Mat3 tilt_ = Mat3::Identity();   // the tilt of the camera before the step
+};
+
 /// The variance factor of the odometry's residuals: the inliers' squared Mahalanobis residuals
 /// summed over the steps that succeeded, over their degrees of freedom, divided by what one
 /// residual of dimension d (3 on pixels, 2 on the top view) averages per dimension when it is
@@ -179,5 +199,13 @@ StereoFrame with_disparity_offset(const StereoFrame& frame, const stereo::Rectif
 SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const std::vector<Pose>& truth,
                                 const VisualOdometryConfig& vo, const AssociationConfig& association,
                                 VisualOdometry* odometry = nullptr);
+/// The same frame by frame: each frame is read once, its odometry step taken with the frame
+/// before it, and given to the filter (FilterRun) with the correction and tilt of that step;
+/// frame 0 waits for step 1 (it takes step 1's correction). Held: two frames. With
+/// noise_from_residuals the whole sequence is read first and held (the noise is measured on
+/// the run's own residuals before the filter starts: run_visual_sequence on it). InputError as
+/// run_visual_sequence, the counts checked when the source ends.
+SequenceRun run_visual_stream(const FrameSource& frames, const std::vector<Pose>& truth, const VisualOdometryConfig& vo,
+                              const AssociationConfig& association, VisualOdometry* odometry = nullptr);
 
 }  // namespace hc::slam

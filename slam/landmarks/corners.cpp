@@ -7,6 +7,10 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <map>
+#include <optional>
+
+#include <tbb/task_arena.h>
 
 #include <opencv2/features2d.hpp>
 
@@ -66,71 +70,6 @@ std::vector<cv::KeyPoint> mask_keypoints(const std::vector<std::uint8_t>& mask, 
     return kp;
 }
 
-/// Streams `frames` through a design as the thesis's host does (HostDriver: bus writes of
-/// 4 pixels, a read of the 4 corner bits when a window row completes): `write` takes a data
-/// word, `corner` returns the corner word the host reads after it.
-template <class Write, class ReadCorner>
-std::vector<std::vector<std::uint8_t>> stream_masks(const std::vector<Image>& frames, Write&& write, ReadCorner&& corner,
-                                                    const char* what, bool progress) {
-    const Geometry g{frames.at(0).width, frames.at(0).height};
-    std::vector<const Image*> ptrs;
-    for (const auto& im : frames) ptrs.push_back(&im);
-    HostDriver drv(g, ptrs);
-    const size_t npix = static_cast<size_t>(g.width) * static_cast<size_t>(g.height);
-    std::vector<std::vector<std::uint8_t>> masks(frames.size(), std::vector<std::uint8_t>(npix, 0));
-    std::vector<Corner> cs;
-    BusEvent ev;
-    int last_frame = -1;
-    const auto t0 = std::chrono::steady_clock::now();
-    while (drv.next(ev)) {
-        write(ev.data);
-        if (ev.read) {
-            cs.clear();
-            drv.decode(*ev.read, corner(), cs);
-            for (const Corner& c : cs) masks[static_cast<size_t>(c.frame)][static_cast<size_t>(c.y) * g.width + c.x] = 1;
-        }
-        if (progress && ev.pos.frame != last_frame) {
-            last_frame = ev.pos.frame;
-            std::fprintf(stderr, "landmarks: %s frame %d/%zu, %.0f s\n", what, last_frame + 1, frames.size(),
-                         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-        }
-    }
-    return masks;
-}
-
-std::vector<std::vector<std::uint8_t>> cycle_masks(const std::vector<Image>& frames, const Formats& f, bool progress) {
-    HarrisTop top(Geometry{frames.at(0).width, frames.at(0).height}, f);
-    return stream_masks(frames, [&](std::uint32_t d) { top.write(d); }, [&] { return top.corner(); }, "cycle", progress);
-}
-
-/// The Verilator netlist of rtl/ for `f`, trusted only after the GHDL/Verilator/model gate
-/// passes for these formats (cached per design, cosim/verilator/gate.hpp).
-std::vector<std::vector<std::uint8_t>> rtl_masks(const std::vector<Image>& frames, const Formats& f, bool progress) {
-    std::string why;
-    if (!vl::toolchain_available(&why)) throw InputError("corner source rtl needs GHDL and Verilator: " + why);
-    const auto cache = vl::default_cache_dir();
-    bool cached = false;
-    const vl::GateResult gate = vl::run_gate_cached(f, {}, cache, std::cerr, &cached);
-    if (gate.verdict != vl::GateVerdict::pass)
-        throw std::runtime_error(std::string("corner source rtl: the GHDL/Verilator/model gate did not pass (") +
-                                 vl::verdict_name(gate.verdict) + "): " + gate.first);
-    const vl::NetlistConfig nc{Geometry{frames.at(0).width, frames.at(0).height}, f, false, {}};
-    vl::VerilatedDesign dut(vl::build_netlist(nc, cache, std::cerr), vl::config_key(nc));
-    return stream_masks(frames, [&](std::uint32_t d) { dut.write(d); }, [&] { return dut.corner(); }, "rtl", progress);
-}
-
-std::vector<std::vector<std::uint8_t>> spec_masks(const std::vector<Image>& frames, const Formats& f) {
-    spec::Options so;
-    so.formats = f;
-    const spec::SpecModel m(so);
-    std::vector<const Image*> ptrs;
-    for (const auto& im : frames) ptrs.push_back(&im);
-    std::int64_t prev = m.reset_max();
-    std::vector<std::vector<std::uint8_t>> masks;
-    for (auto& fc : m.run(ptrs, prev, 0)) masks.push_back(std::move(fc.mask));
-    return masks;
-}
-
 std::vector<cv::KeyPoint> opencv_detect(Detector d, const cv::Mat& img, const CornerOptions& o) {
     std::vector<cv::KeyPoint> kp;
     switch (d) {
@@ -149,75 +88,221 @@ std::vector<cv::KeyPoint> opencv_detect(Detector d, const cv::Mat& img, const Co
 
 }  // namespace
 
-std::vector<PairKeypoints> detect_pairs(Detector d, const std::vector<StereoImages>& pairs, const CornerOptions& o) {
-    std::vector<PairKeypoints> out(pairs.size());
-    for (size_t k = 0; k < pairs.size(); ++k) {
-        const auto& p = pairs[k];
-        if (p.left.empty() || p.right.empty()) throw InputError("pair '" + p.name + "': an image is empty");
-        if (p.left.size() != p.right.size())
-            throw InputError("pair '" + p.name + "': left " + std::to_string(p.left.cols) + "x" + std::to_string(p.left.rows) +
-                             " and right " + std::to_string(p.right.cols) + "x" + std::to_string(p.right.rows) +
-                             " images differ in size");
-        if (p.left.type() != CV_8UC1 || p.right.type() != CV_8UC1)
-            throw InputError("pair '" + p.name + "': images must be 8-bit grey");
-        for (int side = 0; side < 2; ++side) {
-            FrameKeypoints& f = side ? out[k].right : out[k].left;
-            f.source = d;
-            f.frame = static_cast<int>(2 * k) + side;
-            f.name = p.name + (side ? "/R" : "/L");
-        }
-    }
-    if (pairs.empty()) return out;
+namespace {
 
-    if (!is_hardware(d)) {
-        for (size_t k = 0; k < pairs.size(); ++k)
-            for (int side = 0; side < 2; ++side) {
-                FrameKeypoints& f = side ? out[k].right : out[k].left;
-                const cv::Mat& img = side ? pairs[k].right : pairs[k].left;
-                if (d == Detector::opencv) {
-                    std::vector<std::uint8_t> mask;
-                    spec::opencv_corners(to_image(img), spec::ReferenceOptions{}, mask);
-                    f.points = mask_keypoints(mask, img.cols, o.keypoint_size, f.frame);
-                } else {
-                    f.points = opencv_detect(d, img, o);
-                    for (auto& kp : f.points) kp.class_id = f.frame;
-                }
-            }
-        return out;
-    }
+/// InputError unless the pair's images are non-empty, of one size and 8-bit grey.
+void check_pair(const StereoImages& p) {
+    if (p.left.empty() || p.right.empty()) throw InputError("pair '" + p.name + "': an image is empty");
+    if (p.left.size() != p.right.size())
+        throw InputError("pair '" + p.name + "': left " + std::to_string(p.left.cols) + "x" + std::to_string(p.left.rows) +
+                         " and right " + std::to_string(p.right.cols) + "x" + std::to_string(p.right.rows) +
+                         " images differ in size");
+    if (p.left.type() != CV_8UC1 || p.right.type() != CV_8UC1)
+        throw InputError("pair '" + p.name + "': images must be 8-bit grey");
+}
 
-    // hardware: one stream, seed pair in front, flush pair behind (cycle, rtl)
-    for (const auto& p : pairs)
-        if (p.left.size() != pairs[0].left.size())
-            throw InputError("corner source " + detector_name(d) + " streams one image size: pair '" + p.name +
-                             "' differs from '" + pairs[0].name + "'");
+/// InputError unless a hardware source's pair has the stream's one size (the first pair's).
+void check_stream_size(Detector d, const StereoImages& p, const StereoImages& first) {
+    if (p.left.size() != first.left.size())
+        throw InputError("corner source " + detector_name(d) + " streams one image size: pair '" + p.name +
+                         "' differs from '" + first.name + "'");
+}
+
+void check_formats(const Formats& f) {
     try {
-        o.formats.validate();
+        f.validate();
     } catch (const std::invalid_argument& e) {
         throw InputError(std::string("formats: ") + e.what());
     }
-    std::vector<Image> frames;
-    auto push = [&](const StereoImages& p) {
-        frames.push_back(to_image(p.left));
-        frames.push_back(to_image(p.right));
-    };
-    const size_t first = 1;   // stream pair index of pairs[0], after the seed
-    push(pairs.front());
-    for (const auto& p : pairs) push(p);
-    if (d != Detector::spec) push(pairs.back());   // flush
-    std::vector<std::vector<std::uint8_t>> masks;
-    try {
-        masks = d == Detector::spec    ? spec_masks(frames, o.formats)
-                : d == Detector::cycle ? cycle_masks(frames, o.formats, o.progress)
-                                       : rtl_masks(frames, o.formats, o.progress);
-    } catch (const std::invalid_argument& e) {   // the host driver's geometry checks
-        throw InputError("corner source " + detector_name(d) + " on '" + pairs[0].name + "': " + e.what());
+}
+
+/// The netlist of rtl/ for `f`, trusted only after the GHDL/Verilator/model gate passes for
+/// these formats (cached per design, cosim/verilator/gate.hpp).
+std::unique_ptr<vl::VerilatedDesign> rtl_design(const Geometry& g, const Formats& f) {
+    std::string why;
+    if (!vl::toolchain_available(&why)) throw InputError("corner source rtl needs GHDL and Verilator: " + why);
+    const auto cache = vl::default_cache_dir();
+    bool cached = false;
+    const vl::GateResult gate = vl::run_gate_cached(f, {}, cache, std::cerr, &cached);
+    if (gate.verdict != vl::GateVerdict::pass)
+        throw std::runtime_error(std::string("corner source rtl: the GHDL/Verilator/model gate did not pass (") +
+                                 vl::verdict_name(gate.verdict) + "): " + gate.first);
+    const vl::NetlistConfig nc{g, f, false, {}};
+    return std::make_unique<vl::VerilatedDesign>(vl::build_netlist(nc, cache, std::cerr), vl::config_key(nc));
+}
+
+}  // namespace
+
+/// The stream: for spec, the model run pair by pair with the previous frame's maximum carried;
+/// for cycle and rtl, one host-driver stream (seed pair, the pairs, flush pair: stream frames
+/// 0-1, 2k+2 and 2k+3 for pair k, then 2n+2 and 2n+3) whose frames are loaded as it reaches
+/// them; a frame's corners are complete once the next frame's body (not its preload) starts, so
+/// the last pair is complete when the flush pair's body starts, and the stream stops there.
+struct PairCornerStream::Impl {
+    Detector d;
+    int n;
+    PairAt pair_at;
+    CornerOptions o;
+    int next_pair = 0;
+    std::optional<StereoImages> first;          // pair 0: the seed, and the stream's size
+    std::map<int, StereoImages> held;           // cycle/rtl: pairs loaded and not yet passed on
+    std::unique_ptr<spec::SpecModel> spec;
+    std::unique_ptr<tbb::task_arena> arena;
+    std::int64_t prev_max = 0;
+    std::unique_ptr<HarrisTop> top;
+    std::unique_ptr<vl::VerilatedDesign> dut;
+    std::unique_ptr<FeedDriver> feed;
+    std::map<int, std::vector<std::uint8_t>> masks;   // cycle/rtl: stream frame -> corners so far
+    std::optional<BusEvent> pending;                  // the event that completed the last pair
+    std::vector<Corner> decoded;
+    int last_frame = -1;
+    std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+
+    Impl(Detector d_, int n_, PairAt at, const CornerOptions& o_) : d(d_), n(n_), pair_at(std::move(at)), o(o_) {}
+    StereoImages load(int k) {
+        StereoImages p = pair_at(k);
+        check_pair(p);
+        if (is_hardware(d) && first) check_stream_size(d, p, *first);
+        return p;
     }
-    const int w = pairs[0].left.cols;
-    for (size_t k = 0; k < pairs.size(); ++k) {
-        out[k].left.points = mask_keypoints(masks[2 * (k + first)], w, o.keypoint_size, out[k].left.frame);
-        out[k].right.points = mask_keypoints(masks[2 * (k + first) + 1], w, o.keypoint_size, out[k].right.frame);
+    const StereoImages& pair(int k) {
+        auto it = held.find(k);
+        if (it == held.end()) it = held.emplace(k, k == 0 ? *first : load(k)).first;
+        return it->second;
     }
+    void start_hardware() {
+        first = load(0);
+        check_formats(o.formats);
+        const Geometry g{first->left.cols, first->left.rows};
+        if (d == Detector::spec) {
+            spec::Options so;
+            so.formats = o.formats;
+            spec = std::make_unique<spec::SpecModel>(so);
+            arena = std::make_unique<tbb::task_arena>(tbb::task_arena::automatic);
+            prev_max = spec->reset_max();
+            const Image l = to_image(first->left), r = to_image(first->right);
+            spec->run({&l, &r}, prev_max, *arena);   // the seed
+            return;
+        }
+        const int total = 2 * n + 4;
+        try {
+            if (d == Detector::cycle) top = std::make_unique<HarrisTop>(g, o.formats);
+            else dut = rtl_design(g, o.formats);
+            feed = std::make_unique<FeedDriver>(g, total, [this](int f) {
+                const int k = f < 2 ? 0 : std::min(f / 2 - 1, n - 1);
+                const StereoImages& p = pair(k);
+                return std::make_shared<const Image>(to_image(f % 2 ? p.right : p.left));
+            });
+        } catch (const std::invalid_argument& e) {   // the host driver's geometry checks
+            throw InputError("corner source " + detector_name(d) + " on '" + first->name + "': " + e.what());
+        }
+    }
+    /// Streams until stream frame `last` is complete (or the stream ends).
+    void stream_through(int last) {
+        const int w = first->left.cols;
+        const size_t npix = static_cast<size_t>(w) * static_cast<size_t>(first->left.rows);
+        BusEvent ev;
+        while (true) {
+            if (pending) {
+                ev = *pending;
+                pending.reset();
+            } else if (!feed->next(ev)) {
+                return;
+            }
+            if (!ev.pos.tail && ev.pos.frame > last) {
+                pending = ev;
+                return;
+            }
+            if (top) top->write(ev.data);
+            else dut->write(ev.data);
+            if (ev.read) {
+                decoded.clear();
+                feed->driver().decode(*ev.read, top ? top->corner() : dut->corner(), decoded);
+                for (const Corner& c : decoded) {
+                    auto& m = masks[c.frame];
+                    if (m.empty()) m.assign(npix, 0);
+                    m[static_cast<size_t>(c.y) * static_cast<size_t>(w) + static_cast<size_t>(c.x)] = 1;
+                }
+            }
+            if (o.progress && ev.pos.frame != last_frame) {
+                last_frame = ev.pos.frame;
+                std::fprintf(stderr, "landmarks: %s frame %d/%d, %.0f s\n", detector_name(d).c_str(), last_frame + 1,
+                             2 * n + 4, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+            }
+        }
+    }
+    std::vector<cv::KeyPoint> take_mask(int frame, int w, int id) {
+        auto it = masks.find(frame);
+        if (it == masks.end()) return {};
+        std::vector<cv::KeyPoint> kp = mask_keypoints(it->second, w, o.keypoint_size, id);
+        masks.erase(masks.begin(), std::next(it));
+        return kp;
+    }
+};
+
+PairCornerStream::PairCornerStream(Detector d, int pairs, PairAt pair_at, const CornerOptions& o)
+    : impl_(std::make_unique<Impl>(d, pairs, std::move(pair_at), o)) {}
+
+PairCornerStream::~PairCornerStream() = default;
+
+bool PairCornerStream::next(StereoImages& images, PairKeypoints& kp) {
+    Impl& s = *impl_;
+    const int k = s.next_pair;
+    if (k >= s.n) return false;
+    for (int side = 0; side < 2; ++side) {
+        FrameKeypoints& f = side ? kp.right : kp.left;
+        f.source = s.d;
+        f.frame = 2 * k + side;
+        f.points.clear();
+    }
+    if (!is_hardware(s.d)) {
+        images = s.load(k);
+        for (int side = 0; side < 2; ++side) {
+            FrameKeypoints& f = side ? kp.right : kp.left;
+            const cv::Mat& img = side ? images.right : images.left;
+            if (s.d == Detector::opencv) {
+                std::vector<std::uint8_t> mask;
+                spec::opencv_corners(to_image(img), spec::ReferenceOptions{}, mask);
+                f.points = mask_keypoints(mask, img.cols, s.o.keypoint_size, f.frame);
+            } else {
+                f.points = opencv_detect(s.d, img, s.o);
+                for (auto& p : f.points) p.class_id = f.frame;
+            }
+        }
+    } else {
+        if (k == 0) s.start_hardware();
+        if (s.spec) {
+            images = k == 0 ? *s.first : s.load(k);
+            const Image l = to_image(images.left), r = to_image(images.right);
+            const std::vector<spec::FrameCorners> fc = s.spec->run({&l, &r}, s.prev_max, *s.arena);
+            kp.left.points = mask_keypoints(fc[0].mask, images.left.cols, s.o.keypoint_size, kp.left.frame);
+            kp.right.points = mask_keypoints(fc[1].mask, images.left.cols, s.o.keypoint_size, kp.right.frame);
+        } else {
+            s.stream_through(2 * k + 3);
+            images = s.pair(k);
+            const int w = images.left.cols;
+            kp.left.points = s.take_mask(2 * k + 2, w, kp.left.frame);
+            kp.right.points = s.take_mask(2 * k + 3, w, kp.right.frame);
+            s.held.erase(s.held.begin(), s.held.lower_bound(k));
+        }
+    }
+    kp.left.name = images.name + "/L";
+    kp.right.name = images.name + "/R";
+    ++s.next_pair;
+    return true;
+}
+
+std::vector<PairKeypoints> detect_pairs(Detector d, const std::vector<StereoImages>& pairs, const CornerOptions& o) {
+    for (const auto& p : pairs) check_pair(p);
+    if (is_hardware(d) && !pairs.empty()) {
+        for (const auto& p : pairs) check_stream_size(d, p, pairs[0]);
+        check_formats(o.formats);
+    }
+    PairCornerStream stream(d, static_cast<int>(pairs.size()), [&pairs](int k) { return pairs.at(static_cast<size_t>(k)); },
+                            o);
+    std::vector<PairKeypoints> out(pairs.size());
+    StereoImages images;
+    for (auto& kp : out) stream.next(images, kp);
     return out;
 }
 

@@ -6,6 +6,8 @@
 #include "io/util/errors.hpp"
 #include "model/harris/harris_pkg.hpp"
 
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -66,8 +68,29 @@ struct PairKeypoints {
 /// threshold comes from the previous frame's maximum: they stream the first pair once more
 /// in front as a seed (not returned), and cycle/rtl append the last pair once more as a
 /// flush (its windows come back only while later pixels are written), as docs/metrics.md's
-/// protocol does. Frame numbers are 2k (left) and 2k+1 (right) of pair k.
+/// protocol does. Frame numbers are 2k (left) and 2k+1 (right) of pair k. (PairCornerStream
+/// over the pairs.)
 std::vector<PairKeypoints> detect_pairs(Detector d, const std::vector<StereoImages>& pairs,
                                         const CornerOptions& o = {});
+
+/// detect_pairs pair by pair over a stream whose pairs are loaded as they are reached
+/// (`pair_at(k)`, asked in order): the same corners, with at most three pairs held (a hardware
+/// source's threshold carried from frame to frame within one run of the spec model, or one
+/// stream through the cycle model or the netlist, which asks for a frame before the previous
+/// one's reads are done). InputError as detect_pairs, for a pair when it is reached.
+class PairCornerStream {
+public:
+    using PairAt = std::function<StereoImages(int pair)>;
+    PairCornerStream(Detector d, int pairs, PairAt pair_at, const CornerOptions& o = {});
+    ~PairCornerStream();
+    PairCornerStream(const PairCornerStream&) = delete;
+    PairCornerStream& operator=(const PairCornerStream&) = delete;
+    /// The next pair's images and corners; false after the last pair.
+    bool next(StereoImages& images, PairKeypoints& corners);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace hc::landmarks

@@ -6,7 +6,10 @@
 // filter's prediction, gating, association, corrections and new landmarks). One thread
 // (cv::setNumThreads(1)). Peers in the same run: the descriptors (the command's BRIEF, ORB,
 // the thesis's grid), nearest-neighbour association against JCBB, and visual odometry on
-// the top view against the pixel residuals.
+// the top view against the pixel residuals. Long streams, frame by frame: sequence 00's 4,541
+// poses with synthetic landmarks streamed against the same frames held (the peer), and KITTI
+// 01's pairs cycled to 510 through the spec corner source (its model on all cores) against 51
+// (the peer: per-frame time that does not grow with the stream).
 // Without the data (HARRIS_COSIM_DATA or the build's data directory holding kitti/) the
 // benchmarks report an error and skip.
 #include <benchmark/benchmark.h>
@@ -119,8 +122,68 @@ void BM_vo_and_filter(benchmark::State& state, landmarks::Descriptor descriptor,
     report_per_frame(state, steps);
 }
 
+/// The frame-by-frame run on a long stream, per frame: sequence 00's first `range(0)` poses with
+/// synthetic landmarks, visual odometry and the filter; streamed (frames drawn as read,
+/// SyntheticFrames, run_visual_stream), or with `range(1)` set the peer that holds them (all
+/// frames drawn first, synthesize_stereo_frames, then run_visual_sequence).
+void BM_synthetic_00(benchmark::State& state) {
+    cv::setNumThreads(1);
+    const auto d = frames::data_dir("");
+    const auto poses_file = d ? frames::kitti_poses_file(*d / "kitti", "00") : std::filesystem::path();
+    if (!d || !std::filesystem::exists(poses_file)) {
+        state.SkipWithError("no sequence 00 poses in the data directory");
+        return;
+    }
+    std::vector<slam::Mat34> poses = slam::read_kitti_poses(poses_file);
+    poses.resize(std::min(poses.size(), static_cast<size_t>(state.range(0))));
+    std::vector<slam::Pose> truth;
+    for (const auto& T : poses) truth.push_back(slam::planar_pose(T));
+    slam::VisualOdometryConfig vc;
+    vc.rig = slam::synthetic_rig();
+    double frames = 0;
+    for (auto _ : state) {
+        if (state.range(1)) {
+            const auto held = slam::synthesize_stereo_frames(poses, *vc.rig, stereo::PixelNoise{}, 1000, 8, 1);
+            benchmark::DoNotOptimize(slam::run_visual_sequence(held, truth, vc, slam::AssociationConfig{}).estimate.back());
+        } else {
+            slam::SyntheticFrames synthetic(poses, *vc.rig, stereo::PixelNoise{}, 1000, 8, 1);
+            const slam::SequenceRun run = slam::run_visual_stream(
+                [&](slam::StereoFrame& f) { return synthetic.next(f); }, truth, vc, slam::AssociationConfig{});
+            benchmark::DoNotOptimize(run.estimate.back());
+        }
+        frames += static_cast<double>(poses.size());
+    }
+    report_per_frame(state, frames);
+}
+
+/// The streamed run on real pairs, per frame: KITTI 01's 51 pairs cycled to `range(0)` pairs (51:
+/// the peer of 510, the same pairs once) (pair k is pair k mod
+/// 51, loaded as reached), the spec corner source (its threshold carried across pairs) and
+/// everything after it (landmark_stream, run_visual_stream); per frame.
+void BM_stream_spec_01_cycled(benchmark::State& state) {
+    const Kitti* k = setup(state);
+    if (!k) return;
+    const auto root = *frames::data_dir("") / "kitti";
+    landmarks::PipelineOptions po = slam::kitti_pipeline_defaults();
+    po.detector = landmarks::Detector::spec;
+    const int n = static_cast<int>(state.range(0));
+    const slam::VisualOdometryConfig vc = odometry(*k, slam::OdometryResidual::pixels);
+    double frames = 0;
+    for (auto _ : state) {
+        const slam::FrameSource pairs = slam::landmark_stream(
+            n, [root](int p) { return landmarks::kitti_dataset(root, "01", {p % 51, p % 51 + 1}).pairs.front(); },
+            *vc.rig, po);
+        const slam::SequenceRun run = slam::run_visual_stream(pairs, {}, vc, slam::AssociationConfig{});
+        benchmark::DoNotOptimize(run.estimate.back());
+        frames += n;
+    }
+    report_per_frame(state, frames);
+}
+
 }  // namespace
 
+BENCHMARK(BM_synthetic_00)->Args({4541, 0})->Args({4541, 1})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_stream_spec_01_cycled)->Arg(51)->Arg(510)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_frame_after_corners, orb_jcbb, landmarks::Descriptor::orb, slam::AssociationMethod::Jcbb,
                   slam::OdometryResidual::pixels)
     ->Unit(benchmark::kMillisecond)->Iterations(2);
