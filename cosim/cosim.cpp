@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 // Build facts from cosim/CMakeLists.txt.
 #ifndef HC_SIM_DIR

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cosim/session.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace {
 std::unique_ptr<hc::cosim::Session> g_session;

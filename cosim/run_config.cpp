@@ -1,7 +1,7 @@
 #include "cosim/run_config.hpp"
 
 #include "model/harris/formats_json.hpp"
-#include "io/util/errors.hpp"
+#include "model/util/errors.hpp"
 
 #include <cstring>
 #include <fstream>

@@ -12,7 +12,7 @@
 
 #include "eval/report.hpp"
 #include "io/cluster/cluster.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc::eval {
 

@@ -10,7 +10,7 @@
 
 #include "eval/eval.hpp"
 #include "eval/report.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc::eval {
 

@@ -1,6 +1,6 @@
 // report.cpp: see report.hpp.
 #include "eval/report.hpp"
-#include "io/util/errors.hpp"
+#include "model/util/errors.hpp"
 
 #include <cstdio>
 #include <cstdlib>

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "model/image/image.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc::golden {
 

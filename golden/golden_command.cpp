@@ -2,7 +2,7 @@
 #include <cstdio>
 
 #include "golden/golden.hpp"
-#include "io/util/errors.hpp"
+#include "model/util/errors.hpp"
 
 namespace fs = std::filesystem;
 

@@ -8,7 +8,7 @@
 #include "mutation/campaign.hpp"
 #include "cosim/cosim.hpp"
 #include "mutation/proof_steps.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc::mutation {
 

@@ -16,7 +16,7 @@
 #include "model/harris/harris_pkg.hpp"
 #include "mutation/mutated_run.hpp"
 #include "mutation/proof_steps.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc::mutation {
 

@@ -23,7 +23,7 @@ json stimuli_json(const std::vector<Stimulus>& v) {
 
 json run_shard_mutants(const json& common, const json& shard, std::size_t index) {
     if (common.at("rtl_hash").get<std::string>() != rtl_hash())
-        throw cluster::ClusterInputError("shard " + std::to_string(index) +
+        throw hc::InputError("shard " + std::to_string(index) +
                                          ": rtl/ changed since this run's manifest was written; start a new run");
     Options o;
     o.quick = stimulus_from_json(common.at("quick"));
@@ -41,7 +41,7 @@ json run_shard_mutants(const json& common, const json& shard, std::size_t index)
         const Mutant* m = nullptr;
         for (const auto& c : all)
             if (c.name() == name) m = &c;
-        if (!m) throw cluster::ClusterInputError("shard " + std::to_string(index) + ": no generated mutant '" + name + "'");
+        if (!m) throw hc::InputError("shard " + std::to_string(index) + ": no generated mutant '" + name + "'");
         std::fprintf(stderr, "[mutants] %s ...\n", name.c_str());
         const Result r = run_mutant(*m, o);
         std::fprintf(stderr, "[mutants] %s: %s%s%s (%.1f s)\n", name.c_str(), fate_name(r.fate).c_str(),
@@ -84,7 +84,7 @@ cluster::Manifest mutants_manifest(const MutantsJob& p) {
 std::vector<Result> mutants_results(const json& merged) {
     std::vector<Result> v;
     if (!merged.contains("results") || !merged["results"].is_array())
-        throw cluster::ClusterInputError("merged data of a mutants run has no 'results' list");
+        throw hc::InputError("merged data of a mutants run has no 'results' list");
     for (const auto& r : merged["results"]) v.push_back(result_from_json(r));
     return v;
 }
@@ -94,7 +94,7 @@ void add_mutate_generated_job(cluster::JobRegistry& r) { r.add({"mutate-generate
 MutantsProgress mutants_finished(const fs::path& dir) {
     const cluster::Manifest m = cluster::read_manifest(dir);
     if (m.job != "mutate-generated")
-        throw cluster::ClusterInputError("run directory " + dir.string() + " holds a '" + m.job + "' run, not 'mutate-generated'");
+        throw hc::InputError("run directory " + dir.string() + " holds a '" + m.job + "' run, not 'mutate-generated'");
     MutantsProgress p;
     p.quick = stimulus_from_json(m.common.at("quick"));
     for (const auto& s : m.common.at("longer")) p.longer.push_back(stimulus_from_json(s));

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "io/frames/frames.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 #include "mutation/campaign.hpp"
 
 namespace hc::mutation {
@@ -20,14 +20,14 @@ std::string file_hash(const fs::path& p) { return util::hex64(util::fnv1a(util::
 SmokeList campaign_of(const json& common) {
     const fs::path list = common.at("list").get<std::string>();
     if (file_hash(list) != common.at("list_hash"))
-        throw cluster::ClusterInputError("mutation list '" + list.string() + "' changed since the run was prepared");
+        throw hc::InputError("mutation list '" + list.string() + "' changed since the run was prepared");
     return load_smoke_list(list);
 }
 
 const SmokeMutant& find(const SmokeList& c, const std::string& id) {
     for (const auto& m : c.mutants)
         if (m.id == id) return m;
-    throw cluster::ClusterInputError("mutation list has no mutant '" + id + "'");
+    throw hc::InputError("mutation list has no mutant '" + id + "'");
 }
 
 json outcome_json(const std::string& id, const SmokeOutcome& o) {
@@ -70,7 +70,7 @@ void add_mutate_job(cluster::JobRegistry& r) {
     r.add({"mutate",
             [](const json& common, const json& shard, std::size_t index) {
                 if (rtl_hash() != common.at("rtl_hash"))
-                    throw cluster::ClusterInputError("rtl/ changed since the mutation run was prepared");
+                    throw hc::InputError("rtl/ changed since the mutation run was prepared");
                 const SmokeList c = campaign_of(common);
                 const frames::LoadedFrames lf = frames::load_frames(c.stream);
                 util::ScratchDir scratch("harris-mutate-shard-" + std::to_string(index));

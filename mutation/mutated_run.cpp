@@ -3,7 +3,7 @@
 
 #include <chrono>
 
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace fs = std::filesystem;
 

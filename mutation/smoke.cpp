@@ -8,7 +8,7 @@
 
 #include "cosim/cosim.hpp"
 #include "mutation/mutated_run.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

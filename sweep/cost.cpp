@@ -14,7 +14,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 #include "sweep/sweep_config.hpp"
 
 namespace fs = std::filesystem;

@@ -19,7 +19,7 @@
 #include "model/harris/sobel_x.hpp"
 #include "model/harris/sobel_y.hpp"
 #include "model/harris/threshold.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 #include "sweep/smt_word.hpp"
 
 namespace fs = std::filesystem;

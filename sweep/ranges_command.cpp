@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 #include "model/harris/formats_json.hpp"
 #include "sweep/stage_equivalence.hpp"
 #include "sweep/sweep_config.hpp"

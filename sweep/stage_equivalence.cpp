@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cosim/cosim.hpp"
-#include "io/util/errors.hpp"
-#include "io/util/util.hpp"
+#include "model/util/errors.hpp"
+#include "model/util/util.hpp"
 #include "model/fixed/word.hpp"
 #include "model/harris/block_filter.hpp"
 #include "model/harris/formats_json.hpp"

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 #include "model/harris/harris_pkg.hpp"
 #include "sweep/ranges.hpp"
 #include "sweep/stage_equivalence.hpp"

@@ -28,8 +28,8 @@
 #include "io/frames/frames.hpp"
 #include "golden/golden.hpp"
 #include "model/harris/formats_json.hpp"
-#include "slam/landmark_frames.hpp"
-#include "io/util/util.hpp"
+#include "mapping/slam/landmark_frames.hpp"
+#include "model/util/util.hpp"
 #include "sweep/pareto.hpp"
 #include "sweep/sweep_report.hpp"
 
@@ -135,7 +135,7 @@ landmarks::Dataset landmark_dataset(const fs::path& middlebury, const LandmarkSp
             ds.calib.push_back(landmarks::middlebury_calib(sc.scale, sc.dmin_full, sc.images.left.size()));
             ds.pairs.push_back(std::move(sc.images));
             ds.disparity.push_back(std::move(sc.disparity));
-        } catch (const landmarks::InputError& e) {
+        } catch (const hc::InputError& e) {
             throw InputError(std::string("landmark column: ") + e.what());
         }
     }

@@ -15,12 +15,12 @@
 #include <nlohmann/json.hpp>
 
 #include "eval/eval.hpp"
-#include "slam/landmarks/landmarks.hpp"
+#include "mapping/landmarks/landmarks.hpp"
 #include "sweep/cost.hpp"
 #include "sweep/overflow.hpp"
 #include "sweep/ranges.hpp"
 #include "sweep/sweep_config.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc::sweep {
 

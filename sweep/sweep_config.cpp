@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "slam/landmarks/landmarks.hpp"
+#include "mapping/landmarks/landmarks.hpp"
 #include "model/harris/formats_json.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc::sweep {
 
@@ -203,7 +203,7 @@ void parse_trajectory(const json& t, SweepSpec& s, const std::string& what) {
     if (t.contains("descriptor")) s.trajectory.descriptor = string_value(t["descriptor"], what, "trajectory.descriptor");
     try {
         landmarks::parse_descriptor(s.trajectory.descriptor);
-    } catch (const landmarks::InputError& e) {
+    } catch (const hc::InputError& e) {
         fail(what, "trajectory.descriptor", e.what());
     }
 }
@@ -225,7 +225,7 @@ void parse_landmarks(const json& l, SweepSpec& s, const std::string& what) {
         if (l.contains("h")) s.landmarks.h = int_value(l["h"], what, "landmarks.h");
         try {
             landmarks::validate(landmarks::GridParams{s.landmarks.g, s.landmarks.h});
-        } catch (const landmarks::InputError& e) {
+        } catch (const hc::InputError& e) {
             fail(what, "landmarks", e.what());
         }
     }

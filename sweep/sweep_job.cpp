@@ -5,7 +5,7 @@
 #include <string>
 
 #include "model/harris/formats_json.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc::sweep {
 
@@ -21,7 +21,7 @@ json array_json(const A& a) {
 
 template <class A>
 void array_from(const json& j, A& a) {
-    if (j.size() != a.size()) throw cluster::ClusterInputError("sweep: an overflow count list has the wrong length");
+    if (j.size() != a.size()) throw hc::InputError("sweep: an overflow count list has the wrong length");
     for (std::size_t k = 0; k < a.size(); ++k) a[k] = j.at(k).get<std::uint64_t>();
 }
 
@@ -155,14 +155,14 @@ void apply_sweep_checks(SweepResult& r, const CheckPlan& plan, const json& merge
                         const SweepOptions& o) {
     const json& outs = merged.at("outcomes");
     if (outs.size() != plan.tasks.size())
-        throw cluster::ClusterInputError("sweep-check: the merged data holds " + std::to_string(outs.size()) +
+        throw hc::InputError("sweep-check: the merged data holds " + std::to_string(outs.size()) +
                                          " outcomes, the plan " + std::to_string(plan.tasks.size()) + " checks");
     for (std::size_t k = 0; k < outs.size(); ++k) {
         const CheckTask& t = plan.tasks[k];
         const json& j = outs[k];
         if (j.at("point").get<std::size_t>() != t.point || j.at("kind") != check_kind_name(t.kind) ||
             j.at("stream").get<int>() != t.stream)
-            throw cluster::ClusterInputError("sweep-check: outcome " + std::to_string(k) + " answers another check than the plan's");
+            throw hc::InputError("sweep-check: outcome " + std::to_string(k) + " answers another check than the plan's");
         apply_check(r, plan, t, outcome_from(j), o);
     }
     finish_checks(r);
@@ -190,7 +190,7 @@ SweepResult sweep_result(const cluster::Manifest& m, const json& merged) {
     r.spec = parse_sweep_spec(m.common.at("spec"), m.common.at("spec_name"));
     for (const auto& j : merged.at("points")) r.points.push_back(point_from(j));
     if (r.points.size() != r.spec.configs.size())
-        throw cluster::ClusterInputError("sweep: the merged data holds " + std::to_string(r.points.size()) +
+        throw hc::InputError("sweep: the merged data holds " + std::to_string(r.points.size()) +
                                          " points, the spec " + std::to_string(r.spec.configs.size()));
     r.stream = merged.at("stream");
     // the phases' times summed over the shards (each shard loads the frames and computes the reference)
@@ -247,7 +247,7 @@ void add_sweep_job(cluster::JobRegistry& reg) {
                     if (d.at("stream") != data.front().at("stream") || d.at("scored_frames") != data.front().at("scored_frames") ||
                         d.at("landmark_pairs") != data.front().at("landmark_pairs") ||
                         d.at("trajectory_run") != data.front().at("trajectory_run"))
-                        throw cluster::ClusterInputError(
+                        throw hc::InputError(
                             "sweep: shards measured different streams, landmark pairs or trajectory runs");
                     for (const auto& p : d.at("points")) points.push_back(p);
                 }

@@ -41,7 +41,7 @@ void add_sweep_job(cluster::JobRegistry& r);
 cluster::Manifest sweep_check_manifest(const std::string& spec_text, const std::string& spec_name,
                                        const SweepResult& r, const CheckPlan& plan, const SweepOptions& o);
 /// Folds the merged outcomes into `r` in the plan's order (apply_check, then finish_checks),
-/// as check_points does. ClusterInputError when they do not answer the plan's checks one for
+/// as check_points does. hc::InputError when they do not answer the plan's checks one for
 /// one.
 void apply_sweep_checks(SweepResult& r, const CheckPlan& plan, const nlohmann::json& merged, const SweepOptions& o);
 /// Adds the kind "sweep-check" to `r`.

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/harris/formats_json.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;

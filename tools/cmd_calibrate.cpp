@@ -1,6 +1,6 @@
-// cmd_calibrate.cpp: the flags of `harris-cosim calibrate` (slam/landmarks/calibrate_command.hpp),
+// cmd_calibrate.cpp: the flags of `harris-cosim calibrate` (mapping/landmarks/calibrate_command.hpp),
 // stereo calibration of a rig from chessboard pairs (docs/calibration.md).
-#include "slam/landmarks/calibrate_command.hpp"
+#include "mapping/landmarks/calibrate_command.hpp"
 #include "tools/commands.hpp"
 
 namespace hc::tools {

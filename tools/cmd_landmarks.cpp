@@ -1,7 +1,7 @@
-// cmd_landmarks.cpp: the flags of `harris-cosim landmarks` (slam/landmarks/landmarks_command.hpp):
+// cmd_landmarks.cpp: the flags of `harris-cosim landmarks` (mapping/landmarks/landmarks_command.hpp):
 // descriptor, stereo matching, scoring, triangulation, the descriptor comparison and the
 // grid's g x h study (docs/landmarks.md).
-#include "slam/landmarks/landmarks_command.hpp"
+#include "mapping/landmarks/landmarks_command.hpp"
 #include "tools/commands.hpp"
 
 namespace hc::tools {

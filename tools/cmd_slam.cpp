@@ -1,11 +1,11 @@
-// cmd_slam.cpp: the flags of `harris-cosim slam` (slam/slam_command.hpp): 2-D EKF-SLAM in the
+// cmd_slam.cpp: the flags of `harris-cosim slam` (mapping/slam/slam_command.hpp): 2-D EKF-SLAM in the
 // simulator (--simulate) or on KITTI sequences (--sequences) (docs/slam.md).
 #include <numbers>
 #include <sstream>
 
 #include <fmt/format.h>
 
-#include "slam/slam_command.hpp"
+#include "mapping/slam/slam_command.hpp"
 #include "tools/commands.hpp"
 
 namespace hc::tools {

@@ -1,7 +1,7 @@
 // commands.hpp: the subcommands of harris-cosim and the flags they share. Each command lives in
 // its own cmd_*.cpp: it binds its flags to its library's command settings and calls that
 // library's run function once; every check, file and printed figure is the library's. A
-// failure is an exception of the kind io/util/errors.hpp lists; main (harris_cosim.cpp) maps
+// failure is an exception of the kind model/util/errors.hpp lists; main (harris_cosim.cpp) maps
 // each kind to its exit status.
 #pragma once
 

@@ -1,13 +1,13 @@
 // harris-cosim: co-simulation, evaluation and exploration of the Harris co-processor.
 //
-// The one place where failures become exit statuses (io/util/errors.hpp):
+// The one place where failures become exit statuses (model/util/errors.hpp):
 //   0 pass, 1 mismatch, 2 bad input (including every flag error CLI11 reports),
 //   3 simulator failure, 4 translation fault, 5 internal fault.
 #include <cstdio>
 #include <exception>
 
 #include "tools/commands.hpp"
-#include "io/util/errors.hpp"
+#include "model/util/errors.hpp"
 
 namespace {
 int report(const char* kind, const std::exception& e, int status) {

@@ -5,8 +5,8 @@
 #include "eval/eval_job.hpp"
 #include "mutation/mutate_generated_job.hpp"
 #include "mutation/mutate_job.hpp"
-#include "slam/landmarks/landmarks_job.hpp"
-#include "slam/slam_job.hpp"
+#include "mapping/landmarks/landmarks_job.hpp"
+#include "mapping/slam/slam_job.hpp"
 #include "sweep/sweep_job.hpp"
 
 namespace hc::tools {

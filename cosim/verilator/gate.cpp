@@ -16,7 +16,7 @@
 #include "model/harris/harris_top.hpp"
 #include "model/harris/observation.hpp"
 #include "cosim/verilator/lockstep.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc::vl {
 

@@ -15,7 +15,7 @@
 
 #include "cosim/cosim.hpp"
 #include "cosim/verilator/hcvl_abi.h"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 // Tool paths and directories come from cosim/verilator/CMakeLists.txt (find_program).
 #ifndef HCVL_GHDL

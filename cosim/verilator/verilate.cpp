@@ -5,7 +5,7 @@
 
 #include "model/driver/host_driver.hpp"
 #include "model/harris/formats_json.hpp"
-#include "io/util/errors.hpp"
+#include "model/util/errors.hpp"
 
 namespace fs = std::filesystem;
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "io/cluster/cluster.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 #include "model/harris/harris_pkg.hpp"
 
 namespace hc::vl {

@@ -1,7 +1,7 @@
 // cluster.cpp: manifests, shard results, the local and Slurm runners, the merge.
 #include "io/cluster/cluster.hpp"
 
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -28,7 +28,7 @@ std::string slurp(const fs::path& p) {
     try {
         return util::read_file(p);
     } catch (const hc::InputError&) {
-        throw ClusterInputError("cannot read '" + p.string() + "'");
+        throw hc::InputError("cannot read '" + p.string() + "'");
     }
 }
 
@@ -339,12 +339,12 @@ json Manifest::to_json() const {
 Manifest Manifest::from_json(const json& j, const std::string& what) {
     if (!j.is_object() || j.value("schema", "") != "harris-cosim.manifest/1" || !j.contains("job") ||
         !j["job"].is_string() || !j.contains("shards") || !j["shards"].is_array())
-        throw ClusterInputError(what + ": not a harris-cosim manifest");
+        throw hc::InputError(what + ": not a harris-cosim manifest");
     Manifest m;
     m.job = j["job"].get<std::string>();
     m.common = j.value("common", json::object());
     for (const auto& s : j["shards"]) m.shards.push_back(s);
-    if (m.shards.empty()) throw ClusterInputError(what + ": the manifest has no shards");
+    if (m.shards.empty()) throw hc::InputError(what + ": the manifest has no shards");
     return m;
 }
 
@@ -357,11 +357,11 @@ fs::path log_path(const fs::path& dir, std::size_t index) {
 }
 
 void prepare_run(const fs::path& dir, const Manifest& m) {
-    if (m.shards.empty()) throw ClusterInputError("job '" + m.job + "' has no shards");
+    if (m.shards.empty()) throw hc::InputError("job '" + m.job + "' has no shards");
     if (fs::exists(manifest_path(dir))) {
         const Manifest old = read_manifest(dir);
         if (old.hash() != m.hash())
-            throw ClusterInputError("'" + dir.string() +
+            throw hc::InputError("'" + dir.string() +
                                     "' holds a run of another manifest; choose another directory "
                                     "or remove it");
     }
@@ -372,11 +372,11 @@ void prepare_run(const fs::path& dir, const Manifest& m) {
 
 Manifest read_manifest(const fs::path& dir) {
     const fs::path p = manifest_path(dir);
-    if (!fs::exists(p)) throw ClusterInputError("'" + dir.string() + "' holds no manifest.json");
+    if (!fs::exists(p)) throw hc::InputError("'" + dir.string() + "' holds no manifest.json");
     try {
         return Manifest::from_json(json::parse(slurp(p)), p.string());
     } catch (const json::exception& e) {   // a syntax error, a number out of range (1e400), a key of another type
-        throw ClusterInputError("'" + p.string() + "' is not a valid manifest: " + e.what());
+        throw hc::InputError("'" + p.string() + "' is not a valid manifest: " + e.what());
     }
 }
 
@@ -431,11 +431,11 @@ ResultCheck check_result(const fs::path& dir, const Manifest& m, std::size_t ind
         r.manifest_hash = j.value("manifest", "");
         r.provenance = j.value("provenance", json::object());
     } catch (const json::exception& e) {   // a key of another type: written so, then digested
-        throw ClusterInputError("'" + p.string() + "' is not a shard result: " + e.what());
+        throw hc::InputError("'" + p.string() + "' is not a shard result: " + e.what());
     }
     r.data = std::move(j["data"]);
     if (r.job != m.job || r.index != index || r.manifest_hash != m.hash())
-        throw ClusterInputError("'" + p.string() + "' belongs to another run (job '" + r.job +
+        throw hc::InputError("'" + p.string() + "' belongs to another run (job '" + r.job +
                                 "', manifest " + r.manifest_hash + ")");
     c.state = ResultState::valid;
     c.result = std::move(r);
@@ -445,7 +445,7 @@ ResultCheck check_result(const fs::path& dir, const Manifest& m, std::size_t ind
 std::optional<ShardResult> read_result(const fs::path& dir, const Manifest& m, std::size_t index) {
     ResultCheck c = check_result(dir, m, index);
     if (c.state == ResultState::damaged)
-        throw ClusterInputError("'" + result_path(dir, index).string() + "' is damaged: it " + c.why +
+        throw hc::InputError("'" + result_path(dir, index).string() + "' is damaged: it " + c.why +
                                 "; --resume sets it aside and runs shard " + std::to_string(index) + " again");
     return std::move(c.result);
 }
@@ -479,7 +479,7 @@ std::vector<SetAside> set_aside_damaged(const fs::path& dir, const Manifest& m) 
 
 RunSummary run(const fs::path& dir, const RunOptions& o) {
     const Manifest m = read_manifest(dir);
-    if (o.worker.empty()) throw ClusterInputError("no worker command to run the shards");
+    if (o.worker.empty()) throw hc::InputError("no worker command to run the shards");
     std::vector<SetAside> moved = set_aside_damaged(dir, m);
     for (const SetAside& a : moved)
         if (o.notice)
@@ -506,7 +506,7 @@ const ShardJob& JobRegistry::at(const std::string& name) const {
     if (it == jobs_.end()) {
         std::string known;
         for (const auto& [k, v] : jobs_) known += (known.empty() ? "" : ", ") + k;
-        throw ClusterInputError("unknown job kind '" + name + "' (known: " + known + ")");
+        throw hc::InputError("unknown job kind '" + name + "' (known: " + known + ")");
     }
     return it->second;
 }
@@ -520,7 +520,7 @@ std::vector<std::string> JobRegistry::names() const {
 void run_shard(const JobRegistry& reg, const fs::path& dir, std::size_t index, const json& tool_versions) {
     const Manifest m = read_manifest(dir);
     if (index >= m.shards.size())
-        throw ClusterInputError("shard " + std::to_string(index) + " does not exist: '" + dir.string() +
+        throw hc::InputError("shard " + std::to_string(index) + " does not exist: '" + dir.string() +
                                 "' has " + std::to_string(m.shards.size()) + " shards");
     const ShardJob& job = reg.at(m.job);
     const double t0 = now_s();
@@ -550,7 +550,7 @@ json merge(const JobRegistry& reg, const fs::path& dir) {
     if (!missing.empty()) {
         std::string list;
         for (auto i : missing) list += (list.empty() ? "" : ", ") + std::to_string(i);
-        throw ClusterInputError("'" + dir.string() + "': shards without a result: " + list +
+        throw hc::InputError("'" + dir.string() + "': shards without a result: " + list +
                                 " (run again with --resume)");
     }
     return job.merge(m.common, data);
@@ -564,7 +564,7 @@ json run_in_process(const JobRegistry& reg, const Manifest& m) {
 }
 
 std::vector<std::pair<long, long>> split_range(long first, long last, int k) {
-    if (last < first || k < 1) throw ClusterInputError("cannot split [" + std::to_string(first) + ", " +
+    if (last < first || k < 1) throw hc::InputError("cannot split [" + std::to_string(first) + ", " +
                                                        std::to_string(last) + ") into " +
                                                        std::to_string(k) + " parts");
     const long n = last - first;

@@ -27,18 +27,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/util/errors.hpp"
+#include "model/util/errors.hpp"
 
 namespace hc::cluster {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-/// Bad input to a run (a missing or foreign manifest, a corrupt result, an unknown job
-/// kind): the command line reports it with status 2.
-struct ClusterInputError : hc::InputError {
-    using hc::InputError::InputError;
-};
 /// A shard or the scheduler failed (after the retries): status 3.
 struct ClusterRunError : hc::SimulatorError {
     using hc::SimulatorError::SimulatorError;
@@ -62,10 +57,10 @@ fs::path result_path(const fs::path& dir, std::size_t index);
 fs::path log_path(const fs::path& dir, std::size_t index);
 
 /// Creates DIR (and its subfolders) and writes the manifest. If DIR already holds a manifest
-/// it must be the same one (a resumed run); a different one is ClusterInputError, so an
+/// it must be the same one (a resumed run); a different one is hc::InputError, so an
 /// existing run's results are never mixed with another's.
 void prepare_run(const fs::path& dir, const Manifest& m);
-/// Reads DIR/manifest.json; ClusterInputError naming the file when absent or corrupt.
+/// Reads DIR/manifest.json; hc::InputError naming the file when absent or corrupt.
 Manifest read_manifest(const fs::path& dir);
 
 /// A finished shard's self-description and data.
@@ -93,11 +88,11 @@ struct ResultCheck {
     std::string why;                     ///< when damaged: what is wrong with it
 };
 /// Reads and checks the result of shard `index`. A file that is intact but belongs to
-/// another run (job, index or manifest hash differ) is ClusterInputError: it is not damage
+/// another run (job, index or manifest hash differ) is hc::InputError: it is not damage
 /// but a mix-up of run directories, which no rerun should hide.
 ResultCheck check_result(const fs::path& dir, const Manifest& m, std::size_t index);
 /// The result of shard `index` if it is present, intact and belongs to `m`; nullopt when
-/// absent. A damaged file (check_result) or a foreign one is ClusterInputError naming it.
+/// absent. A damaged file (check_result) or a foreign one is hc::InputError naming it.
 std::optional<ShardResult> read_result(const fs::path& dir, const Manifest& m, std::size_t index);
 /// Indices of the shards without a valid result (absent or damaged), ascending.
 std::vector<std::size_t> missing_shards(const fs::path& dir, const Manifest& m);
@@ -176,7 +171,7 @@ struct ShardJob {
 class JobRegistry {
 public:
     void add(ShardJob j);
-    const ShardJob& at(const std::string& name) const;   ///< ClusterInputError if unknown
+    const ShardJob& at(const std::string& name) const;   ///< hc::InputError if unknown
     std::vector<std::string> names() const;
 
 private:
@@ -188,7 +183,7 @@ private:
 void run_shard(const JobRegistry& reg, const fs::path& dir, std::size_t index,
                const json& tool_versions = json::object());
 
-/// Reads every shard's result (ClusterInputError naming the missing ones) and folds them.
+/// Reads every shard's result (hc::InputError naming the missing ones) and folds them.
 json merge(const JobRegistry& reg, const fs::path& dir);
 
 /// The data of a single-process run of the same manifest: every shard computed in this
@@ -204,7 +199,7 @@ std::vector<std::pair<long, long>> split_items(long n, int k);
 fs::path merged_path(const fs::path& dir);
 
 /// Folds DIR's shard results with `reg` and writes DIR/merged.json atomically.
-/// ClusterInputError (status 2) names missing or foreign results.
+/// hc::InputError (status 2) names missing or foreign results.
 json merge_run(const JobRegistry& reg, const fs::path& dir);
 
 /// Prepares DIR for manifest `m` (or checks it is the same run: resume), runs the shards

@@ -1,7 +1,7 @@
 // frames.hpp: the frames a run streams through the design: image files, a KITTI-layout
 // sequence or a synthetic pattern, loaded with errors that name the input.
 //
-// Errors: hc::InputError (io/util/errors.hpp) naming the file, directory or value.
+// Errors: hc::InputError (model/util/errors.hpp) naming the file, directory or value.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "model/image/image.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace cv {
 class Mat;

@@ -1,7 +1,7 @@
 // formats_json.cpp: see formats_json.hpp.
 #include "model/harris/formats_json.hpp"
 
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc {
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "model/harris/harris_pkg.hpp"
-#include "io/util/errors.hpp"
+#include "model/util/errors.hpp"
 
 namespace hc {
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "model/fixed/word.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace hc {
 

@@ -4,7 +4,7 @@
 #include <random>
 #include <sstream>
 
-#include "io/util/errors.hpp"
+#include "model/util/errors.hpp"
 
 namespace hc {
 

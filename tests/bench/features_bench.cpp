@@ -22,7 +22,7 @@
 #include <set>
 #include <string>
 
-#include "slam/landmarks/descriptors.hpp"
+#include "mapping/landmarks/descriptors.hpp"
 #include "tests/landmarks/stereo_sample.hpp"
 
 namespace {

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "slam/slam.hpp"
+#include "mapping/slam/slam.hpp"
 
 using namespace hc::slam;
 

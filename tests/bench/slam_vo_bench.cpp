@@ -19,9 +19,9 @@
 #include <opencv2/core/utility.hpp>
 
 #include "io/frames/frames.hpp"
-#include "slam/landmarks/landmarks.hpp"
-#include "slam/landmark_frames.hpp"
-#include "slam/slam.hpp"
+#include "mapping/landmarks/landmarks.hpp"
+#include "mapping/slam/landmark_frames.hpp"
+#include "mapping/slam/slam.hpp"
 
 using namespace hc;
 

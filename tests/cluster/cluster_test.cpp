@@ -46,15 +46,15 @@ TEST_CASE("a range splits into contiguous parts whose sizes differ by at most on
     CHECK(split_range(0, 10, 4) == V{{0, 3}, {3, 6}, {6, 8}, {8, 10}});
     CHECK(split_range(5, 7, 4) == V{{5, 6}, {6, 7}});
     CHECK(split_range(3, 3, 2) == V{{3, 3}});
-    CHECK_THROWS_AS(split_range(4, 3, 2), ClusterInputError);
-    CHECK_THROWS_AS(split_range(0, 3, 0), ClusterInputError);
+    CHECK_THROWS_AS(split_range(4, 3, 2), hc::InputError);
+    CHECK_THROWS_AS(split_range(0, 3, 0), hc::InputError);
 }
 
 TEST_CASE("a run directory refuses the manifest of another run", "[cluster]") {
     const fs::path d = scratch("foreign");
     prepare_run(d, squares_manifest(20, 2));
     REQUIRE_NOTHROW(prepare_run(d, squares_manifest(20, 2)));
-    CHECK_THROWS_AS(prepare_run(d, squares_manifest(20, 3)), ClusterInputError);
+    CHECK_THROWS_AS(prepare_run(d, squares_manifest(20, 3)), hc::InputError);
     CHECK(read_manifest(d).hash() == squares_manifest(20, 2).hash());
 }
 

@@ -9,7 +9,7 @@
 
 #include "cosim/cosim.hpp"
 #include "model/image/image.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace fs = std::filesystem;
 using namespace hc;

@@ -14,7 +14,7 @@
 #include "eval/evaluate.hpp"
 #include "eval/report.hpp"
 #include "io/frames/frames.hpp"
-#include "io/util/errors.hpp"
+#include "model/util/errors.hpp"
 #include "model/spec/opencv_reference.hpp"
 #include "model/spec/spec_model.hpp"
 

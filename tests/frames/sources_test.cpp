@@ -13,8 +13,8 @@
 #include <opencv2/videoio.hpp>
 
 #include "io/frames/frames.hpp"
-#include "io/util/errors.hpp"
-#include "io/util/util.hpp"
+#include "model/util/errors.hpp"
+#include "model/util/util.hpp"
 
 using namespace hc;
 namespace fs = std::filesystem;

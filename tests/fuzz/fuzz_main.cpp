@@ -24,7 +24,7 @@
 #include <string>
 
 #include "tests/fuzz/fuzz_targets.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace fs = std::filesystem;
 using hc::fuzz::Target;

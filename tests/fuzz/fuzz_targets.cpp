@@ -8,12 +8,12 @@
 
 #include "io/cluster/cluster.hpp"
 #include "io/frames/frames.hpp"
-#include "slam/landmarks/landmarks.hpp"
+#include "mapping/landmarks/landmarks.hpp"
 #include "model/harris/formats_json.hpp"
 #include "mutation/mutation.hpp"
-#include "slam/slam.hpp"
+#include "mapping/slam/slam.hpp"
 #include "sweep/sweep_config.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace fs = std::filesystem;
 

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "slam/slam_job.hpp"
+#include "mapping/slam/slam_job.hpp"
 #include "tools/registry.hpp"
 
 using namespace hc;

@@ -10,7 +10,7 @@
 #include <set>
 #include <vector>
 
-#include "slam/landmarks/descriptors.hpp"
+#include "mapping/landmarks/descriptors.hpp"
 
 using namespace hc::features;
 

@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <map>
 
-#include "slam/landmarks/calib.hpp"
+#include "mapping/landmarks/calib.hpp"
 
 using namespace hc::calib;
 namespace fs = std::filesystem;

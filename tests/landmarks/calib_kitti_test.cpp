@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "slam/landmarks/calib.hpp"
+#include "mapping/landmarks/calib.hpp"
 #include "io/frames/frames.hpp"
 
 using namespace hc::calib;

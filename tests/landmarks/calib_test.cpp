@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "slam/landmarks/calib.hpp"
+#include "mapping/landmarks/calib.hpp"
 
 using namespace hc::calib;
 namespace fs = std::filesystem;

@@ -11,7 +11,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "slam/landmarks/landmarks.hpp"
+#include "mapping/landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
 using namespace hc::landmarks;

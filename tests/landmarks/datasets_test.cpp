@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "slam/landmarks/landmarks.hpp"
+#include "mapping/landmarks/landmarks.hpp"
 
 using namespace hc::landmarks;
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <set>
 
-#include "slam/landmarks/descriptors.hpp"
+#include "mapping/landmarks/descriptors.hpp"
 #include "tests/landmarks/stereo_sample.hpp"
 
 using namespace hc::features;

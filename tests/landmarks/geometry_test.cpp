@@ -7,7 +7,7 @@
 #include <fstream>
 #include <random>
 
-#include "slam/landmarks/landmarks.hpp"
+#include "mapping/landmarks/landmarks.hpp"
 
 using namespace hc::landmarks;
 

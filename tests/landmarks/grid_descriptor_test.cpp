@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "slam/landmarks/descriptors.hpp"
+#include "mapping/landmarks/descriptors.hpp"
 
 using namespace hc::features;
 

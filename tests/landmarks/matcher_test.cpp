@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "slam/landmarks/descriptors.hpp"
+#include "mapping/landmarks/descriptors.hpp"
 
 using namespace hc::features;
 

@@ -7,7 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "slam/landmarks/landmarks.hpp"
+#include "mapping/landmarks/landmarks.hpp"
 #include "model/spec/opencv_reference.hpp"
 #include "model/spec/spec_model.hpp"
 

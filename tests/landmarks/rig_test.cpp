@@ -19,7 +19,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "io/frames/frames.hpp"
-#include "slam/landmarks/landmarks.hpp"
+#include "mapping/landmarks/landmarks.hpp"
 
 namespace fs = std::filesystem;
 using namespace hc::landmarks;

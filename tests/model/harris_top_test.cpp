@@ -7,7 +7,7 @@
 
 #include "model/driver/host_driver.hpp"
 #include "model/harris/harris_top.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 using namespace hc;
 

@@ -16,7 +16,7 @@
 
 #include "model/harris/harris_pkg.hpp"
 #include "model/harris/observation.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 using namespace hc;
 

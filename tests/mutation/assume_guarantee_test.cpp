@@ -9,7 +9,7 @@
 #include <map>
 
 #include "mutation/mutation.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 using namespace hc;
 

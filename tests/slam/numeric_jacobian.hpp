@@ -6,7 +6,7 @@
 
 #include <initializer_list>
 
-#include "slam/slam.hpp"
+#include "mapping/slam/slam.hpp"
 
 namespace hc::slam::test {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "slam/slam.hpp"
+#include "mapping/slam/slam.hpp"
 
 using namespace hc::slam;
 

@@ -10,7 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "tests/slam/numeric_jacobian.hpp"
-#include "slam/slam.hpp"
+#include "mapping/slam/slam.hpp"
 
 using namespace hc::slam;
 using hc::slam::test::numeric_jacobian;

@@ -12,8 +12,8 @@
 #include <optional>
 
 #include "io/frames/frames.hpp"
-#include "slam/landmark_frames.hpp"
-#include "slam/slam.hpp"
+#include "mapping/slam/landmark_frames.hpp"
+#include "mapping/slam/slam.hpp"
 
 using namespace hc::slam;
 

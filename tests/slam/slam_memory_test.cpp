@@ -17,7 +17,7 @@
 #include <string>
 
 #include "io/frames/frames.hpp"
-#include "slam/landmark_frames.hpp"
+#include "mapping/slam/landmark_frames.hpp"
 
 using namespace hc;
 

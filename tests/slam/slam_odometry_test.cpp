@@ -10,7 +10,7 @@
 #include <cmath>
 #include <random>
 
-#include "slam/slam.hpp"
+#include "mapping/slam/slam.hpp"
 
 using namespace hc::slam;
 

@@ -18,9 +18,9 @@
 #include <nlohmann/json.hpp>
 
 #include "io/frames/frames.hpp"
-#include "slam/landmark_frames.hpp"
-#include "slam/landmarks/calib.hpp"
-#include "slam/slam.hpp"
+#include "mapping/slam/landmark_frames.hpp"
+#include "mapping/landmarks/calib.hpp"
+#include "mapping/slam/slam.hpp"
 
 using namespace hc::slam;
 namespace fs = std::filesystem;

@@ -10,7 +10,7 @@
 
 #include <unistd.h>
 
-#include "slam/slam.hpp"
+#include "mapping/slam/slam.hpp"
 
 using namespace hc::slam;
 namespace fs = std::filesystem;

@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 #include "sweep/ranges.hpp"
 
 using namespace hc;

@@ -13,7 +13,7 @@
 #include "model/harris/sobel_y.hpp"
 #include "sweep/overflow.hpp"
 #include "sweep/ranges.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 using namespace hc;
 using namespace hc::sweep;

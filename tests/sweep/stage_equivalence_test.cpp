@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 #include "model/fixed/word.hpp"
 #include "model/harris/sobel_x.hpp"
 #include "sweep/stage_equivalence.hpp"

@@ -8,7 +8,7 @@
 
 #include "cosim/cosim_command.hpp"
 #include "golden/golden.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 #include "model/fixed/word.hpp"
 #include "model/harris/sobel_x.hpp"
 #include "model/harris/sobel_y.hpp"

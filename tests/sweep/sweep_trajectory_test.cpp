@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "slam/landmark_frames.hpp"
+#include "mapping/slam/landmark_frames.hpp"
 #include "sweep/sweep.hpp"
 #include "sweep/sweep_report.hpp"
 

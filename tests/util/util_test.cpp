@@ -1,11 +1,11 @@
-// util_test.cpp: the shared helpers of io/util/util.hpp.
+// util_test.cpp: the shared helpers of model/util/util.hpp.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 using namespace hc;
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 #include "cosim/cosim.hpp"
 #include "cosim/verilator/gate.hpp"
 #include "cosim/verilator/netlist.hpp"
-#include "io/util/util.hpp"
+#include "model/util/util.hpp"
 
 namespace fs = std::filesystem;
 using namespace hc;

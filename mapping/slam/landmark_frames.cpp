@@ -1,0 +1,226 @@
+// landmark_frames.cpp: landmarks::Landmark -> slam::StereoLandmarkObs, and a KITTI sequence
+// through the filter on the pipeline's or synthetic landmarks.
+#include "mapping/slam/landmark_frames.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "io/frames/frames.hpp"
+
+namespace hc::slam {
+
+landmarks::PipelineOptions kitti_pipeline_defaults() {
+    landmarks::PipelineOptions o;
+    o.descriptor = landmarks::Descriptor::brief;
+    return o;
+}
+
+StereoLandmarkObs to_observation(const landmarks::Landmark& l) {
+    StereoLandmarkObs o;
+    o.p_cam = Eigen::Vector3d(l.p_cam[0], l.p_cam[1], l.p_cam[2]);
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) o.cov(r, c) = l.cov(r, c);
+    o.descriptor = l.descriptor;
+    return o;
+}
+
+namespace {
+std::vector<StereoFrame> as_frames(const std::vector<std::vector<landmarks::Landmark>>& landmarks) {
+    std::vector<StereoFrame> frames;
+    for (const auto& frame : landmarks) {
+        StereoFrame f;
+        f.reserve(frame.size());
+        for (const auto& l : frame) f.push_back(to_observation(l));
+        frames.push_back(std::move(f));
+    }
+    return frames;
+}
+}  // namespace
+
+std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const landmarks::PipelineOptions& o) {
+    return as_frames(landmarks::acquire_dataset(ds, o));
+}
+
+std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std::vector<landmarks::PairKeypoints>& kp,
+                                         const landmarks::PipelineOptions& o) {
+    return as_frames(landmarks::acquire_dataset(ds, kp, o));
+}
+
+FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const stereo::RectifiedRig& calib,
+                            const landmarks::PipelineOptions& o) {
+    auto one = std::make_shared<landmarks::Dataset>();
+    one->calib = {calib};
+    one->pairs.resize(1);
+    auto corners = std::make_shared<landmarks::PairCornerStream>(o.detector, pairs, std::move(pair_at), o.corners);
+    return [one, corners, o](StereoFrame& frame) {
+        landmarks::PairKeypoints kp;
+        if (!corners->next(one->pairs.front(), kp)) return false;
+        const auto l = landmarks::acquire_dataset(*one, {kp}, o);
+        frame.clear();
+        frame.reserve(l.front().size());
+        for (const auto& x : l.front()) frame.push_back(to_observation(x));
+        return true;
+    };
+}
+
+namespace {
+
+/// A file's name in quotes, for messages.
+std::string quoted(const std::filesystem::path& p) {
+    std::string s = "'";
+    s += p.string();
+    s += '\'';
+    return s;
+}
+
+/// InputError unless the pipeline's options are valid and its descriptor binary.
+void check_pipeline(const landmarks::PipelineOptions& po) {
+    landmarks::validate(po.grid);
+    landmarks::check_combination(po.descriptor, po.detector, landmarks::Norm::automatic);
+    if (landmarks::make_descriptor(po.descriptor, po.grid)->descriptorType() != CV_8U)
+        throw InputError("--descriptor " + landmarks::descriptor_name(po.descriptor) +
+                         " is not binary: visual odometry and the association compare Hamming distances");
+}
+
+void report_landmarks(const KittiRunOptions& o, int pairs, const std::string& of) {
+    const landmarks::PipelineOptions& po = o.pipeline;
+    if (o.progress)
+        o.progress("landmarks of " + std::to_string(pairs) + " stereo pairs of " + of + " (" +
+                   landmarks::detector_name(po.detector) + " corners, " + landmarks::descriptor_name(po.descriptor) +
+                   " descriptor)");
+}
+
+/// The landmark pipeline on the sequence's first `pairs` stereo pairs (landmark_stream); `rig`,
+/// the first pair's calibration (the sequence's calib.txt).
+FrameSource stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, int pairs,
+                          const KittiRunOptions& o, stereo::RectifiedRig& rig) {
+    report_landmarks(o, pairs, sequence);
+    rig = landmarks::kitti_dataset(kitti, sequence, {0, 1}).calib.front();
+    return landmark_stream(
+        pairs, [kitti, sequence](int k) { return landmarks::kitti_dataset(kitti, sequence, {k, k + 1}).pairs.front(); },
+        rig, o.pipeline);
+}
+
+/// The ground truth a run scores with, for `frames` frames: `truth` itself when it has one
+/// pose per frame or none; with o.score_overlap, its first `frames` poses when longer (a
+/// shorter one is scored on its own length); else InputError naming both counts.
+std::vector<Mat34> reconcile_truth(std::vector<Mat34> truth, size_t frames, const std::string& truth_name,
+                                   const KittiRunOptions& o) {
+    if (truth.empty() || truth.size() == frames) return truth;
+    if (!o.score_overlap)
+        throw InputError("the ground truth " + truth_name + " has " + std::to_string(truth.size()) + " poses for " +
+                         std::to_string(frames) + " stereo pairs; give --score-overlap to score the first " +
+                         std::to_string(std::min(truth.size(), frames)) + " frames only");
+    if (truth.size() > frames) truth.resize(frames);
+    return truth;
+}
+
+/// Validates the options that do not depend on the frames; the rig of visual odometry on
+/// pixel residuals starts as synthetic_rig() (the synthetic landmarks' rig).
+VisualOdometryConfig checked_options(const KittiRunOptions& o) {
+    o.association.validate();
+    VisualOdometryConfig vo = o.vo;
+    vo.rig = synthetic_rig();
+    vo.validate();
+    if (!o.visual_odometry) o.synthetic.validate();
+    if (o.stereo_landmarks) check_pipeline(o.pipeline);
+    if (!(o.frame_period > 0)) throw InputError("--frame-period must be positive");
+    return vo;
+}
+
+/// The filter over `frames` with the odometry of `o`, scored against `truth` (none, one per
+/// frame, or the first frames').
+KittiRun run_frames(const FrameSource& frames, size_t count, const std::vector<Mat34>& truth,
+                    const VisualOdometryConfig& vo, const KittiRunOptions& o) {
+    KittiRun r;
+    if (o.visual_odometry) {
+        std::vector<Pose> planar;
+        for (const auto& T : truth) planar.push_back(planar_pose(T));
+        r.run = run_visual_stream(frames, planar, vo, o.association, &r.vo);
+        score_spatial(r.run, truth);
+    } else {
+        if (truth.size() != count)
+            throw InputError("--odometry synthetic is made from the ground truth: it needs one true pose per frame, "
+                             "got " + std::to_string(truth.size()) + " poses for " + std::to_string(count) +
+                             " frames");
+        r.run = run_sequence(truth, frames, o.synthetic, o.association, o.seed);
+    }
+    return r;
+}
+
+void set_timestamps(SequenceRun& run, const std::filesystem::path& times, const KittiRunOptions& o) {
+    const size_t n = run.estimate.size();
+    if (!times.empty() && std::filesystem::exists(times)) {
+        std::vector<double> t = read_timestamps(times);
+        if (t.size() < n)
+            throw InputError(quoted(times) + " has " + std::to_string(t.size()) + " timestamps for " +
+                             std::to_string(n) + " frames");
+        t.resize(n);
+        run.timestamps = std::move(t);
+        run.timestamps_from = "the sequence's times.txt";
+        return;
+    }
+    for (size_t k = 0; k < n; ++k) run.timestamps.push_back(static_cast<double>(k) * o.frame_period);
+    std::ostringstream period;
+    period << o.frame_period;
+    run.timestamps_from = "frame index × " + period.str() + " s (no times.txt)";
+}
+
+}  // namespace
+
+KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::string& sequence, const KittiRunOptions& o) {
+    const std::filesystem::path poses_file = frames::kitti_poses_file(kitti, sequence);
+    const bool own_truth = o.truth.empty() && std::filesystem::exists(poses_file);
+    std::vector<Mat34> truth = !o.truth.empty() ? read_trajectory_file(o.truth)
+                               : own_truth      ? read_kitti_poses(poses_file)
+                                                : std::vector<Mat34>{};
+    const std::string truth_name = quoted(own_truth ? poses_file : o.truth);
+    VisualOdometryConfig vo = checked_options(o);
+    FrameSource frames;
+    size_t count = 0;
+    const frames::KittiSequence seq = o.stereo_landmarks ? frames::open_kitti(kitti, sequence) : frames::KittiSequence{};
+    if (o.stereo_landmarks) {
+        const int pairs = seq.pairs();
+        if (pairs < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
+        truth = reconcile_truth(std::move(truth), static_cast<size_t>(pairs), truth_name, o);
+        frames = stereo_frames(kitti, sequence, pairs, o, *vo.rig);
+        count = static_cast<size_t>(pairs);
+    } else {
+        if (truth.empty())
+            throw InputError("--landmarks-from synthetic lays its points along the ground truth: sequence " + sequence +
+                             " has no " + poses_file.string() + "; give --truth FILE");
+        if (truth.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
+        if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
+        auto synthetic = std::make_shared<SyntheticFrames>(truth, *vo.rig, stereo::PixelNoise{}, o.synthetic_count,
+                                                           o.flip_bits, o.seed);
+        frames = [synthetic](StereoFrame& f) { return synthetic->next(f); };
+        count = truth.size();
+    }
+    KittiRun r = run_frames(frames, count, truth, vo, o);
+    set_timestamps(r.run, frames::kitti_sequence_dir(kitti, sequence) / "times.txt", o);
+    return r;
+}
+
+KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o) {
+    if (!o.stereo_landmarks)
+        throw InputError("--landmarks-from synthetic makes its own frames: leave out --left, --right and --calib");
+    if (rig.calib.empty()) throw InputError("--left and --right are the images of a rig: give its --calib");
+    std::vector<Mat34> truth = o.truth.empty() ? std::vector<Mat34>{} : read_trajectory_file(o.truth);
+    VisualOdometryConfig vo = checked_options(o);
+    landmarks::DatasetChoice c;
+    c.calib = rig.calib;
+    c.left = rig.left;
+    c.right = rig.right;
+    std::filesystem::path root;
+    const landmarks::Dataset ds = landmarks::open_dataset(c, root);
+    if (ds.pairs.size() < 2) throw InputError("the rig's --left/--right give fewer than 2 stereo pairs");
+    truth = reconcile_truth(std::move(truth), ds.pairs.size(), quoted(o.truth), o);
+    report_landmarks(o, static_cast<int>(ds.pairs.size()), "the rig");
+    vo.rig = ds.calib.front();
+    const std::vector<StereoFrame> frames = landmark_frames(ds, o.pipeline);
+    KittiRun r = run_frames(frames_of(frames), frames.size(), truth, vo, o);
+    set_timestamps(r.run, {}, o);
+    return r;
+}
+
+}  // namespace hc::slam

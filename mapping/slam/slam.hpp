@@ -1,0 +1,72 @@
+// slam.hpp: 2-D top-view EKF-SLAM (the thesis's section 2.5 and 5.4, a port of the
+// structure of J. Solà's EKF-SLAM course code, "Simultaneous localization and mapping with
+// the extended Kalman filter", 2013/2014), with its simulator, its consistency measures
+// (NEES against chi-square bounds) and the stereo-landmark front end for KITTI sequences.
+//
+// One public header over the library's sections, each its own header:
+//   mapping/slam/ekf.hpp          the events of the filter and their Jacobians (Solà's names), Ekf
+//   mapping/slam/simulator.hpp    the simulator (world, sensor, odometry, one run)
+//   mapping/slam/consistency.hpp  NEES and chi-square bounds over Monte-Carlo runs
+//   mapping/slam/front_end.hpp    stereo landmarks, KITTI poses and trajectories, LandmarkSlam, runs
+//   mapping/slam/association.hpp  individual and joint compatibility (JCBB)
+//   mapping/slam/odometry.hpp     stereo visual odometry
+// and here the reports. Conventions: mapping/slam/ekf.hpp.
+#pragma once
+
+#include "mapping/slam/consistency.hpp"
+#include "mapping/slam/ekf.hpp"
+#include "mapping/slam/front_end.hpp"
+#include "mapping/slam/simulator.hpp"
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hc::slam {
+
+// ---- reports ------------------------------------------------------------------------------
+
+/// Writes the Monte-Carlo report into `dir`: report.md, nees.csv, states.csv (the first
+/// run), summary.json, trajectory.png (trajectory and map with 3σ ellipses), nees.png,
+/// rmse.png. `command` is quoted in report.md. PNGs need gnuplot; without it they are
+/// skipped with a note in the report. Files are written atomically.
+void write_simulation_report(const std::filesystem::path& dir, const SimConfig& config, const MonteCarlo& mc,
+                             const std::string& command);
+
+/// What a sequence report says besides the run's figures.
+struct SequenceReportText {
+    std::string title, command;
+    /// Names the odometry-alone trajectory ("visual odometry alone", "synthetic odometry alone").
+    std::string odometry_label;
+    /// How the ground truth entered the run, or that there is none: the report's first sentence.
+    std::string provenance;
+};
+/// Writes the sequence report: report.md (with a ground truth: 2-D and 3-D APE and the other
+/// metrics of EKF-SLAM and of the odometry alone, wrong associations against truth; without,
+/// the statement that nothing is scored), states.csv (per frame, with the pose NEES),
+/// summary.json, estimate_kitti.txt and estimate_tum.txt (6-DoF, SequenceRun::estimate_3d,
+/// timestamps run.timestamps), estimate_planar_kitti.txt (the filter's top view),
+/// dead_reckoning_kitti.txt (the odometry alone, 6-DoF), truth_kitti.txt (with a ground truth),
+/// trajectory.png, map_size.png. std::invalid_argument unless run has one timestamp per frame.
+void write_sequence_report(const std::filesystem::path& dir, const SequenceRun& run, const SequenceReportText& text);
+/// A Markdown table with one row per (sequence name, run).
+std::string sequences_markdown(const std::vector<std::pair<std::string, SequenceRun>>& runs,
+                               const std::string& odometry_label);
+
+/// One point of the update timing: landmarks, milliseconds per step, per form.
+struct TimingRow {
+    int landmarks = 0;
+    double structured_ms = 0, dense_kzk_ms = 0, dense_ms = 0;   ///< 0 = not measured
+    /// dense_ms is k times one measured (I − KH)P update, not a measured step.
+    bool dense_from_single_update = false;
+};
+/// Writes timing.csv and timing.png (log-log, with the thesis's Table 3 figures).
+void write_timing_report(const std::filesystem::path& dir, const std::vector<TimingRow>& rows);
+
+}  // namespace hc::slam
+
+// Stereo visual odometry and joint-compatibility association: their own headers, part of
+// this library's public interface.
+#include "mapping/slam/association.hpp"
+#include "mapping/slam/odometry.hpp"
