@@ -5,7 +5,7 @@
 cmake_policy(VERSION 3.25)
 include(${CMAKE_CURRENT_LIST_DIR}/markdown_section.cmake)
 file(READ ${SRC}/docs/architecture.md doc)
-foreach(entry "a format field|3" "a pipeline stage|12" "a job kind|3")
+foreach(entry "a format field|3" "a pipeline stage|12" "a job kind|3" "a descriptor|3" "a corner source|3")
   string(REPLACE "|" ";" parts "${entry}")
   list(GET parts 0 what)
   list(GET parts 1 bound)

@@ -1,6 +1,7 @@
 // cmd_landmarks.cpp: the flags of `harris-cosim landmarks` (mapping/landmarks/landmarks_command.hpp):
 // descriptor, stereo matching, scoring, triangulation, the descriptor comparison and the
 // grid's g x h study (docs/landmarks.md).
+#include "mapping/landmarks/landmarks.hpp"
 #include "mapping/landmarks/landmarks_command.hpp"
 #include "tools/commands.hpp"
 
@@ -9,23 +10,22 @@ namespace hc::tools {
 void add_landmarks_command(CLI::App& app) {
     const auto [cmd, o] = add_command<Sharded<landmarks::LandmarksCommand>>(app,
         "landmarks", "corners -> descriptor -> stereo matches -> 3D landmarks, scored against ground truth (thesis 6.4)");
-    cmd->add_option("--corners", o->corners, "corner sources, comma-separated: opencv, sift, sift512, orb, brisk, spec, cycle, rtl")
+    cmd->add_option("--corners", o->corners, "corner sources, comma-separated: " + landmarks::detector_list(true))
         ->capture_default_str();
-    cmd->add_option("--descriptor", o->descriptor, "descriptors, comma-separated: grid, grid-corrected, sift (ratio 0.8), sift-ratio1 (SIFT at the grid's ratio 1), orb, brisk, "
-                    "brief (the authors' box smoothing), brief-gaussian (the paper's Gaussian), freak")
+    cmd->add_option("--descriptor", o->descriptor, "descriptors, comma-separated: " + landmarks::descriptor_list(true))
         ->capture_default_str();
     cmd->add_option("--g", o->g, "grid side")->capture_default_str();
     cmd->add_option("--h", o->h, "grid resolution reduction 2^h")->capture_default_str();
     cmd->add_option("--norm", o->norm, "matcher norm: auto (the descriptor's), hamming or l2")->capture_default_str();
     cmd->add_option("--ratio", o->ratio, "2-NN ratio for every descriptor (0: by descriptor: 0.8 for sift, the thesis's SIFT reference after Lowe; 1 for the others)");
     cmd->add_flag("--drop-ties", o->drop_ties, "ratio test also drops d0 == d1 (the evidently intended test)");
-    cmd->add_flag("--compare", o->compare, "the thesis's comparison: detectors sift512, sift, opencv x the descriptors grid, sift, sift-ratio1, orb, brisk, "
-                  "brief, brief-gaussian, freak");
+    cmd->add_flag("--compare", o->compare, "the thesis's comparison: detectors " + landmarks::detector_names(landmarks::ComparisonOptions{}.detectors) +
+                  " x the descriptors " + landmarks::descriptor_list(false, +[](const landmarks::DescriptorInfo& r) { return r.compared; }));
     cmd->add_flag("--study", o->study, "g x h study of the grid descriptor (g 4..32, h 0..5) on each detector's corners");
     cmd->add_flag("--reobservation", o->reobservation,
                   "how descriptors change between consecutive frames: corners tracked by optical flow from each left "
-                  "image to the next, Hamming distance of re-observations against random pairs (default descriptors: "
-                  "grid, grid-corrected, orb, brisk, brief, freak)");
+                  "image to the next, Hamming distance of re-observations against random pairs (default descriptors: " +
+                  landmarks::descriptor_list(false, +[](const landmarks::DescriptorInfo& r) { return r.reobserved; }) + ")");
     cmd->add_flag("--corrected", o->corrected, "study the corrected g x g grid instead of the thesis's");
     cmd->add_option("--dataset", o->source.dataset, "middlebury or kitti")->capture_default_str();
     cmd->add_option("--middlebury", o->source.middlebury, "Middlebury 2006 folder of scenes, or one scene (default: <data>/middlebury2006/half)");

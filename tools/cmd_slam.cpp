@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "mapping/landmarks/landmarks.hpp"
 #include "mapping/slam/slam_command.hpp"
 #include "tools/commands.hpp"
 
@@ -81,10 +82,11 @@ void add_landmark_flags(CLI::App* cmd, slam::SlamCommand& o) {
                     "landmark source of a KITTI run: stereo (the landmark pipeline on the sequence's stereo pairs) "
                     "or synthetic (points laid along the ground-truth trajectory)")
         ->capture_default_str();
-    cmd->add_option("--corners", o.corners, "stereo: corner source (opencv, sift, sift512, orb, brisk, spec, cycle, rtl)")
+    cmd->add_option("--corners", o.corners, "stereo: corner source: " + landmarks::detector_list(true))
         ->capture_default_str();
     cmd->add_option("--descriptor", o.descriptor_name,
-                    "stereo: descriptor (grid, grid-corrected, orb, brisk, brief, freak; binary for the descriptor check)")
+                    "stereo: descriptor, a binary one (the descriptor check compares Hamming distances): " +
+                    landmarks::descriptor_list(true, +[](const landmarks::DescriptorInfo& r) { return landmarks::is_binary(r.id); }))
         ->capture_default_str();
     cmd->add_option("--g", o.g, "stereo: grid side (cells)")->capture_default_str();
     cmd->add_option("--h", o.h, "stereo: grid resolution reduction 2^h")->capture_default_str();

@@ -24,33 +24,6 @@
 
 namespace hc::landmarks {
 
-Detector parse_detector(const std::string& s) {
-    for (Detector d : all_detectors())
-        if (detector_name(d) == s) return d;
-    throw InputError("unknown corner source '" + s + "' (opencv, sift, sift512, orb, brisk, spec, cycle or rtl)");
-}
-
-std::string detector_name(Detector d) {
-    switch (d) {
-    case Detector::opencv: return "opencv";
-    case Detector::sift: return "sift";
-    case Detector::sift512: return "sift512";
-    case Detector::orb: return "orb";
-    case Detector::brisk: return "brisk";
-    case Detector::spec: return "spec";
-    case Detector::cycle: return "cycle";
-    case Detector::rtl: return "rtl";
-    }
-    return "?";
-}
-
-bool is_hardware(Detector d) { return d == Detector::spec || d == Detector::cycle || d == Detector::rtl; }
-
-std::vector<Detector> all_detectors() {
-    return {Detector::opencv, Detector::sift, Detector::sift512, Detector::orb,
-            Detector::brisk,  Detector::spec, Detector::cycle,   Detector::rtl};
-}
-
 namespace {
 
 Image to_image(const cv::Mat& m) {
@@ -70,23 +43,86 @@ std::vector<cv::KeyPoint> mask_keypoints(const std::vector<std::uint8_t>& mask, 
     return kp;
 }
 
-std::vector<cv::KeyPoint> opencv_detect(Detector d, const cv::Mat& img, const CornerOptions& o) {
+std::vector<cv::KeyPoint> detect_harris(const cv::Mat& img, const CornerOptions& o) {
+    std::vector<std::uint8_t> mask;
+    spec::opencv_corners(to_image(img), spec::ReferenceOptions{}, mask);
+    return mask_keypoints(mask, img.cols, o.keypoint_size, 0);
+}
+std::vector<cv::KeyPoint> detect_sift(const cv::Mat& img, const CornerOptions&) {
     std::vector<cv::KeyPoint> kp;
-    switch (d) {
-    case Detector::sift:
-    case Detector::sift512: {
-        cv::SIFT::create()->detect(img, kp);
-        if (d == Detector::sift512) cv::KeyPointsFilter::retainBest(kp, 512);
-        break;
-    }
-    case Detector::orb: cv::ORB::create(o.orb_features)->detect(img, kp); break;
-    case Detector::brisk: cv::BRISK::create()->detect(img, kp); break;
-    default: throw std::logic_error("opencv_detect: not an OpenCV feature detector");
-    }
+    cv::SIFT::create()->detect(img, kp);
+    return kp;
+}
+std::vector<cv::KeyPoint> detect_sift512(const cv::Mat& img, const CornerOptions& o) {
+    std::vector<cv::KeyPoint> kp = detect_sift(img, o);
+    cv::KeyPointsFilter::retainBest(kp, 512);
+    return kp;
+}
+std::vector<cv::KeyPoint> detect_orb(const cv::Mat& img, const CornerOptions& o) {
+    std::vector<cv::KeyPoint> kp;
+    cv::ORB::create(o.orb_features)->detect(img, kp);
+    return kp;
+}
+std::vector<cv::KeyPoint> detect_brisk(const cv::Mat& img, const CornerOptions&) {
+    std::vector<cv::KeyPoint> kp;
+    cv::BRISK::create()->detect(img, kp);
     return kp;
 }
 
 }  // namespace
+
+const std::vector<DetectorInfo>& detector_table() {
+    static const std::vector<DetectorInfo> table{
+        {Detector::opencv, "opencv", "OpenCV's Harris, the reference", detect_harris},
+        {Detector::sift, "sift", "", detect_sift},
+        {Detector::sift512, "sift512", "SIFT's 512 strongest", detect_sift512},
+        {Detector::orb, "orb", "", detect_orb},
+        {Detector::brisk, "brisk", "", detect_brisk},
+        {Detector::spec, "spec", "the co-processor's frame-level spec model", nullptr},
+        {Detector::cycle, "cycle", "its cycle model", nullptr},
+        {Detector::rtl, "rtl", "its netlist under Verilator", nullptr},
+    };
+    return table;
+}
+
+const DetectorInfo& detector_info(Detector d) {
+    const auto& t = detector_table();
+    const auto it = std::find_if(t.begin(), t.end(), [d](const DetectorInfo& r) { return r.id == d; });
+    if (it == t.end()) throw std::logic_error("detector_info: a corner source without a row in the table");
+    return *it;
+}
+
+Detector parse_detector(const std::string& s) {
+    for (const auto& r : detector_table())
+        if (s == r.name) return r.id;
+    throw InputError("unknown corner source '" + s + "' (one of: " + detector_list() + ")");
+}
+
+std::string detector_name(Detector d) { return detector_info(d).name; }
+
+bool is_hardware(Detector d) { return detector_info(d).detect == nullptr; }
+
+std::vector<Detector> all_detectors() {
+    std::vector<Detector> out;
+    for (const auto& r : detector_table()) out.push_back(r.id);
+    return out;
+}
+
+std::string detector_names(const std::vector<Detector>& ds) {
+    std::string out;
+    for (Detector d : ds) out += (out.empty() ? "" : ", ") + detector_name(d);
+    return out;
+}
+
+std::string detector_list(bool with_help) {
+    std::string out;
+    for (const auto& r : detector_table()) {
+        if (!out.empty()) out += ", ";
+        out += r.name;
+        if (with_help && *r.help) out += std::string(" (") + r.help + ")";
+    }
+    return out;
+}
 
 namespace {
 
@@ -260,14 +296,8 @@ bool PairCornerStream::next(StereoImages& images, PairKeypoints& kp) {
         for (int side = 0; side < 2; ++side) {
             FrameKeypoints& f = side ? kp.right : kp.left;
             const cv::Mat& img = side ? images.right : images.left;
-            if (s.d == Detector::opencv) {
-                std::vector<std::uint8_t> mask;
-                spec::opencv_corners(to_image(img), spec::ReferenceOptions{}, mask);
-                f.points = mask_keypoints(mask, img.cols, s.o.keypoint_size, f.frame);
-            } else {
-                f.points = opencv_detect(s.d, img, s.o);
-                for (auto& p : f.points) p.class_id = f.frame;
-            }
+            f.points = detector_info(s.d).detect(img, s.o);
+            for (auto& p : f.points) p.class_id = f.frame;
         }
     } else {
         if (k == 0) s.start_hardware();

@@ -28,10 +28,6 @@ enum class Detector {
     cycle,     ///< co-processor, cycle model hc::HarrisTop through the host driver
     rtl,       ///< co-processor, Verilator netlist of rtl/ (GHDL synthesis), after its gate
 };
-Detector parse_detector(const std::string& s);   ///< "opencv", "sift", "sift512", ...; InputError
-std::string detector_name(Detector d);
-bool is_hardware(Detector d);                    ///< spec, cycle, rtl
-std::vector<Detector> all_detectors();
 
 struct CornerOptions {
     Formats formats{};          ///< bit widths of spec/cycle/rtl (thesis defaults)
@@ -40,6 +36,31 @@ struct CornerOptions {
     int orb_features = 2000;    ///< cv::ORB nfeatures
     bool progress = false;      ///< progress lines on stderr for cycle/rtl
 };
+
+/// One row of the corner-source table (corners.cpp), the one list of corner sources: names,
+/// parsing, the help texts and the docs' list are made from it (docs/architecture.md, "Adding
+/// a corner source").
+struct DetectorInfo {
+    Detector id;
+    const char* name;    ///< the flag value and the reports' name
+    const char* help;    ///< what the help text says of it after its name ("": nothing)
+    /// the corners of one 8-bit grey image, as the source gives them (pt, size, response,
+    /// octave); null for the co-processor's sources (spec, cycle, rtl), which a stream drives
+    /// with the threshold carried from frame to frame (PairCornerStream)
+    std::vector<cv::KeyPoint> (*detect)(const cv::Mat& grey, const CornerOptions& o);
+};
+/// Every corner source, in the order of the enum.
+const std::vector<DetectorInfo>& detector_table();
+const DetectorInfo& detector_info(Detector d);
+Detector parse_detector(const std::string& s);   ///< a table name; InputError naming the known ones
+std::string detector_name(Detector d);
+/// The co-processor's sources (spec, cycle, rtl): the rows without `detect`.
+bool is_hardware(Detector d);
+std::vector<Detector> all_detectors();           ///< the table's, in order
+/// The names joined by ", " (with_help: each followed by its help in parentheses, where it has one).
+std::string detector_list(bool with_help = false);
+/// The names of `ds` joined by ", ".
+std::string detector_names(const std::vector<Detector>& ds);
 
 /// The corners of one image, with where they come from. Each point's `pt` is the pixel
 /// (x = column, y = row; integer for Harris and hardware sources), `class_id` the frame.

@@ -43,13 +43,10 @@ void run_reobservation(const LandmarksCommand& o) {
 
 /// The comparison's detectors, descriptors, grid, matcher and corner options from the flags.
 ComparisonOptions comparison_options(const LandmarksCommand& o) {
-    ComparisonOptions co;
-    co.detectors.clear();
-    co.descriptors.clear();
-    if (o.compare) {
-        co.detectors = {Detector::sift512, Detector::sift, Detector::opencv};
-        co.descriptors = comparison_descriptors();
-    } else {
+    ComparisonOptions co;   // the thesis's comparison by default (--compare)
+    if (!o.compare) {
+        co.detectors.clear();
+        co.descriptors.clear();
         for (const auto& s : util::split_csv(o.corners)) co.detectors.push_back(parse_detector(s));
         for (const auto& s : util::split_csv(o.descriptor)) co.descriptors.push_back(parse_descriptor(s));
     }

@@ -18,20 +18,15 @@ namespace hc::landmarks {
 
 // ---- descriptors and matching ----------------------------------------------------------
 
+/// The descriptors. Each has one row in the descriptor table (descriptor_table.cpp), which is
+/// the one list of them: names, the factories, the properties the pipelines ask, the help
+/// texts and the docs' list are made from it (docs/architecture.md, "Adding a descriptor").
 /// `sift`: SIFT matched at ratio 0.8, Lowe's recommendation (Lowe 2004), which the thesis uses
 /// for its SIFT reference (section 6.4.1); `sift_ratio1`: the same descriptor matched at ratio
 /// 1, the test the thesis applies to the grid descriptor (6.4.1, appendix F).
 /// `brief`: BRIEF with the authors' 9 x 9 box smoothing over an integral image (their code, as
 /// OpenCV contrib's); `brief_gaussian`: the paper's 9 x 9 Gaussian (features::BriefSmoothing).
 enum class Descriptor { grid, grid_corrected, sift, sift_ratio1, orb, brisk, brief, brief_gaussian, freak };
-Descriptor parse_descriptor(const std::string& s);   ///< "grid", "grid-corrected", "sift-ratio1", ...; InputError
-std::string descriptor_name(Descriptor d);
-/// grid sift sift-ratio1 orb brisk brief brief-gaussian freak
-std::vector<Descriptor> comparison_descriptors();
-/// The 2-NN ratio a descriptor is matched at when MatchParams::ratio <= 0: 0.8 for `sift` (the
-/// thesis's SIFT reference, Lowe's value), 1 for every other (the thesis's test of the grid,
-/// which on Hamming distances removes nothing).
-double default_ratio(Descriptor d);
 
 struct GridParams {
     int g = 16;   ///< grid side (cells)
@@ -40,8 +35,48 @@ struct GridParams {
 /// Throws InputError when g or h is outside hc::features' ranges (features::check_grid_params).
 void validate(const GridParams& p);
 
-/// The OpenCV Feature2D that computes `d` (g, h used by grid only).
+/// One row of the descriptor table.
+struct DescriptorInfo {
+    Descriptor id;
+    const char* name;        ///< the flag value and the reports' name
+    const char* help;        ///< what the help text says of it after its name ("": nothing)
+    bool compared;           ///< in the thesis's comparison (comparison_descriptors, `landmarks --compare`)
+    bool reobserved;         ///< in the re-observation study's default list (binary ones only)
+    double ratio;            ///< the 2-NN ratio it is matched at when MatchParams::ratio <= 0
+    /// reads keypoint positions only, with GridParams g and h (the grid descriptor): described at
+    /// the rectified positions of a calibrated rig's keypoints; the others read the raw image
+    bool grid;
+    /// it reads cv::KeyPoint::octave in its own encoding (OpenCV's SIFT and ORB): keypoints of a
+    /// detector not in `own_keypoints` enter at octave 0 (keypoints_for)
+    bool reads_octave;
+    std::vector<Detector> own_keypoints;
+    /// the OpenCV Feature2D that computes it (`p` read by the grid only); its defaultNorm()
+    /// says how it is matched (descriptor_norm)
+    cv::Ptr<cv::Feature2D> (*make)(const GridParams& p);
+};
+/// Every descriptor, in the order of the enum.
+const std::vector<DescriptorInfo>& descriptor_table();
+const DescriptorInfo& descriptor_info(Descriptor d);
+Descriptor parse_descriptor(const std::string& s);   ///< a table name; InputError naming the known ones
+std::string descriptor_name(Descriptor d);
+/// The names joined by ", " (with_help: each followed by its help in parentheses, where it has
+/// one), of every descriptor or of those `keep` accepts: for help texts and messages.
+std::string descriptor_list(bool with_help = false, bool (*keep)(const DescriptorInfo&) = nullptr);
+/// The rows with `compared` (the thesis's comparison), in table order.
+std::vector<Descriptor> comparison_descriptors();
+/// The rows with `reobserved`, in table order.
+std::vector<Descriptor> reobservation_descriptors();
+/// The table's `ratio`.
+double default_ratio(Descriptor d);
+/// The OpenCV Feature2D that computes `d` (g, h used by grid only; InputError when out of range).
 cv::Ptr<cv::Feature2D> make_descriptor(Descriptor d, const GridParams& p = {});
+/// The norm `d` is matched by: its Feature2D's defaultNorm() (cv::NORM_HAMMING for the binary
+/// descriptors, cv::NORM_L2 for SIFT).
+int descriptor_norm(Descriptor d);
+/// descriptor_norm is a Hamming norm (NORM_HAMMING or NORM_HAMMING2): compared bit by bit.
+bool is_binary(Descriptor d);
+/// `kp` of detector `det` as descriptor `d` reads them (DescriptorInfo::reads_octave).
+std::vector<cv::KeyPoint> keypoints_for(Descriptor d, Detector det, const std::vector<cv::KeyPoint>& kp);
 
 enum class Norm { automatic, hamming, l2 };
 Norm parse_norm(const std::string& s);   ///< "auto", "hamming", "l2"; InputError

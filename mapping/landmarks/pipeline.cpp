@@ -15,56 +15,7 @@
 
 namespace hc::landmarks {
 
-// ---- descriptors ------------------------------------------------------------------------
-
-Descriptor parse_descriptor(const std::string& s) {
-    for (Descriptor d : {Descriptor::grid, Descriptor::grid_corrected, Descriptor::sift, Descriptor::sift_ratio1,
-                         Descriptor::orb, Descriptor::brisk, Descriptor::brief, Descriptor::brief_gaussian, Descriptor::freak})
-        if (descriptor_name(d) == s) return d;
-    throw InputError("unknown descriptor '" + s +
-                     "' (grid, grid-corrected, sift, sift-ratio1, orb, brisk, brief, brief-gaussian or freak)");
-}
-
-std::string descriptor_name(Descriptor d) {
-    switch (d) {
-    case Descriptor::grid: return "grid";
-    case Descriptor::grid_corrected: return "grid-corrected";
-    case Descriptor::sift: return "sift";
-    case Descriptor::sift_ratio1: return "sift-ratio1";
-    case Descriptor::orb: return "orb";
-    case Descriptor::brisk: return "brisk";
-    case Descriptor::brief: return "brief";
-    case Descriptor::brief_gaussian: return "brief-gaussian";
-    case Descriptor::freak: return "freak";
-    }
-    return "?";
-}
-
-std::vector<Descriptor> comparison_descriptors() {
-    return {Descriptor::grid,  Descriptor::sift,  Descriptor::sift_ratio1,    Descriptor::orb,
-            Descriptor::brisk, Descriptor::brief, Descriptor::brief_gaussian, Descriptor::freak};
-}
-
-void validate(const GridParams& p) { features::check_grid_params(p.g, p.h); }
-
-cv::Ptr<cv::Feature2D> make_descriptor(Descriptor d, const GridParams& p) {
-    switch (d) {
-    case Descriptor::grid:
-    case Descriptor::grid_corrected:
-        validate(p);
-        return features::GridDescriptor::create(
-            p.g, p.h, d == Descriptor::grid ? features::GridVariant::thesis : features::GridVariant::corrected);
-    case Descriptor::sift:
-    case Descriptor::sift_ratio1: return cv::SIFT::create();
-    case Descriptor::orb: return cv::ORB::create();
-    case Descriptor::brisk: return cv::BRISK::create();
-    case Descriptor::brief: return features::BriefDescriptor::create(features::BorderPolicy::drop, features::BriefSmoothing::box);
-    case Descriptor::brief_gaussian:
-        return features::BriefDescriptor::create(features::BorderPolicy::drop, features::BriefSmoothing::gaussian);
-    case Descriptor::freak: return features::FreakDescriptor::create();
-    }
-    throw std::logic_error("make_descriptor");
-}
+// ---- descriptors (the table: descriptor_table.cpp) ---------------------------------
 
 Norm parse_norm(const std::string& s) {
     if (s == "auto") return Norm::automatic;
@@ -75,34 +26,18 @@ Norm parse_norm(const std::string& s) {
 
 namespace {
 
-bool is_sift(Descriptor d) { return d == Descriptor::sift || d == Descriptor::sift_ratio1; }
-bool binary(Descriptor d) { return !is_sift(d); }
-
 int cv_norm(Descriptor d, Norm n) {
-    if (n == Norm::automatic) return binary(d) ? cv::NORM_HAMMING : cv::NORM_L2;
+    if (n == Norm::automatic) return descriptor_norm(d);
     return n == Norm::hamming ? cv::NORM_HAMMING : cv::NORM_L2;
-}
-
-/// Keypoints handed to a descriptor from another detector: OpenCV's SIFT and ORB read
-/// cv::KeyPoint::octave in their own encodings (SIFT packs octave and layer; ORB indexes its
-/// 1.2-step pyramid), so a foreign keypoint enters at octave 0 (the image's own scale). Its
-/// size and angle are kept.
-std::vector<cv::KeyPoint> adapt(const std::vector<cv::KeyPoint>& kp, Descriptor d, Detector det) {
-    const bool sift_kp = det == Detector::sift || det == Detector::sift512;
-    const bool own = (is_sift(d) && sift_kp) || (d == Descriptor::orb && det == Detector::orb);
-    if (own || (!is_sift(d) && d != Descriptor::orb)) return kp;
-    std::vector<cv::KeyPoint> out = kp;
-    for (auto& k : out) k.octave = 0;
-    return out;
 }
 
 }  // namespace
 
 void check_combination(Descriptor d, Detector, Norm n) {
     if (n == Norm::automatic) return;
-    if (!binary(d) && n == Norm::hamming)
+    if (!is_binary(d) && n == Norm::hamming)
         throw InputError("descriptor " + descriptor_name(d) + " is a float vector: it cannot be matched with the Hamming norm");
-    if (binary(d) && n == Norm::l2)
+    if (is_binary(d) && n == Norm::l2)
         throw InputError("descriptor " + descriptor_name(d) + " is binary: it cannot be matched with the L2 norm");
 }
 
@@ -123,8 +58,6 @@ long PairResult::truth_correct_x() const {
         return m.epipolar && (m.truth == truth_right || m.truth == truth_x_only);
     });
 }
-
-double default_ratio(Descriptor d) { return d == Descriptor::sift ? 0.8 : 1.0; }
 
 namespace {
 
@@ -193,11 +126,11 @@ PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descript
     auto desc = make_descriptor(d, gp);
     PairResult r;
     r.name = img.name;
-    r.kp_left = adapt(kp.left.points, d, kp.left.source);
-    r.kp_right = adapt(kp.right.points, d, kp.right.source);
+    r.kp_left = keypoints_for(d, kp.left.source, kp.left.points);
+    r.kp_right = keypoints_for(d, kp.right.source, kp.right.points);
     const auto opts = match_options(d, mp);
     // the grid reads positions only: described at the rectified ones; the others read the raw image
-    const bool positions_only = d == Descriptor::grid || d == Descriptor::grid_corrected;
+    const bool positions_only = descriptor_info(d).grid;
     cv::Mat dr;
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<cv::DMatch> dm;

@@ -29,11 +29,8 @@ struct Described {
 
 Described describe(const cv::Mat& img, const std::vector<cv::KeyPoint>& kp, Descriptor d, const GridParams& gp,
                    Detector det) {
-    std::vector<cv::KeyPoint> k = kp;
+    std::vector<cv::KeyPoint> k = keypoints_for(d, det, kp);
     for (size_t i = 0; i < k.size(); ++i) k[i].class_id = static_cast<int>(i);
-    // OpenCV's ORB and SIFT read the octave in their own encodings: foreign keypoints at 0
-    if (d == Descriptor::orb && det != Detector::orb)
-        for (auto& p : k) p.octave = 0;
     Described out;
     make_descriptor(d, gp)->compute(img, k, out.desc);
     out.row_of.assign(kp.size(), -1);
@@ -101,7 +98,7 @@ std::vector<std::pair<int, int>> track_corners(const cv::Mat& a, const cv::Mat& 
 std::vector<ReobservationRow> reobservation_study(const Dataset& ds, const ReobservationOptions& o) {
     if (ds.pairs.size() < 2) throw InputError("the re-observation study needs at least two consecutive frames");
     for (Descriptor d : o.descriptors)
-        if (d == Descriptor::sift || d == Descriptor::sift_ratio1)
+        if (!is_binary(d))
             throw InputError("the re-observation study compares binary descriptors by Hamming distance: not " +
                              descriptor_name(d));
     const auto kp = detect_dataset(ds, o.detector, o.corners);

@@ -23,8 +23,7 @@ namespace hc::landmarks {
 /// tracks is dropped). No ground truth is used.
 struct ReobservationOptions {
     Detector detector = Detector::opencv;
-    std::vector<Descriptor> descriptors{Descriptor::grid, Descriptor::grid_corrected, Descriptor::orb,
-                                        Descriptor::brisk, Descriptor::brief, Descriptor::freak};
+    std::vector<Descriptor> descriptors = reobservation_descriptors();
     GridParams grid{16, 3};
     double max_fb_px = 0.5;
     double max_corner_px = 1.0;

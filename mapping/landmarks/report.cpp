@@ -54,7 +54,7 @@ namespace {
 double ratio(long a, long b) { return b ? static_cast<double>(a) / static_cast<double>(b) : 0.0; }
 
 std::string row_label(const ComparisonRow& r) {
-    if (r.descriptor == Descriptor::grid || r.descriptor == Descriptor::grid_corrected)
+    if (descriptor_info(r.descriptor).grid)
         return fmt::format("{} (g={}, h={})", descriptor_name(r.descriptor), r.grid.g, r.grid.h);
     return descriptor_name(r.descriptor);
 }
@@ -67,7 +67,7 @@ std::string comparison_csv(const std::string& dataset, const std::vector<Compari
          "truth_precision,correct_truth_x_only,descriptor_bytes,ms_per_pair,available\n";
     std::vector<Detector> seen;
     for (const auto& r : rows) {
-        const bool grid = r.descriptor == Descriptor::grid || r.descriptor == Descriptor::grid_corrected;
+        const bool grid = descriptor_info(r.descriptor).grid;
         o << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{:.4f},{},{},{:.3f},yes\n", dataset, descriptor_name(r.descriptor),
                          grid ? std::to_string(r.grid.g) : "", grid ? std::to_string(r.grid.h) : "",
                          detector_name(r.detector), r.totals.pairs, r.totals.keypoints, r.totals.all, r.totals.correct,
@@ -114,7 +114,7 @@ std::string comparison_json(const std::string& dataset, const std::vector<Compar
                            {"correct_truth_x_only", r.totals.truth_correct_x},
                            {"keypoints", r.totals.keypoints},
                            {"seconds", r.totals.seconds}};
-        if (r.descriptor == Descriptor::grid || r.descriptor == Descriptor::grid_corrected) {
+        if (descriptor_info(r.descriptor).grid) {
             row["g"] = r.grid.g;
             row["h"] = r.grid.h;
         }

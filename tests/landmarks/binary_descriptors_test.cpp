@@ -168,8 +168,8 @@ TEST_CASE("images that are not 8-bit and bad FREAK scales are input errors", "[l
     cv::Mat f32(50, 50, CV_32F, cv::Scalar(0));
     std::vector<cv::KeyPoint> k{{25.f, 25.f, 7.f}};
     cv::Mat d;
-    CHECK_THROWS_AS(BriefDescriptor::create()->compute(f32, k, d), InputError);
-    CHECK_THROWS_AS(FreakDescriptor::create(false, 2.f), InputError);
+    CHECK_THROWS_AS(BriefDescriptor::create()->compute(f32, k, d), hc::InputError);
+    CHECK_THROWS_AS(FreakDescriptor::create(false, 2.f), hc::InputError);
 }
 
 namespace {

@@ -60,11 +60,11 @@ TEST_CASE("a board is given as inner corners WxH with a positive square", "[cali
     for (const char* bad : {"9", "9x", "x6", "9x6x2", "9*6", "1x6", "9x101", "nine", "-9x6"})
     {
         INFO("board '" << bad << "'");
-        CHECK_THROWS_AS(parse_board(bad, 1.0), InputError);
+        CHECK_THROWS_AS(parse_board(bad, 1.0), hc::InputError);
     }
     CHECK_THROWS_WITH(parse_board("9y6", 1.0), Catch::Contains("'9y6'"));
-    CHECK_THROWS_AS(parse_board("9x6", 0), InputError);
-    CHECK_THROWS_AS(parse_board("9x6", -1), InputError);
+    CHECK_THROWS_AS(parse_board("9x6", 0), hc::InputError);
+    CHECK_THROWS_AS(parse_board("9x6", -1), hc::InputError);
 }
 
 TEST_CASE("undistortPoints inverts the thesis's radial model at a point checked by hand", "[calib]") {
@@ -334,6 +334,6 @@ TEST_CASE("pairs without a board are skipped by name, and too few pairs are refu
                       Catch::Contains("missing.png"));
     CHECK_THROWS_WITH(detect_boards({dir / "l.png", dir / "l.png"}, {dir / "r.png"}, board, DetectOptions{0, 0}),
                       Catch::Contains("2 left images but 1 right"));
-    CHECK_THROWS_AS(calibrate(d, board), InputError);
+    CHECK_THROWS_AS(calibrate(d, board), hc::InputError);
     fs::remove_all(dir);
 }

@@ -80,7 +80,7 @@ TEST_CASE("the thesis grid has (g(g+1) >> 3) + 1 bytes and the corrected grid ce
 }
 
 TEST_CASE("g and h out of range are input errors naming the parameter", "[landmarks][grid]") {
-    CHECK_THROWS_AS(GridDescriptor::create(1, 2), InputError);
+    CHECK_THROWS_AS(GridDescriptor::create(1, 2), hc::InputError);
     CHECK_THROWS_WITH(GridDescriptor::create(257, 2), Catch::Contains("g = 257"));
     CHECK_THROWS_WITH(grid_describe({kp(0, 0)}, 16, -1, GridVariant::thesis), Catch::Contains("h = -1"));
     CHECK_THROWS_WITH(grid_describe({kp(0, 0)}, 16, 17, GridVariant::corrected), Catch::Contains("h = 17"));
@@ -91,7 +91,7 @@ TEST_CASE("g and h out of range are input errors naming the parameter", "[landma
 TEST_CASE("non-finite or huge keypoint coordinates are input errors", "[landmarks][grid]") {
     CHECK_THROWS_WITH(grid_describe({kp(0, 0), kp(std::nanf(""), 1)}, 16, 2, GridVariant::thesis),
                       Catch::Contains("keypoint 1"));
-    CHECK_THROWS_AS(grid_describe({kp(3e7f, 1)}, 16, 2, GridVariant::thesis), InputError);
+    CHECK_THROWS_AS(grid_describe({kp(3e7f, 1)}, 16, 2, GridVariant::thesis), hc::InputError);
 }
 
 TEST_CASE("a lone keypoint sets only its centre bit g(g/2+1) + g/2+1 = 153 at g = 16", "[landmarks][grid]") {
@@ -274,5 +274,5 @@ TEST_CASE("the grid descriptor is a cv::Feature2D that cv::BFMatcher matches", "
     REQUIRE(m.size() == 150);
     for (const auto& x : m) CHECK(x.distance == 0.f);
     std::vector<cv::KeyPoint> none;
-    CHECK_THROWS_AS(f->detectAndCompute(img, cv::noArray(), none, d, false), InputError);
+    CHECK_THROWS_AS(f->detectAndCompute(img, cv::noArray(), none, d, false), hc::InputError);
 }

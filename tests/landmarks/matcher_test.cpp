@@ -236,7 +236,7 @@ TEST_CASE("descriptor and norm pairs that cannot work are input errors", "[landm
     CHECK_THROWS_WITH(match_stereo(sift, k3, sift, k3, o), Catch::Contains("NORM_HAMMING") && Catch::Contains("32F"));
     o.norm = cv::NORM_L2;
     CHECK(match_stereo(sift, k3, sift, k3, o).size() == 1);  // all 0: every best is index 0, symmetric for L0 only
-    CHECK_THROWS_AS(require_descriptor_norm(CV_8U, cv::NORM_L2, "ORB"), InputError);
+    CHECK_THROWS_AS(require_descriptor_norm(CV_8U, cv::NORM_L2, "ORB"), hc::InputError);
     const cv::Mat b32(3, 32, CV_8U, cv::Scalar(0)), b35(3, 35, CV_8U, cv::Scalar(0));
     CHECK_THROWS_WITH(match_stereo(b32, k3, b35, k3, MatchOptions{}), Catch::Contains("differ"));
     CHECK_THROWS_WITH(match_stereo(b32, at_rows({1, 2}), b32, k3, MatchOptions{}), Catch::Contains("2 left keypoints"));

@@ -144,13 +144,13 @@ TEST_CASE("acquire puts the landmarks of a shifted pair at fx * b / disparity", 
 }
 
 TEST_CASE("impossible or out-of-range requests are refused with InputError", "[landmarks]") {
-    CHECK_THROWS_AS(check_combination(Descriptor::sift, Detector::opencv, Norm::hamming), InputError);
-    CHECK_THROWS_AS(check_combination(Descriptor::grid, Detector::opencv, Norm::l2), InputError);
+    CHECK_THROWS_AS(check_combination(Descriptor::sift, Detector::opencv, Norm::hamming), hc::InputError);
+    CHECK_THROWS_AS(check_combination(Descriptor::grid, Detector::opencv, Norm::l2), hc::InputError);
     CHECK_NOTHROW(check_combination(Descriptor::sift, Detector::opencv, Norm::l2));
-    CHECK_THROWS_AS(validate(GridParams{1000, 3}), InputError);
-    CHECK_THROWS_AS(validate(GridParams{16, -1}), InputError);
-    CHECK_THROWS_AS(parse_detector("surf"), InputError);
-    CHECK_THROWS_AS(parse_descriptor("surf"), InputError);
+    CHECK_THROWS_AS(validate(GridParams{1000, 3}), hc::InputError);
+    CHECK_THROWS_AS(validate(GridParams{16, -1}), hc::InputError);
+    CHECK_THROWS_AS(parse_detector("surf"), hc::InputError);
+    CHECK_THROWS_AS(parse_descriptor("surf"), hc::InputError);
     StereoImages bad = shifted_pair();
     bad.right = bad.right(cv::Rect(0, 0, 300, 240)).clone();
     CHECK_THROWS_WITH(detect_pairs(Detector::opencv, {bad}), Catch::Contains("differ in size"));
@@ -182,7 +182,7 @@ TEST_CASE("score_formats scores a configuration as the comparison scores grid on
     narrow.m_drop = 5;
     const Totals tn = score_formats(ds, narrow, Detector::spec, GridParams{16, 2});
     CHECK(tn.keypoints != t.keypoints);
-    CHECK_THROWS_AS(score_formats(ds, hc::Formats{}, Detector::opencv), InputError);
+    CHECK_THROWS_AS(score_formats(ds, hc::Formats{}, Detector::opencv), hc::InputError);
 }
 
 TEST_CASE("the g x h study of a fixed pair gives the counts of the reference matcher", "[landmarks]") {
@@ -323,7 +323,7 @@ TEST_CASE("re-observations of a scene moved by whole pixels: tracked without des
     CHECK(rows[1].same_median == 0.0);
     CHECK(rows[0].same_median < 0.5 * rows[0].random_median);
     CHECK(rows[1].nearest >= 0.9 * rows[1].reobservations);
-    CHECK_THROWS_AS(reobservation_study(Dataset{"one", {a}, {}, {}, nullptr}, o), InputError);
+    CHECK_THROWS_AS(reobservation_study(Dataset{"one", {a}, {}, {}, nullptr}, o), hc::InputError);
     o.descriptors = {Descriptor::sift};
-    CHECK_THROWS_AS(reobservation_study(ds, o), InputError);
+    CHECK_THROWS_AS(reobservation_study(ds, o), hc::InputError);
 }

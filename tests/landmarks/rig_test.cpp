@@ -69,7 +69,7 @@ TEST_CASE("on a calibrated rig's unrectified pair, the chessboard's landmarks ar
     const std::vector<Landmark> again = acquire_dataset(ds, kp, o).at(0);
     REQUIRE(again.size() == lm.size());
     for (size_t i = 0; i < lm.size(); ++i) CHECK(again[i].p_cam == lm[i].p_cam);
-    CHECK_THROWS_AS(acquire_dataset(ds, std::vector<PairKeypoints>{}, o), InputError);
+    CHECK_THROWS_AS(acquire_dataset(ds, std::vector<PairKeypoints>{}, o), hc::InputError);
 
     // the board's corners in both raw images, and where rectification puts them
     const cv::Mat gl = cv::imread(l3.string(), cv::IMREAD_GRAYSCALE), gr = cv::imread(r3.string(), cv::IMREAD_GRAYSCALE);
