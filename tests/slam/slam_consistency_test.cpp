@@ -130,11 +130,11 @@ TEST_CASE("bad simulation settings are refused with InputError naming them", "[s
     CHECK_THROWS_WITH(c.validate(), Catch::Contains("--sigma-range"));
     c = SimConfig{};
     c.odometry.sigma_dtheta = -1;
-    CHECK_THROWS_AS(c.validate(), InputError);
+    CHECK_THROWS_AS(c.validate(), hc::InputError);
     c = SimConfig{};
     c.sensor.sigma_bearing = std::nan("");
     CHECK_THROWS_WITH(c.validate(), Catch::Contains("--sigma-bearing"));
-    CHECK_THROWS_AS(monte_carlo(SimConfig{}, 0, 1), InputError);
+    CHECK_THROWS_AS(monte_carlo(SimConfig{}, 0, 1), hc::InputError);
 }
 
 // The mean over 50 runs is correlated along the run: a 50-seed set can sit just outside

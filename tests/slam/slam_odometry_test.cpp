@@ -468,5 +468,5 @@ TEST_CASE("visual odometry's residual variance factor measures the pixel noise t
         c.noise_from_residuals = false;
         CHECK(std::abs(residual_variance_factor(visual_odometry(rescaled, c), c) - 1) < 0.1);
     }
-    CHECK_THROWS_AS(with_noise_scaled({}, 0), InputError);
+    CHECK_THROWS_AS(with_noise_scaled({}, 0), hc::InputError);
 }

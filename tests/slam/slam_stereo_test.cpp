@@ -51,7 +51,7 @@ TEST_CASE("a KITTI poses file is read line by line and bad files name file and l
     CHECK_THROWS_WITH(read_kitti_poses(long_line), Catch::Contains("more than 12"));
     const fs::path empty = temp_file("empty.txt", "");
     CHECK_THROWS_WITH(read_kitti_poses(empty), Catch::Contains("holds no pose"));
-    CHECK_THROWS_AS(read_kitti_poses("/nonexistent/poses/01.txt"), InputError);
+    CHECK_THROWS_AS(read_kitti_poses("/nonexistent/poses/01.txt"), hc::InputError);
     for (const auto& p : {good, short_line, long_line, empty}) fs::remove(p);
 }
 
@@ -207,19 +207,19 @@ TEST_CASE("landmarks unseen for forget_after frames are removed", "[slam]") {
 TEST_CASE("bad association settings and sequences are refused with InputError", "[slam]") {
     AssociationConfig ac;
     ac.gate_probability = 1.5;
-    CHECK_THROWS_AS(ac.validate(), InputError);
+    CHECK_THROWS_AS(ac.validate(), hc::InputError);
     SyntheticOdometry om;
     om.sigma_dy = 0;
-    CHECK_THROWS_AS(om.validate(), InputError);
+    CHECK_THROWS_AS(om.validate(), hc::InputError);
     ac = AssociationConfig{};
     ac.max_hamming_fraction = 1.5;
-    CHECK_THROWS_AS(LandmarkSlam(Pose::Zero(), ac), InputError);
+    CHECK_THROWS_AS(LandmarkSlam(Pose::Zero(), ac), hc::InputError);
     const auto poses = arc_poses(3, 0);
     CHECK_THROWS_WITH(run_sequence(poses, std::vector<StereoFrame>(2), SyntheticOdometry{}, AssociationConfig{}, 1),
                       Catch::Contains("one landmark frame per pose"));
     CHECK_THROWS_AS(run_sequence({poses[0]}, std::vector<StereoFrame>(1), SyntheticOdometry{}, AssociationConfig{}, 1),
-                    InputError);
-    CHECK_THROWS_AS(synthesize_stereo_frames(poses, synthetic_rig(), {}, 0, 0, 1), InputError);
+                    hc::InputError);
+    CHECK_THROWS_AS(synthesize_stereo_frames(poses, synthetic_rig(), {}, 0, 0, 1), hc::InputError);
 }
 
 TEST_CASE("on a synthetic curved drive EKF-SLAM beats dead reckoning with the same odometry", "[slam]") {
