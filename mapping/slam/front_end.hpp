@@ -81,9 +81,17 @@ std::string kitti_trajectory(const std::vector<Pose>& poses);
 /// Reads a trajectory file of ground-truth poses of camera 0 in the first camera's frame (KITTI's
 /// convention): KITTI (12 numbers a line, read_kitti_poses) or TUM ("t tx ty tz qx qy qz qw",
 /// lines starting with '#' skipped), told apart by the count of numbers on its first pose line.
-/// TUM poses are paired with frames in file order (their timestamps are not matched). Throws
-/// InputError naming the file and line when absent, malformed or empty.
-std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file);
+/// `times` given: receives a TUM file's timestamps, one per pose (left empty for a KITTI file,
+/// which has none). Throws InputError naming the file and line when absent, malformed or empty.
+std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file, std::vector<double>* times = nullptr);
+/// The ground-truth pose of each frame by timestamp: for frame k, the pose whose time is nearest
+/// `frame_times[k]` (the earlier on a tie), when within `tolerance` (s). A frame without a pose
+/// within it is an InputError naming `truth_name`, the frame and its time, unless `overlap`:
+/// then the poses of the frames before the first such frame are returned (those frames are
+/// scored). InputError when `tolerance` is not positive or the counts of poses and times differ.
+std::vector<Mat34> truth_by_timestamp(const std::vector<Mat34>& poses, const std::vector<double>& pose_times,
+                                      const std::vector<double>& frame_times, double tolerance,
+                                      const std::string& truth_name, bool overlap);
 /// Reads timestamps, one number (s) a line (KITTI's times.txt). InputError naming the file and
 /// line when absent, malformed or empty.
 std::vector<double> read_timestamps(const std::filesystem::path& file);
@@ -250,6 +258,9 @@ struct SequenceRun {
     /// TUM timestamps, one per frame (s), and where they come from (for the report).
     std::vector<double> timestamps;
     std::string timestamps_from;
+    /// How the ground truth's poses were paired with the frames (for the report): in file order,
+    /// or by timestamp; empty without a ground truth.
+    std::string truth_pairing;
     std::vector<Mat3> pose_cov;
     std::vector<FrameStats> frames;
     std::vector<Motion> odometry;

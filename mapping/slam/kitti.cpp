@@ -162,7 +162,8 @@ std::optional<std::vector<double>> numbers_of(const std::string& line) {
 }
 }  // namespace
 
-std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file) {
+std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file, std::vector<double>* times) {
+    if (times) times->clear();
     std::ifstream f(file);
     if (!f) throw InputError("cannot read the ground-truth file '" + file.string() + "'");
     std::vector<Mat34> poses;
@@ -192,11 +193,40 @@ std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file) {
             const Eigen::Quaterniond q((*v)[7], (*v)[4], (*v)[5], (*v)[6]);
             if (!(q.norm() > 0.5 && q.norm() < 2)) throw InputError(where + ": the quaternion is not of unit length");
             T << q.normalized().toRotationMatrix(), Eigen::Vector3d((*v)[1], (*v)[2], (*v)[3]);
+            if (times) times->push_back((*v)[0]);
         }
         poses.push_back(T);
     }
     if (poses.empty()) throw InputError("the ground-truth file '" + file.string() + "' holds no pose");
     return poses;
+}
+
+std::vector<Mat34> truth_by_timestamp(const std::vector<Mat34>& poses, const std::vector<double>& pose_times,
+                                      const std::vector<double>& frame_times, double tolerance,
+                                      const std::string& truth_name, bool overlap) {
+    if (!(tolerance > 0)) throw InputError("the ground truth's time tolerance must be positive");
+    if (pose_times.size() != poses.size())
+        throw InputError("the ground truth " + truth_name + " has " + std::to_string(poses.size()) + " poses but " +
+                         std::to_string(pose_times.size()) + " timestamps");
+    std::vector<Mat34> out;
+    for (size_t k = 0; k < frame_times.size(); ++k) {
+        size_t best = poses.size();
+        double gap = 0;
+        for (size_t i = 0; i < pose_times.size(); ++i) {
+            const double d = std::abs(pose_times[i] - frame_times[k]);
+            if (best == poses.size() || d < gap) best = i, gap = d;
+        }
+        if (best == poses.size() || !(gap <= tolerance)) {
+            if (overlap) break;
+            std::ostringstream msg;
+            msg << "the ground truth " << truth_name << " has no pose within " << tolerance << " s of frame " << k
+                << " (time " << frame_times[k] << " s); give --score-overlap to score the frames before it only, or "
+                << "a larger --truth-time-tolerance";
+            throw InputError(msg.str());
+        }
+        out.push_back(poses[best]);
+    }
+    return out;
 }
 
 std::vector<double> read_timestamps(const std::filesystem::path& file) {
