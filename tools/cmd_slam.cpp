@@ -128,6 +128,10 @@ void add_slam_command(CLI::App& app) {
     cmd->add_flag("--score-overlap", o->score_overlap,
                   "a ground truth with another number of poses than stereo pairs: score the frames both cover "
                   "(refused without this flag)");
+    cmd->add_option("--truth-time-tolerance", o->truth_time_tolerance,
+                    "a TUM --truth on a sequence with times.txt is paired with the frames by timestamp: the nearest "
+                    "pose within this (s); a frame without one is refused unless --score-overlap")
+        ->capture_default_str();
     cmd->add_option("--frame-period", o->frame_period,
                     "TUM timestamps where the sequence has no times.txt (and on a rig): frame index x this (s)")
         ->capture_default_str();

@@ -81,9 +81,17 @@ std::string kitti_trajectory(const std::vector<Pose>& poses);
 /// Reads a trajectory file of ground-truth poses of camera 0 in the first camera's frame (KITTI's
 /// convention): KITTI (12 numbers a line, read_kitti_poses) or TUM ("t tx ty tz qx qy qz qw",
 /// lines starting with '#' skipped), told apart by the count of numbers on its first pose line.
-/// TUM poses are paired with frames in file order (their timestamps are not matched). Throws
-/// InputError naming the file and line when absent, malformed or empty.
-std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file);
+/// `times` given: receives a TUM file's timestamps, one per pose (left empty for a KITTI file,
+/// which has none). Throws InputError naming the file and line when absent, malformed or empty.
+std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file, std::vector<double>* times = nullptr);
+/// The ground-truth pose of each frame by timestamp: for frame k, the pose whose time is nearest
+/// `frame_times[k]` (the earlier on a tie), when within `tolerance` (s). A frame without a pose
+/// within it is an InputError naming `truth_name`, the frame and its time, unless `overlap`:
+/// then the poses of the frames before the first such frame are returned (those frames are
+/// scored). InputError when `tolerance` is not positive or the counts of poses and times differ.
+std::vector<Mat34> truth_by_timestamp(const std::vector<Mat34>& poses, const std::vector<double>& pose_times,
+                                      const std::vector<double>& frame_times, double tolerance,
+                                      const std::string& truth_name, bool overlap);
 /// Reads timestamps, one number (s) a line (KITTI's times.txt). InputError naming the file and
 /// line when absent, malformed or empty.
 std::vector<double> read_timestamps(const std::filesystem::path& file);
@@ -118,8 +126,32 @@ struct TrajectoryMetrics {
     double nees_within_95 = 0;   ///< fraction of those frames whose NEES is ≤ χ²(0.95; 3) = 7.81
     double ape_percent() const { return path_length > 0 ? 100 * ape / path_length : 0; }
 };
+/// score_trajectory's metrics as running sums, frame by frame: APE, RPE, path length, final
+/// error and the NEES count, mean and share within χ²(0.95; 3), summed in frame order as
+/// score_trajectory sums them (the same bits). Held: the sums and the previous frame's poses.
+/// Not here: the SE(2)-aligned APE, whose alignment needs the whole trajectory (aligned_ape).
+class TrajectoryScore {
+public:
+    /// The next frame's estimate and true pose, and the estimate's covariance (nullptr: no
+    /// NEES); returns the frame's pose NEES (NaN where it is not defined).
+    double add(const Pose& estimate, const Pose& truth, const Mat3* cov);
+    size_t frames() const { return n_; }
+    /// The metrics of the frames added so far (at least one), with ape_se2 0 and no per-frame
+    /// NEES (add returned them). Throws std::invalid_argument before the first frame.
+    TrajectoryMetrics metrics() const;
+
+private:
+    size_t n_ = 0;
+    double ape_ss_ = 0, rpe_ss_ = 0, rpe_heading_ss_ = 0, path_ = 0, final_ = 0, nees_sum_ = 0;
+    int nees_frames_ = 0, nees_within_ = 0;
+    Pose last_estimate_ = Pose::Zero(), last_truth_ = Pose::Zero();
+};
+/// APE after the SE(2) alignment of `estimate` to `truth` (se2_alignment): RMS of the aligned
+/// position errors (m). Throws std::invalid_argument on size mismatch.
+double aligned_ape(const std::vector<Pose>& estimate, const std::vector<Pose>& truth);
 /// The metrics of `estimate` against `truth` (same length ≥ 1); `cov` (empty or one per pose)
-/// gives the NEES. Throws std::invalid_argument on size mismatch.
+/// gives the NEES: TrajectoryScore over the frames, and aligned_ape. Throws
+/// std::invalid_argument on size mismatch.
 TrajectoryMetrics score_trajectory(const std::vector<Pose>& estimate, const std::vector<Pose>& truth,
                                    const std::vector<Mat3>& cov = {});
 /// The rigid motion (x, y, θ) that maps `estimate`'s positions onto `truth`'s with least
@@ -250,6 +282,9 @@ struct SequenceRun {
     /// TUM timestamps, one per frame (s), and where they come from (for the report).
     std::vector<double> timestamps;
     std::string timestamps_from;
+    /// How the ground truth's poses were paired with the frames (for the report): in file order,
+    /// or by timestamp; empty without a ground truth.
+    std::string truth_pairing;
     std::vector<Mat3> pose_cov;
     std::vector<FrameStats> frames;
     std::vector<Motion> odometry;
@@ -271,7 +306,10 @@ using FrameSource = std::function<bool(StereoFrame& frame)>;
 FrameSource frames_of(const std::vector<StereoFrame>& frames);
 
 /// run_filter frame by frame: each frame is used as it comes and not kept. Kept per frame: the
-/// poses, covariances, motions and counts (SequenceRun's). The wrong-association check against
+/// poses, covariances, motions and counts (SequenceRun's). The metrics against `truth` are
+/// running sums (TrajectoryScore) of the filter's and the odometry alone's poses as frames come
+/// (the same bits as score_trajectory on the run's vectors), but the SE(2)-aligned APE, made
+/// at the end from the kept poses. The wrong-association check against
 /// `truth` is made as frames come, with the world point of each landmark's first observation
 /// (under the true pose of its frame) held while the landmark is mapped.
 class FilterRun {
@@ -292,6 +330,9 @@ private:
     SequenceRun run_;
     double wrong_gate_;
     std::unordered_map<int, std::pair<Vec2, Mat2>> first_seen_;   // landmark id -> world point, covariance
+    Mat3 dead_reckoning_cov_ = Mat3::Zero();   // the odometry alone's covariance, integrated
+    TrajectoryScore slam_score_, odometry_score_;
+    std::vector<double> slam_nees_, odometry_nees_;   // per frame scored (states.csv)
 };
 
 /// The filter over frames with the given motions (motions.size() == frames.size() − 1),

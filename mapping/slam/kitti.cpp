@@ -162,7 +162,8 @@ std::optional<std::vector<double>> numbers_of(const std::string& line) {
 }
 }  // namespace
 
-std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file) {
+std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file, std::vector<double>* times) {
+    if (times) times->clear();
     std::ifstream f(file);
     if (!f) throw InputError("cannot read the ground-truth file '" + file.string() + "'");
     std::vector<Mat34> poses;
@@ -192,11 +193,40 @@ std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file) {
             const Eigen::Quaterniond q((*v)[7], (*v)[4], (*v)[5], (*v)[6]);
             if (!(q.norm() > 0.5 && q.norm() < 2)) throw InputError(where + ": the quaternion is not of unit length");
             T << q.normalized().toRotationMatrix(), Eigen::Vector3d((*v)[1], (*v)[2], (*v)[3]);
+            if (times) times->push_back((*v)[0]);
         }
         poses.push_back(T);
     }
     if (poses.empty()) throw InputError("the ground-truth file '" + file.string() + "' holds no pose");
     return poses;
+}
+
+std::vector<Mat34> truth_by_timestamp(const std::vector<Mat34>& poses, const std::vector<double>& pose_times,
+                                      const std::vector<double>& frame_times, double tolerance,
+                                      const std::string& truth_name, bool overlap) {
+    if (!(tolerance > 0)) throw InputError("the ground truth's time tolerance must be positive");
+    if (pose_times.size() != poses.size())
+        throw InputError("the ground truth " + truth_name + " has " + std::to_string(poses.size()) + " poses but " +
+                         std::to_string(pose_times.size()) + " timestamps");
+    std::vector<Mat34> out;
+    for (size_t k = 0; k < frame_times.size(); ++k) {
+        size_t best = poses.size();
+        double gap = 0;
+        for (size_t i = 0; i < pose_times.size(); ++i) {
+            const double d = std::abs(pose_times[i] - frame_times[k]);
+            if (best == poses.size() || d < gap) best = i, gap = d;
+        }
+        if (best == poses.size() || !(gap <= tolerance)) {
+            if (overlap) break;
+            std::ostringstream msg;
+            msg << "the ground truth " << truth_name << " has no pose within " << tolerance << " s of frame " << k
+                << " (time " << frame_times[k] << " s); give --score-overlap to score the frames before it only, or "
+                << "a larger --truth-time-tolerance";
+            throw InputError(msg.str());
+        }
+        out.push_back(poses[best]);
+    }
+    return out;
 }
 
 std::vector<double> read_timestamps(const std::filesystem::path& file) {
@@ -448,23 +478,14 @@ std::pair<Vec2, Mat2> world_point(const StereoLandmarkObs& o, const Pose& truth)
 }  // namespace
 
 namespace {
-/// Scores `run` against `truth` (its first truth.size() frames): the metrics of the estimate and
-/// of the odometry alone.
-void score_run(SequenceRun& run, const std::vector<Pose>& truth) {
-    const size_t n = truth.size();
-    run.truth = truth;
-    if (n == 0) return;
-    const auto first = [n](const auto& v) { return std::vector(v.begin(), v.begin() + static_cast<long>(n)); };
-    run.slam_metrics = score_trajectory(first(run.estimate), truth, first(run.pose_cov));
-    std::vector<Mat3> dr_cov{Mat3::Zero()};
-    for (size_t k = 0; k + 1 < n; ++k) {
-        Mat3 R_r, R_u;
-        compose(run.dead_reckoning[k], run.odometry[k], &R_r, &R_u);
-        dr_cov.push_back(R_r * dr_cov.back() * R_r.transpose() + R_u * run.odometry_cov[k] * R_u.transpose());
-    }
-    run.odometry_metrics = score_trajectory(first(run.dead_reckoning), truth, dr_cov);
-    run.ate_slam = run.slam_metrics.ape;
-    run.ate_dead_reckoning = run.odometry_metrics.ape;
+/// The metrics of a run's running sums, with the per-frame NEES and the SE(2)-aligned APE of the
+/// first truth.size() poses of `estimate` (the alignment needs the whole trajectory).
+TrajectoryMetrics finished_metrics(const TrajectoryScore& score, std::vector<double> nees,
+                                   const std::vector<Pose>& estimate, const std::vector<Pose>& truth) {
+    TrajectoryMetrics m = score.metrics();
+    m.nees = std::move(nees);
+    m.ape_se2 = aligned_ape(std::vector(estimate.begin(), estimate.begin() + static_cast<long>(truth.size())), truth);
+    return m;
 }
 }  // namespace
 
@@ -486,7 +507,9 @@ void FilterRun::first_frame(const StereoFrame& frame) { after_frame(slam_.first_
 void FilterRun::next_frame(const Motion& u, const Mat3& Q, const StereoFrame& frame) {
     run_.odometry.push_back(u);
     run_.odometry_cov.push_back(Q);
-    run_.dead_reckoning.push_back(compose(run_.dead_reckoning.back(), u));
+    Mat3 R_r, R_u;   // the odometry alone: its pose and covariance integrated
+    run_.dead_reckoning.push_back(compose(run_.dead_reckoning.back(), u, &R_r, &R_u));
+    dead_reckoning_cov_ = R_r * dead_reckoning_cov_ * R_r.transpose() + R_u * Q * R_u.transpose();
     after_frame(slam_.next_frame(u, Q, frame), frame);
 }
 
@@ -508,6 +531,10 @@ void FilterRun::after_frame(const FrameStats& stats, const StereoFrame& frame) {
     run_.frames.push_back(st);
     run_.estimate.push_back(slam_.filter().pose());
     run_.pose_cov.push_back(slam_.filter().pose_covariance());
+    if (k < truth_.size()) {   // the metrics' running sums
+        slam_nees_.push_back(slam_score_.add(run_.estimate.back(), truth_[k], &run_.pose_cov.back()));
+        odometry_nees_.push_back(odometry_score_.add(run_.dead_reckoning[k], truth_[k], &dead_reckoning_cov_));
+    }
 }
 
 SequenceRun FilterRun::finish() {
@@ -522,8 +549,14 @@ SequenceRun FilterRun::finish() {
     }
     run_.estimate_3d = spatial_poses(run_.estimate);
     run_.dead_reckoning_3d = spatial_poses(run_.dead_reckoning);
-    // scoring against the ground truth, after the run
-    score_run(run_, truth_);
+    // the scores summed as the frames came; the SE(2) alignment over the whole trajectory
+    run_.truth = truth_;
+    if (!truth_.empty()) {
+        run_.slam_metrics = finished_metrics(slam_score_, std::move(slam_nees_), run_.estimate, truth_);
+        run_.odometry_metrics = finished_metrics(odometry_score_, std::move(odometry_nees_), run_.dead_reckoning, truth_);
+        run_.ate_slam = run_.slam_metrics.ape;
+        run_.ate_dead_reckoning = run_.odometry_metrics.ape;
+    }
     return std::move(run_);
 }
 

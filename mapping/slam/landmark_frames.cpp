@@ -47,9 +47,10 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std
 }
 
 FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const stereo::RectifiedRig& calib,
-                            const landmarks::PipelineOptions& o) {
+                            const landmarks::PipelineOptions& o, std::shared_ptr<const calib::Calibration> rig) {
     auto one = std::make_shared<landmarks::Dataset>();
     one->calib = {calib};
+    one->rig = std::move(rig);
     one->pairs.resize(1);
     auto corners = std::make_shared<landmarks::PairCornerStream>(o.detector, pairs, std::move(pair_at), o.corners);
     return [one, corners, o](StereoFrame& frame) {
@@ -125,6 +126,7 @@ VisualOdometryConfig checked_options(const KittiRunOptions& o) {
     if (!o.visual_odometry) o.synthetic.validate();
     if (o.stereo_landmarks) check_pipeline(o.pipeline);
     if (!(o.frame_period > 0)) throw InputError("--frame-period must be positive");
+    if (!(o.truth_time_tolerance > 0)) throw InputError("--truth-time-tolerance must be positive");
     return vo;
 }
 
@@ -148,15 +150,20 @@ KittiRun run_frames(const FrameSource& frames, size_t count, const std::vector<M
     return r;
 }
 
+/// The first `n` timestamps of a times.txt; InputError when it has fewer.
+std::vector<double> frame_times(const std::filesystem::path& times, size_t n) {
+    std::vector<double> t = read_timestamps(times);
+    if (t.size() < n)
+        throw InputError(quoted(times) + " has " + std::to_string(t.size()) + " timestamps for " + std::to_string(n) +
+                         " frames");
+    t.resize(n);
+    return t;
+}
+
 void set_timestamps(SequenceRun& run, const std::filesystem::path& times, const KittiRunOptions& o) {
     const size_t n = run.estimate.size();
     if (!times.empty() && std::filesystem::exists(times)) {
-        std::vector<double> t = read_timestamps(times);
-        if (t.size() < n)
-            throw InputError(quoted(times) + " has " + std::to_string(t.size()) + " timestamps for " +
-                             std::to_string(n) + " frames");
-        t.resize(n);
-        run.timestamps = std::move(t);
+        run.timestamps = frame_times(times, n);
         run.timestamps_from = "the sequence's times.txt";
         return;
     }
@@ -170,18 +177,28 @@ void set_timestamps(SequenceRun& run, const std::filesystem::path& times, const 
 
 KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::string& sequence, const KittiRunOptions& o) {
     const std::filesystem::path poses_file = frames::kitti_poses_file(kitti, sequence);
+    const std::filesystem::path times_file = frames::kitti_sequence_dir(kitti, sequence) / "times.txt";
     const bool own_truth = o.truth.empty() && std::filesystem::exists(poses_file);
-    std::vector<Mat34> truth = !o.truth.empty() ? read_trajectory_file(o.truth)
+    std::vector<double> truth_times;   // a TUM file's
+    std::vector<Mat34> truth = !o.truth.empty() ? read_trajectory_file(o.truth, &truth_times)
                                : own_truth      ? read_kitti_poses(poses_file)
                                                 : std::vector<Mat34>{};
     const std::string truth_name = quoted(own_truth ? poses_file : o.truth);
     VisualOdometryConfig vo = checked_options(o);
+    std::string pairing = "in file order";
     FrameSource frames;
     size_t count = 0;
     const frames::KittiSequence seq = o.stereo_landmarks ? frames::open_kitti(kitti, sequence) : frames::KittiSequence{};
     if (o.stereo_landmarks) {
         const int pairs = seq.pairs();
         if (pairs < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
+        if (!truth_times.empty() && std::filesystem::exists(times_file)) {
+            truth = truth_by_timestamp(truth, truth_times, frame_times(times_file, static_cast<size_t>(pairs)),
+                                       o.truth_time_tolerance, truth_name, o.score_overlap);
+            std::ostringstream tol;
+            tol << o.truth_time_tolerance;
+            pairing = "by timestamp (the nearest pose within " + tol.str() + " s of each frame's time in times.txt)";
+        }
         truth = reconcile_truth(std::move(truth), static_cast<size_t>(pairs), truth_name, o);
         frames = stereo_frames(kitti, sequence, pairs, o, *vo.rig);
         count = static_cast<size_t>(pairs);
@@ -197,7 +214,8 @@ KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::strin
         count = truth.size();
     }
     KittiRun r = run_frames(frames, count, truth, vo, o);
-    set_timestamps(r.run, frames::kitti_sequence_dir(kitti, sequence) / "times.txt", o);
+    set_timestamps(r.run, times_file, o);
+    if (!truth.empty()) r.run.truth_pairing = pairing;
     return r;
 }
 
@@ -205,21 +223,29 @@ KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o) {
     if (!o.stereo_landmarks)
         throw InputError("--landmarks-from synthetic makes its own frames: leave out --left, --right and --calib");
     if (rig.calib.empty()) throw InputError("--left and --right are the images of a rig: give its --calib");
+    if (rig.left.empty() || rig.right.empty()) throw InputError("--calib needs the rig's images: --left and --right");
     std::vector<Mat34> truth = o.truth.empty() ? std::vector<Mat34>{} : read_trajectory_file(o.truth);
     VisualOdometryConfig vo = checked_options(o);
-    landmarks::DatasetChoice c;
-    c.calib = rig.calib;
-    c.left = rig.left;
-    c.right = rig.right;
-    std::filesystem::path root;
-    const landmarks::Dataset ds = landmarks::open_dataset(c, root);
-    if (ds.pairs.size() < 2) throw InputError("the rig's --left/--right give fewer than 2 stereo pairs");
-    truth = reconcile_truth(std::move(truth), ds.pairs.size(), quoted(o.truth), o);
-    report_landmarks(o, static_cast<int>(ds.pairs.size()), "the rig");
-    vo.rig = ds.calib.front();
-    const std::vector<StereoFrame> frames = landmark_frames(ds, o.pipeline);
-    KittiRun r = run_frames(frames_of(frames), frames.size(), truth, vo, o);
+    const auto calibration = std::make_shared<const calib::Calibration>(landmarks::read_rig_calibration(rig.calib));
+    const std::vector<std::filesystem::path> left = frames::expand_image_list(rig.left, "--left");
+    const std::vector<std::filesystem::path> right = frames::expand_image_list(rig.right, "--right");
+    if (left.size() != right.size())
+        throw InputError("a rig's stereo pairs: " + std::to_string(left.size()) + " left images but " +
+                         std::to_string(right.size()) + " right images");
+    if (left.size() < 2) throw InputError("the rig's --left/--right give fewer than 2 stereo pairs");
+    const int pairs = static_cast<int>(left.size());
+    truth = reconcile_truth(std::move(truth), left.size(), quoted(o.truth), o);
+    report_landmarks(o, pairs, "the rig");
+    vo.rig = calibration->rectified;
+    // each pair read (and checked against the calibration) when the corner stream reaches it
+    const auto pair_at = [left, right, calibration](int k) {
+        const auto i = static_cast<size_t>(k);
+        return landmarks::rig_dataset({left[i]}, {right[i]}, *calibration).pairs.front();
+    };
+    const FrameSource frames = landmark_stream(pairs, pair_at, calibration->rectified, o.pipeline, calibration);
+    KittiRun r = run_frames(frames, left.size(), truth, vo, o);
     set_timestamps(r.run, {}, o);
+    if (!truth.empty()) r.run.truth_pairing = "in file order (a rig has no frame times)";
     return r;
 }
 

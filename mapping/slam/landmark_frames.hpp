@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "mapping/landmarks/landmarks.hpp"
@@ -26,9 +27,11 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std
 /// (`pair_at(k)`, in order), pair by pair: corners from the source's stream
 /// (landmarks::PairCornerStream, a hardware source's threshold carried from pair to pair),
 /// then description, matching and triangulation through `calib`; nothing of a pair is kept
-/// once its frame is given out.
+/// once its frame is given out. `rig` set: the pairs are a user's rig's unrectified images and
+/// their keypoints are rectified with it (landmarks::Dataset::rig), as landmark_frames does.
 FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const stereo::RectifiedRig& calib,
-                            const landmarks::PipelineOptions& o);
+                            const landmarks::PipelineOptions& o,
+                            std::shared_ptr<const calib::Calibration> rig = nullptr);
 
 /// One KITTI odometry sequence through the filter (`harris-cosim slam --sequences`): where the
 /// landmarks come from, where the motion comes from, the association. Every default is the
@@ -60,6 +63,10 @@ struct KittiRunOptions {
     bool score_overlap = false;
     /// TUM timestamps where the sequence has no times.txt (and on a rig): frame index × this (s).
     double frame_period = 0.1;
+    /// A TUM ground truth on a sequence with a times.txt is paired with the stereo pairs by
+    /// timestamp (truth_by_timestamp): the nearest pose within this (s; TUM's associate.py's
+    /// default difference). A KITTI ground truth, or none of the frames' times: file order.
+    double truth_time_tolerance = 0.02;
     std::function<void(const std::string&)> progress;   ///< one line per step (may be empty)
 };
 struct KittiRun {
@@ -71,7 +78,10 @@ struct KittiRun {
 /// filter frame by frame on the sequence's frames (its stereo pairs, their corners streamed
 /// pair by pair by landmarks::PairCornerStream, or synthetic landmarks: one frame per true
 /// pose, SyntheticFrames), none held once used (run_visual_stream, FilterRun); TUM timestamps from the sequence's times.txt when present, else frame index
-/// × o.frame_period. InputError (slam's or landmarks') for fewer than 2 pairs, a ground truth
+/// × o.frame_period. A TUM ground truth is paired with the stereo pairs by timestamp when the
+/// sequence has a times.txt (truth_by_timestamp, o.truth_time_tolerance: a pair without a pose
+/// within it is an InputError unless o.score_overlap), else in file order; the run's
+/// truth_pairing says which. InputError (slam's or landmarks') for fewer than 2 pairs, a ground truth
 /// with another number of poses than stereo pairs (both counts named) unless o.score_overlap,
 /// synthetic landmarks or odometry without a true pose per frame, a times.txt shorter than the
 /// frames, a descriptor that is not binary, or options out of range.
@@ -86,8 +96,11 @@ struct RigPairs {
     std::vector<std::string> left, right;
 };
 /// run_kitti_sequence on a rig's pairs with the landmark pipeline (o.stereo_landmarks must be
-/// set): ground truth from o.truth only, timestamps frame index × o.frame_period. InputError as
-/// run_kitti_sequence's, and landmarks::open_dataset's for the rig.
+/// set), pair by pair as a KITTI layout's (landmark_stream: each pair read when it is reached,
+/// landmarks::rig_dataset's checks on it then): ground truth from o.truth only, timestamps frame
+/// index × o.frame_period. InputError as run_kitti_sequence's, for lists of images that are
+/// empty or differ in length (before the run), and rig_dataset's for a pair's image that is
+/// missing, unreadable or of another size than the calibration's (when the pair is reached).
 KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o);
 
 }  // namespace hc::slam

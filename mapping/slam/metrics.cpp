@@ -32,54 +32,74 @@ Pose se2_alignment(const std::vector<Pose>& estimate, const std::vector<Pose>& t
     return {t.x(), t.y(), phi};
 }
 
+double TrajectoryScore::add(const Pose& estimate, const Pose& truth, const Mat3* cov) {
+    ape_ss_ += (estimate - truth).head<2>().squaredNorm();
+    if (n_ > 0) {
+        const Motion dt = between(last_truth_, truth), de = between(last_estimate_, estimate);
+        rpe_ss_ += (de - dt).head<2>().squaredNorm();
+        rpe_heading_ss_ += std::pow(wrap_angle(de(2) - dt(2)), 2);
+        path_ += (truth - last_truth_).head<2>().norm();
+    }
+    final_ = (estimate - truth).head<2>().norm();
+    last_estimate_ = estimate;
+    last_truth_ = truth;
+    ++n_;
+    double e = std::numeric_limits<double>::quiet_NaN();
+    if (cov) {
+        Eigen::VectorXd d = estimate - truth;
+        d(2) = wrap_angle(d(2));
+        e = nees(d, *cov);
+    }
+    if (std::isfinite(e)) {
+        nees_sum_ += e;
+        ++nees_frames_;
+        nees_within_ += e <= chi2_quantile(0.95, 3);
+    }
+    return e;
+}
+
+TrajectoryMetrics TrajectoryScore::metrics() const {
+    if (n_ == 0) throw std::invalid_argument("TrajectoryScore: no frame scored");
+    TrajectoryMetrics m;
+    m.ape = std::sqrt(ape_ss_ / static_cast<double>(n_));
+    if (n_ > 1) {
+        m.rpe = std::sqrt(rpe_ss_ / static_cast<double>(n_ - 1));
+        m.rpe_heading = std::sqrt(rpe_heading_ss_ / static_cast<double>(n_ - 1));
+    }
+    m.path_length = path_;
+    m.final_error = final_;
+    m.nees_frames = nees_frames_;
+    m.nees_mean = nees_frames_ ? nees_sum_ / nees_frames_ : std::numeric_limits<double>::quiet_NaN();
+    if (nees_frames_) {
+        const double dof = 3.0 * nees_frames_;
+        m.nees_lo = chi2_quantile(0.025, dof) / nees_frames_;
+        m.nees_hi = chi2_quantile(0.975, dof) / nees_frames_;
+        m.nees_within_95 = static_cast<double>(nees_within_) / nees_frames_;
+    }
+    return m;
+}
+
+double aligned_ape(const std::vector<Pose>& estimate, const std::vector<Pose>& truth) {
+    const Pose A = se2_alignment(estimate, truth);
+    double s = 0;
+    for (size_t k = 0; k < truth.size(); ++k) s += (compose(A, estimate[k]) - truth[k]).head<2>().squaredNorm();
+    return std::sqrt(s / static_cast<double>(truth.size()));
+}
+
 TrajectoryMetrics score_trajectory(const std::vector<Pose>& estimate, const std::vector<Pose>& truth,
                                    const std::vector<Mat3>& cov) {
     if (estimate.size() != truth.size() || truth.empty())
         throw std::invalid_argument("score_trajectory: trajectories of different or zero length");
     if (!cov.empty() && cov.size() != truth.size())
         throw std::invalid_argument("score_trajectory: one covariance per pose");
-    const size_t n = truth.size();
-    TrajectoryMetrics m;
-    m.ape = absolute_trajectory_error(estimate, truth);
-    const Pose A = se2_alignment(estimate, truth);
-    double s = 0;
-    for (size_t k = 0; k < n; ++k) s += (compose(A, estimate[k]) - truth[k]).head<2>().squaredNorm();
-    m.ape_se2 = std::sqrt(s / n);
-    double rt = 0, rh = 0;
-    for (size_t k = 1; k < n; ++k) {
-        const Motion dt = between(truth[k - 1], truth[k]), de = between(estimate[k - 1], estimate[k]);
-        rt += (de - dt).head<2>().squaredNorm();
-        rh += std::pow(wrap_angle(de(2) - dt(2)), 2);
-        m.path_length += (truth[k] - truth[k - 1]).head<2>().norm();
-    }
-    if (n > 1) {
-        m.rpe = std::sqrt(rt / (n - 1));
-        m.rpe_heading = std::sqrt(rh / (n - 1));
-    }
-    m.final_error = (estimate.back() - truth.back()).head<2>().norm();
-    double sum = 0;
-    for (size_t k = 0; k < n; ++k) {
-        double e = std::numeric_limits<double>::quiet_NaN();
-        if (!cov.empty()) {
-            Eigen::VectorXd d = estimate[k] - truth[k];
-            d(2) = wrap_angle(d(2));
-            e = nees(d, cov[k]);
-        }
-        m.nees.push_back(e);
-        if (std::isfinite(e)) {
-            sum += e;
-            ++m.nees_frames;
-        }
-    }
-    m.nees_mean = m.nees_frames ? sum / m.nees_frames : std::numeric_limits<double>::quiet_NaN();
-    if (m.nees_frames) {
-        const double dof = 3.0 * m.nees_frames, point = chi2_quantile(0.95, 3);
-        m.nees_lo = chi2_quantile(0.025, dof) / m.nees_frames;
-        m.nees_hi = chi2_quantile(0.975, dof) / m.nees_frames;
-        int within = 0;
-        for (double e : m.nees) within += std::isfinite(e) && e <= point;
-        m.nees_within_95 = static_cast<double>(within) / m.nees_frames;
-    }
+    TrajectoryScore score;
+    std::vector<double> per_frame;
+    per_frame.reserve(truth.size());
+    for (size_t k = 0; k < truth.size(); ++k)
+        per_frame.push_back(score.add(estimate[k], truth[k], cov.empty() ? nullptr : &cov[k]));
+    TrajectoryMetrics m = score.metrics();
+    m.nees = std::move(per_frame);
+    m.ape_se2 = aligned_ape(estimate, truth);
     return m;
 }
 

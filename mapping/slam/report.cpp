@@ -360,6 +360,7 @@ void save_sequence_summary(const fs::path& dir, const SequenceRun& r, const Sequ
     j["ground_truth"] = !r.truth.empty();
     j["odometry"] = odometry_label;
     j["timestamps"] = r.timestamps_from;
+    if (!r.truth.empty()) j["truth_pairing"] = r.truth_pairing;
     j["height_roll_pitch"] = r.spatial_from_odometry ? "visual odometry's 6-DoF steps" : "none (level, height 0)";
     if (!r.truth.empty()) {
         j["ate_m"] = {{"slam", r.ate_slam}, {"dead_reckoning", r.ate_dead_reckoning}};
@@ -486,7 +487,8 @@ std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, con
           "`summary.json`, `estimate_kitti.txt` and `estimate_tum.txt` (the estimate, 6-DoF: " << height_source(r)
        << "; TUM timestamps from " << r.timestamps_from << "), `estimate_planar_kitti.txt` (the filter's top view, "
           "height 0), `dead_reckoning_kitti.txt` (" << text.odometry_label << ", 6-DoF as the estimate)"
-       << (r.truth_3d.empty() ? "" : ", `truth_kitti.txt` (the ground truth's poses of the frames scored)") << ".\n";
+       << (r.truth_3d.empty() ? "" : ", `truth_kitti.txt` (the ground truth's poses of the frames scored, paired with "
+                                      "the frames " + r.truth_pairing + ")") << ".\n";
     return md.str();
 }
 }  // namespace

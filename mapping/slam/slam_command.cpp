@@ -81,49 +81,6 @@ std::string odometry_label(const SlamCommand& o) {
     return o.odometry == "visual" ? "visual odometry alone" : "synthetic odometry alone";
 }
 
-/// The KITTI run's options from the command's settings.
-KittiRunOptions kitti_options(const SlamCommand& o) {
-    KittiRunOptions k;
-    AssociationConfig& ac = k.association;
-    ac.method = o.association == "nearest" ? AssociationMethod::Nearest : AssociationMethod::Jcbb;
-    ac.gate_probability = o.gate;
-    ac.joint_probability = o.joint_gate;
-    ac.max_hamming_fraction = o.max_hamming_fraction;
-    ac.check_descriptor = o.descriptor;
-    ac.forget_after = o.forget_after;
-    ac.max_observations = o.max_observations;
-    ac.noise_at_prediction = o.noise_at_prediction;
-    VisualOdometryConfig& vc = k.vo;
-    vc.max_hamming_fraction = o.vo_hamming_fraction;
-    vc.min_inliers = o.vo_min_inliers;
-    vc.max_range = o.vo_max_range;
-    vc.residual = o.vo_residual == "top-view" ? OdometryResidual::top_view : OdometryResidual::pixels;
-    vc.estimate_disparity_offset = o.vo_disparity_offset;
-    vc.level = o.vo_level;
-    vc.noise_from_residuals = o.vo_measured_noise;
-    vc.two_view_points = o.vo_two_view;
-    SyntheticOdometry& so = k.synthetic;
-    if (o.sigma_dx) so.sigma_dx = *o.sigma_dx;
-    so.sigma_dy = o.sigma_dy;
-    if (o.sigma_dtheta_deg) so.sigma_dtheta = *o.sigma_dtheta_deg * deg;
-    k.visual_odometry = o.odometry == "visual";
-    k.stereo_landmarks = o.landmarks_from == "stereo";
-    k.seed = o.seed;
-    k.truth = o.truth;
-    k.score_overlap = o.score_overlap;
-    k.frame_period = o.frame_period;
-    k.synthetic_count = o.synthetic_count;
-    k.flip_bits = o.flip_bits;
-    if (k.stereo_landmarks) {
-        k.pipeline.detector = landmarks::parse_detector(o.corners);
-        k.pipeline.descriptor = landmarks::parse_descriptor(o.descriptor_name);
-        k.pipeline.grid = {o.g, o.h};
-        k.pipeline.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
-        k.pipeline.corners.progress = true;
-    }
-    k.progress = [](const std::string& line) { std::fprintf(stderr, "slam: %s\n", line.c_str()); };
-    return k;
-}
 
 /// The flags that choose the source of the pairs, the ground truth and the timestamps.
 std::string source_flags(const SlamCommand& o, const std::string& sequence) {
@@ -135,7 +92,7 @@ std::string source_flags(const SlamCommand& o, const std::string& sequence) {
         for (const auto& f : o.left) s += " --left '" + f + "'";
         for (const auto& f : o.right) s += " --right '" + f + "'";
     }
-    if (!o.truth.empty()) s += " --truth " + o.truth;
+    if (!o.truth.empty()) s += " --truth " + o.truth + " --truth-time-tolerance " + num(o.truth_time_tolerance);
     if (o.score_overlap) s += " --score-overlap";
     return s + " --frame-period " + num(o.frame_period);
 }
@@ -256,6 +213,50 @@ void run_sequences(const SlamCommand& o) {
 }
 
 }  // namespace
+
+KittiRunOptions kitti_options(const SlamCommand& o) {
+    KittiRunOptions k;
+    AssociationConfig& ac = k.association;
+    ac.method = o.association == "nearest" ? AssociationMethod::Nearest : AssociationMethod::Jcbb;
+    ac.gate_probability = o.gate;
+    ac.joint_probability = o.joint_gate;
+    ac.max_hamming_fraction = o.max_hamming_fraction;
+    ac.check_descriptor = o.descriptor;
+    ac.forget_after = o.forget_after;
+    ac.max_observations = o.max_observations;
+    ac.noise_at_prediction = o.noise_at_prediction;
+    VisualOdometryConfig& vc = k.vo;
+    vc.max_hamming_fraction = o.vo_hamming_fraction;
+    vc.min_inliers = o.vo_min_inliers;
+    vc.max_range = o.vo_max_range;
+    vc.residual = o.vo_residual == "top-view" ? OdometryResidual::top_view : OdometryResidual::pixels;
+    vc.estimate_disparity_offset = o.vo_disparity_offset;
+    vc.level = o.vo_level;
+    vc.noise_from_residuals = o.vo_measured_noise;
+    vc.two_view_points = o.vo_two_view;
+    SyntheticOdometry& so = k.synthetic;
+    if (o.sigma_dx) so.sigma_dx = *o.sigma_dx;
+    so.sigma_dy = o.sigma_dy;
+    if (o.sigma_dtheta_deg) so.sigma_dtheta = *o.sigma_dtheta_deg * deg;
+    k.visual_odometry = o.odometry == "visual";
+    k.stereo_landmarks = o.landmarks_from == "stereo";
+    k.seed = o.seed;
+    k.truth = o.truth;
+    k.score_overlap = o.score_overlap;
+    k.frame_period = o.frame_period;
+    k.truth_time_tolerance = o.truth_time_tolerance;
+    k.synthetic_count = o.synthetic_count;
+    k.flip_bits = o.flip_bits;
+    if (k.stereo_landmarks) {
+        k.pipeline.detector = landmarks::parse_detector(o.corners);
+        k.pipeline.descriptor = landmarks::parse_descriptor(o.descriptor_name);
+        k.pipeline.grid = {o.g, o.h};
+        k.pipeline.corners.formats = (o.config.empty() ? Formats{} : formats_from_file(o.config));
+        k.pipeline.corners.progress = true;
+    }
+    k.progress = [](const std::string& line) { std::fprintf(stderr, "slam: %s\n", line.c_str()); };
+    return k;
+}
 
 void run_slam_command(const SlamCommand& o, const cluster::JobRunner& runner) {
     if (runner.sharded() && !o.simulate)

@@ -50,8 +50,13 @@ struct SlamCommand {
     // a rig's pairs instead of a KITTI-layout sequence, the ground truth, the timestamps
     std::vector<std::string> left, right;
     bool score_overlap = KittiRunOptions{}.score_overlap;
-    double frame_period = KittiRunOptions{}.frame_period;
+    double frame_period = KittiRunOptions{}.frame_period, truth_time_tolerance = KittiRunOptions{}.truth_time_tolerance;
 };
+
+/// The options of a KITTI-layout or rig run (run_kitti_sequence, run_rig_sequence) as the command
+/// fills them from its settings: kitti_options(SlamCommand{}) is the command's defaults. Parses
+/// the corner source and descriptor names (InputError for unknown ones).
+KittiRunOptions kitti_options(const SlamCommand& c);
 
 /// Runs the simulation or the sequences, writes the reports into c.out and prints their
 /// figures. InputError for bad input (including sharding flags without --simulate).

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # slam_cli_bad_input.sh: `harris-cosim slam` refuses bad input with a message naming it and
 # exit status 2: a non-positive noise, an empty world, a sequence without poses or pairs, a
-# ground truth that cannot be read, and a run that is not exactly one of --simulate, --sequences
+# ground truth that cannot be read, a ground-truth time tolerance that is not positive, and a run that is not exactly one of --simulate, --sequences
 # and a rig's --calib --left --right.
 # usage: slam_cli_bad_input.sh HARRIS_COSIM WORK_DIR
 set -u
@@ -39,6 +39,7 @@ expect2 "unknown odometry" "neither visual nor synthetic" --sequences 05 --kitti
 expect2 "unknown association" "neither jcbb nor nearest" --sequences 05 --kitti "$work/kitti1" --association greedy
 expect2 "unknown odometry residual" "neither pixels nor top-view" --sequences 05 --kitti "$work/kitti1" --vo-residual depth
 expect2 "a seed for deterministic visual odometry" "deterministic" --sequences 05 --kitti "$work/kitti1" --landmarks-from stereo --seed 3
+expect2 "zero ground-truth time tolerance" "--truth-time-tolerance must be positive" --sequences 05 --kitti "$work/kitti1" --truth-time-tolerance 0
 expect2 "Hamming fraction above 1" "max-hamming-fraction" --sequences 05 --kitti "$work/kitti1" --max-hamming-fraction 2
 expect2 "unknown world" "neither cloister nor random" --simulate --world maze
 expect2 "negative runs" "--runs" --simulate --runs -1

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <optional>
 #include <sstream>
 
@@ -187,7 +188,70 @@ TEST_CASE("TUM timestamps are the sequence's times.txt, or frame index times the
                       Catch::Contains("2 timestamps") && Catch::Contains("6 frames"));
 }
 
-TEST_CASE("a rig's plain images with a rig file from calib.txt give the KITTI-layout run", "[slam][kitti]") {
+TEST_CASE("a TUM ground truth is paired with the frames by timestamp when the sequence has a times.txt", "[slam][kitti]") {
+    const std::vector<double> times = {0, 0.103634, 0.207269, 0.310904, 0.414538, 0.518173};
+    std::ostringstream t;
+    t << std::setprecision(9);
+    for (double v : times) t << v << "\n";
+    const fs::path root = kitti_layout("tum_by_time", "", t.str());
+    // KITTI 01's first poses at the frames' times give or take 4 ms, a decoy 100 m off 50 ms after
+    // each, and the lines in reverse order: only the timestamps can pair them
+    const auto poses = read_kitti_poses(g_kitti / "poses/01.txt");
+    std::vector<Mat34> tum_poses;
+    std::vector<double> tum_times;
+    for (int k = 0; k < kPairs; ++k) {
+        tum_poses.push_back(poses[static_cast<size_t>(k)]);
+        tum_times.push_back(times[static_cast<size_t>(k)] + (k % 2 ? 0.004 : -0.004));
+        Mat34 decoy = poses[static_cast<size_t>(k)];
+        decoy(0, 3) += 100;
+        tum_poses.push_back(decoy);
+        tum_times.push_back(times[static_cast<size_t>(k)] + 0.05);
+    }
+    std::istringstream lines(tum_trajectory(tum_poses, tum_times));
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(lines, line);) rows.push_back(line);
+    KittiRunOptions o = defaults();
+    o.truth = g_work / "tum_by_time.txt";
+    {
+        std::ofstream f(o.truth);
+        f << "# timestamp tx ty tz qx qy qz qw\n";
+        for (auto it = rows.rbegin(); it != rows.rend(); ++it) f << *it << "\n";
+    }
+    const KittiRun r = run_kitti_sequence(root, "01", o);
+    const SequenceRun& by_file = scored_run().run;   // the same poses from poses/01.txt in file order
+    REQUIRE(r.run.truth.size() == kPairs);
+    CHECK(r.run.truth_pairing.find("by timestamp") != std::string::npos);
+    CHECK(by_file.truth_pairing == "in file order");
+    for (int k = 0; k < kPairs; ++k) {
+        INFO("frame " << k);
+        CHECK((r.run.truth[k] - by_file.truth[k]).norm() < 1e-6);
+    }
+    CHECK(r.run.slam_metrics.ape == Approx(by_file.slam_metrics.ape).margin(1e-6));
+    CHECK(nlohmann::json::parse(text_of(report_of(r.run, "tum_by_time") / "summary.json"))["truth_pairing"] ==
+          r.run.truth_pairing);
+    // a tolerance below the 4 ms: frame 0 has no pose within it
+    o.truth_time_tolerance = 0.003;
+    CHECK_THROWS_WITH(run_kitti_sequence(root, "01", o),
+                      Catch::Contains("tum_by_time.txt") && Catch::Contains("frame 0") && Catch::Contains("0.003 s"));
+    // a ground truth that ends after frame 3 (4 ms tolerance kept): frame 4 refused, or the
+    // first 4 frames scored with score_overlap
+    o.truth_time_tolerance = 0.02;
+    o.truth = g_work / "tum_first_four.txt";
+    std::ofstream(o.truth) << tum_trajectory(std::vector<Mat34>(tum_poses.begin(), tum_poses.begin() + 8),
+                                             std::vector<double>(tum_times.begin(), tum_times.begin() + 8));
+    CHECK_THROWS_WITH(run_kitti_sequence(root, "01", o), Catch::Contains("frame 4") && Catch::Contains("--score-overlap"));
+    o.score_overlap = true;
+    const KittiRun four = run_kitti_sequence(root, "01", o);
+    CHECK(four.run.truth.size() == 4);
+    CHECK(four.run.estimate.size() == kPairs);
+    // without a times.txt the same TUM file is paired in file order: 12 poses for 6 pairs
+    o.score_overlap = false;
+    o.truth = g_work / "tum_by_time.txt";
+    CHECK_THROWS_WITH(run_kitti_sequence(kitti_layout("tum_no_times", "", ""), "01", o),
+                      Catch::Contains("12 poses") && Catch::Contains("6 stereo pairs"));
+}
+
+TEST_CASE("a rig's plain images with a rig file from calib.txt give the KITTI-layout run, pair by pair", "[slam][kitti]") {
     // the rig: calib.txt's rectified pair as calibrate's YAML, zero distortion, identity
     // rotations, marked unrectified so that every keypoint goes through cv::undistortPoints
     hc::calib::Calibration c = hc::calib::read_kitti_calib(g_kitti / "sequences/01/calib.txt");
@@ -222,6 +286,35 @@ TEST_CASE("a rig's plain images with a rig file from calib.txt give the KITTI-la
     CHECK(worst < 1e-3);
     CHECK(rig.run.slam_metrics.ape == Approx(kitti.slam_metrics.ape).margin(1e-3));
     CHECK(rig.run.timestamps_from.find("frame index") != std::string::npos);
+    // read pair by pair, the same bits as the pairs read all at once (landmarks::open_dataset)
+    // and run through the filter held (run_visual_sequence), on OpenCV's corners and the spec
+    // model's (whose threshold is carried from pair to pair)
+    for (const auto corners : {hc::landmarks::Detector::opencv, hc::landmarks::Detector::spec}) {
+        KittiRunOptions oc = o;
+        oc.pipeline.detector = corners;
+        hc::landmarks::DatasetChoice choice;
+        choice.calib = rig_file.string();
+        choice.left = {left.string()};
+        choice.right = {(right / "*.png").string()};
+        fs::path root;
+        const hc::landmarks::Dataset ds = hc::landmarks::open_dataset(choice, root);
+        VisualOdometryConfig vo = oc.vo;
+        vo.rig = ds.calib.front();
+        std::vector<Pose> planar;
+        for (const auto& T : read_trajectory_file(oc.truth)) planar.push_back(planar_pose(T));
+        const SequenceRun held = run_visual_sequence(landmark_frames(ds, oc.pipeline), planar, vo, oc.association);
+        const SequenceRun streamed = run_rig_sequence({rig_file.string(), {left.string()}, {(right / "*.png").string()}}, oc).run;
+        INFO("corners " << hc::landmarks::detector_name(corners));
+        REQUIRE(streamed.estimate.size() == held.estimate.size());
+        for (size_t k = 0; k < held.estimate.size(); ++k) {
+            CHECK(streamed.estimate[k] == held.estimate[k]);
+            CHECK(streamed.pose_cov[k] == held.pose_cov[k]);
+            CHECK(streamed.estimate_3d[k] == held.estimate_3d[k]);
+            CHECK(streamed.frames[k].observed == held.frames[k].observed);
+        }
+        CHECK(streamed.slam_metrics.ape == held.slam_metrics.ape);
+        CHECK(streamed.odometry_metrics.ape == held.odometry_metrics.ape);
+    }
     // the rig without its calibration, and a left list of another length, are refused
     CHECK_THROWS_WITH(run_rig_sequence({"", {left.string()}, {right.string()}}, o), Catch::Contains("--calib"));
     CHECK_THROWS_WITH(run_rig_sequence({rig_file.string(), {left.string()}, {(right / "00000[0-2].png").string()}}, o),

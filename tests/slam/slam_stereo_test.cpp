@@ -242,3 +242,52 @@ TEST_CASE("on a synthetic curved drive EKF-SLAM beats dead reckoning with the sa
     CHECK(r.ate_slam < 0.5 * r.ate_dead_reckoning);
     CHECK(r.estimate.size() == 80);
 }
+
+namespace {
+/// Every field of two metrics equal to the last bit (NaN equal to NaN in the per-frame NEES).
+void check_same_metrics(const TrajectoryMetrics& a, const TrajectoryMetrics& b) {
+    CHECK(a.ape == b.ape);
+    CHECK(a.ape_se2 == b.ape_se2);
+    CHECK(a.rpe == b.rpe);
+    CHECK(a.rpe_heading == b.rpe_heading);
+    CHECK(a.path_length == b.path_length);
+    CHECK(a.final_error == b.final_error);
+    CHECK(a.nees_mean == b.nees_mean);
+    CHECK(a.nees_frames == b.nees_frames);
+    CHECK(a.nees_lo == b.nees_lo);
+    CHECK(a.nees_hi == b.nees_hi);
+    CHECK(a.nees_within_95 == b.nees_within_95);
+    REQUIRE(a.nees.size() == b.nees.size());
+    for (size_t k = 0; k < a.nees.size(); ++k) {
+        INFO("frame " << k);
+        CHECK(((std::isnan(a.nees[k]) && std::isnan(b.nees[k])) || a.nees[k] == b.nees[k]));
+    }
+}
+}  // namespace
+
+TEST_CASE("a run's metrics summed as frames come are score_trajectory's on its poses to the last bit", "[slam]") {
+    const auto poses = arc_poses(60, 0.01);
+    const auto frames = synthesize_stereo_frames(poses, synthetic_rig(), {}, 300, 8, 3);
+    const SequenceRun r = run_sequence(poses, frames, SyntheticOdometry{}, AssociationConfig{}, 5);
+    REQUIRE(r.truth.size() == 60);
+    check_same_metrics(r.slam_metrics, score_trajectory(r.estimate, r.truth, r.pose_cov));
+    // the odometry alone, with its covariance integrated from the motions' (zero at the start)
+    std::vector<Mat3> dr_cov{Mat3::Zero()};
+    for (size_t k = 0; k + 1 < r.truth.size(); ++k) {
+        Mat3 R_r, R_u;
+        compose(r.dead_reckoning[k], r.odometry[k], &R_r, &R_u);
+        dr_cov.push_back(R_r * dr_cov.back() * R_r.transpose() + R_u * r.odometry_cov[k] * R_u.transpose());
+    }
+    check_same_metrics(r.odometry_metrics, score_trajectory(r.dead_reckoning, r.truth, dr_cov));
+    // both start at the true pose with P = 0: frame 0 has no NEES
+    CHECK(r.slam_metrics.nees_frames == 59);
+    CHECK(std::isnan(r.slam_metrics.nees.front()));
+    CHECK(std::isnan(r.odometry_metrics.nees.front()));
+    // the running sums alone: no SE(2) alignment, no per-frame NEES; nothing before a frame
+    TrajectoryScore score;
+    CHECK_THROWS_AS(score.metrics(), std::invalid_argument);
+    for (size_t k = 0; k < r.truth.size(); ++k) score.add(r.estimate[k], r.truth[k], &r.pose_cov[k]);
+    CHECK(score.metrics().ape == r.slam_metrics.ape);
+    CHECK(score.metrics().ape_se2 == 0);
+    CHECK(score.metrics().nees.empty());
+}
