@@ -13,6 +13,8 @@
 #include "model/harris/find_max.hpp"
 #include "model/harris/local_maximum.hpp"
 #include "model/harris/sobel_x.hpp"
+#include "io/util/errors.hpp"
+#include "sweep/ranges_command.hpp"
 #include "sweep/stage_equivalence.hpp"
 
 using namespace hc;
@@ -167,4 +169,39 @@ TEST_CASE("resp_w 27: harris_response's netlist differs from the VHDL at an over
     // one of them (all three are not negative there) needs more than 27 signed bits
     CHECK(std::max({x.at("ac"), x.at("bb"), x.at("ktr2")}) >= (std::int64_t{1} << 26));
     CHECK(p.assumed.rfind("ac, bb, ktr2 are step 1's of a_prev, b_prev, c_prev; ", 0) == 0);
+}
+
+TEST_CASE("ranges --rtl: the stage proofs run on a mutated copy of rtl/ give its counterexample", "[stages]") {
+    const util::ScratchDir dir;
+    RangesCommand c;
+    c.no_netlist = true;
+    c.ro.solver_rlimit = 0;
+    c.stages = (dir.path() / "stages").string();
+    c.json = (dir.path() / "ranges.json").string();
+    c.out = (dir.path() / "ranges.md").string();
+    // threshold keeps a response equal to thr; the mutant drops it
+    c.rtl = mutated_rtl(dir.path(), "threshold.vhd", "r0_delay >= thr", "r0_delay > thr").string();
+    run_ranges_command(c);
+    const auto j = nlohmann::json::parse(util::read_file(c.json));
+    REQUIRE(j.size() == 1);
+    const auto& stages = j[0].at("stages").at("stages");
+    REQUIRE(stages.size() == static_cast<size_t>(kEqStageCount));
+    for (const auto& st : stages) {
+        INFO(st.at("stage") << ": " << st.at("detail"));
+        CHECK(st.at("verdict") == (st.at("stage") == "threshold" ? "counterexample" : "proven equal"));
+    }
+    // the counterexample is a tie (r0_delay = thr): the model keeps it, the mutant zeroes it
+    const auto& cx = stages[static_cast<int>(EqStage::threshold)].at("counterexample");
+    CHECK(cx.at("r0_delay") == cx.at("thr"));
+    CHECK(cx.at("r0_delay") != 0);
+    // the proof kept its queries under DIR/<configuration>/<stage>
+    CHECK(fs::exists(dir.path() / "stages" / "thesis" / "threshold" / "query-2.smt2"));
+    // the project's rtl/ proves the same stage equal
+    CHECK(prove_stage(EqStage::threshold, Formats{}, {}).verdict == EqVerdict::equal);
+    // bad input: a directory without the VHDL, or --rtl without --stages
+    c.rtl = (dir.path() / "no-such-rtl").string();
+    CHECK_THROWS_AS(run_ranges_command(c), InputError);
+    c.rtl = mutated_rtl(dir.path() / "again", "threshold.vhd", "r0_delay >= thr", "r0_delay > thr").string();
+    c.stages.clear();
+    CHECK_THROWS_AS(run_ranges_command(c), InputError);
 }
