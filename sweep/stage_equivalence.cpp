@@ -197,9 +197,28 @@ std::vector<T> model_outputs(EqStage s, const std::vector<T>& in, const Formats&
 
 // ---- the netlist -----------------------------------------------------------------------
 
+/// GHDL 2.0 writes a constant wider than 32 bits as a quoted string of its bits ("1000...0"),
+/// which Verilog reads as text, 8 bits per character: each such string as a sized binary
+/// literal (38'b1000...0), the constant GHDL's netlist holds.
+std::string sized_bit_literals(const std::string& verilog) {
+    std::string out;
+    size_t at = 0;
+    for (size_t q = verilog.find('"'); q != std::string::npos; q = verilog.find('"', at)) {
+        const size_t end = verilog.find('"', q + 1);
+        if (end == std::string::npos) break;
+        const std::string bits = verilog.substr(q + 1, end - q - 1);
+        const bool binary = !bits.empty() && bits.find_first_not_of("01") == std::string::npos;
+        out += verilog.substr(at, q - at) + (binary ? fmt::format("{}'b{}", bits.size(), bits) : verilog.substr(q, end - q + 1));
+        at = end + 1;
+    }
+    return out + verilog.substr(at);
+}
+/// The shell command that makes <entity>-sized.v as sized_bit_literals does.
+constexpr const char* kSizedCommand = R"(perl -pe "s/\"([01]+)\"/length(\$1).\"'b\$1\"/ge")";
+
 /// The yosys script: the wrapper over GHDL's module, registers everted into inputs (.q) and outputs (.d).
 std::string eq_script(const std::string& entity) {
-    return "read_verilog " + entity + ".v stage.v\nhierarchy -top stage\nproc\nflatten\nopt -nosdff -nodffe\n"
+    return "read_verilog " + entity + "-sized.v stage.v\nhierarchy -top stage\nproc\nflatten\nopt -nosdff -nodffe\n"
            // every register must have folded to a plain flop (enables and resets tied)
            "select -assert-none t:$*latch* t:$sr t:$mem* t:$*dff* t:$dff %d\n"
            "opt_clean -purge\nexpose -evert-dff\nopt_clean\nselect -assert-none t:$dff\n"
@@ -223,6 +242,7 @@ std::string synthesise(const Spec& sp, const Formats& f, const Geometry& geo, co
     const fs::path log = dir / "synth.log";
     if (util::run_process(argv, {.log = log, .stdout_file = dir / (sp.entity + ".v")}) != 0)
         throw SimulatorError("ghdl --synth of " + sp.entity + " failed: " + util::log_tail(log, 1500));
+    util::write_file_atomic(dir / (sp.entity + "-sized.v"), sized_bit_literals(util::read_file(dir / (sp.entity + ".v"))));
     util::write_file_atomic(dir / "stage.v", sp.wrapper);
     util::write_file_atomic(dir / "stage.ys", eq_script(sp.entity));
     const fs::path ylog = dir / "yosys.log";
@@ -230,9 +250,10 @@ std::string synthesise(const Spec& sp, const Formats& f, const Geometry& geo, co
     if (util::run_process({"yosys", "-q", "-s", "stage.ys"}, {.cwd = dir, .log = ylog}) != 0)
         throw SimulatorError("yosys could not write " + sp.entity + "'s transition as SMT-LIB: " + util::log_tail(ylog, 1500));
     util::write_file_atomic(dir / "commands.txt",
-                            fmt::format("ghdl --synth --std=08 --workdir=work{} --out=verilog{} -e {} > {}.v\n"
+                            fmt::format("ghdl --synth --std=08 --workdir=work{0} --out=verilog{1} -e {2} > {2}.v\n"
+                                        "{3} {2}.v > {2}-sized.v    # bit strings as sized literals\n"
                                         "yosys -q -s stage.ys    # writes stage.smt2\n",
-                                        gens, sources, sp.entity, sp.entity));
+                                        gens, sources, sp.entity, kSizedCommand));
     return util::read_file(dir / "stage.smt2");
 }
 

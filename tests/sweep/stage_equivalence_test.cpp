@@ -104,6 +104,33 @@ TEST_CASE("find_max: the comparison flipped in a copy of the VHDL yields a count
     CHECK(util::read_file(o.dir / "commands.txt").find("-gIMG_WIDTH=10 -gIMG_HEIGHT=8") != std::string::npos);
 }
 
+TEST_CASE("find_max at a 38-bit response: GHDL's bit-string constants are read as sized literals, and it proves equal", "[stages]") {
+    const util::ScratchDir dir;
+    Formats f;   // tight-m3-b2 of sweep/configs/bit-widths.json
+    f.m_drop = 3;
+    f.bf_sum_w = 22;
+    f.bf_drop = 2;
+    f.ktr_w = 35;
+    f.resp_w = 38;
+    StageOptions o;
+    o.dir = dir.path();
+    const StageProof p = prove_stage(EqStage::find_max, f, o);
+    INFO(p.detail);
+    CHECK(p.verdict == EqVerdict::equal);
+    // GHDL wrote the most negative value as a string, which Verilog reads as text
+    const std::string most_negative(37, '0');
+    CHECK(util::read_file(dir.path() / "find_max.v").find("\"1" + most_negative + "\"") != std::string::npos);
+    const std::string sized = util::read_file(dir.path() / "find_max-sized.v");
+    CHECK(sized.find("38'b1" + most_negative) != std::string::npos);
+    CHECK(sized.find('"') == std::string::npos);
+    // the command in commands.txt makes the same file
+    const std::string cmds = util::read_file(dir.path() / "commands.txt");
+    const size_t from = cmds.find("perl "), to = cmds.find(" > find_max-sized.v");
+    REQUIRE(from != std::string::npos);
+    REQUIRE(util::run_process({"sh", "-c", cmds.substr(from, to - from) + " > again.v"}, {.cwd = dir.path()}) == 0);
+    CHECK(util::read_file(dir.path() / "again.v") == sized);
+}
+
 TEST_CASE("local_maximum: a strict comparison made non-strict in a copy of the VHDL yields a tie as counterexample", "[stages]") {
     const util::ScratchDir dir;
     StageOptions o;
