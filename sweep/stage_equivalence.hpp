@@ -2,7 +2,8 @@
 // for every input, at a configuration's generics.
 //
 // For one datapath entity and one Formats: GHDL synthesises the entity at the configuration's
-// generics, yosys ties its write, enable and reset ports to their active and inactive levels,
+// generics (a constant wider than 32 bits, which GHDL writes as a quoted bit string, read as a
+// sized literal), yosys ties its write, enable and reset ports to their active and inactive levels,
 // turns every register into an input (its current value, <reg>.q) and an output (its next
 // value, <reg>.d) (`expose -evert-dff`) and writes the transition as SMT-LIB. The model's
 // stage function (model/harris/*.hpp) runs on SmtWord over the same inputs and current
