@@ -233,8 +233,9 @@ struct StageNetlists {
     std::string chain, block, response;   ///< SMT-LIB texts (modules chain, stage_block, stage_response)
     std::string commands;                 ///< the GHDL and yosys commands that made them
 };
-/// The generics of stage entity `e` at formats `f` as GHDL flags ("-gSOBEL_W=11", ...): each entity takes only its own.
-std::vector<std::string> entity_generics(const std::string& e, const Formats& f);
+/// The generics of stage entity `e` at formats `f` as GHDL flags ("-gSOBEL_W=11", ...): each entity takes only its own
+/// (find_max also the image size `g` its period is built for).
+std::vector<std::string> entity_generics(const std::string& e, const Formats& f, const Geometry& g = {});
 /// Synthesises in `dir` (kept; commands.txt: the commands). SimulatorError when GHDL or yosys is missing or fails.
 StageNetlists stage_netlists(const Formats& f, const std::filesystem::path& dir);
 /// The netlist's value (hardware, as RegisterRange's questions read it) of every register it

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cosim/cosim.hpp"
 #include "model/util/util.hpp"
 #include "model/harris/formats_json.hpp"
 #include "sweep/stage_equivalence.hpp"
@@ -18,6 +19,11 @@ namespace hc::sweep {
 void run_ranges_command(const RangesCommand& c) {
     if (!c.config.empty() && !c.spec.empty()) throw InputError("ranges: --config and --spec exclude each other");
     if (c.pixel_max > 255) throw InputError("ranges: --pixel-max " + std::to_string(c.pixel_max) + " is above 255");
+    if (!c.rtl.empty()) {
+        if (c.stages.empty()) throw InputError("ranges: --rtl " + c.rtl + " names the VHDL of the stage proofs: give --stages DIR too");
+        for (const auto& f : cosim::rtl_sources(c.rtl))
+            if (!fs::is_regular_file(f)) throw InputError("ranges: --rtl " + c.rtl + " has no " + f.filename().string());
+    }
     std::vector<Config> configs;
     if (!c.spec.empty()) configs = load_sweep_spec(c.spec).configs;
     else configs.push_back({c.config.empty() ? "thesis" : fs::path(c.config).stem().string(),
@@ -40,6 +46,7 @@ void run_ranges_command(const RangesCommand& c) {
             StageOptions so;
             so.dir = fs::path(c.stages) / file_stem(cfg.name);
             so.config = cfg.name;
+            so.rtl_dir = c.rtl;
             const StageEquivalence se = stage_equivalence(cfg.formats, so);
             std::fprintf(stderr, "ranges: %s: stages: %s\n", cfg.name.c_str(), se.summary().c_str());
             for (const auto& p : se.stages)

@@ -17,6 +17,7 @@ struct RangesCommand {
     bool no_netlist = false;
     std::string netlist_dir;
     std::string stages;   ///< --stages DIR: stage equivalence too, its netlists and queries kept under DIR/<config>/<stage>
+    std::string rtl;      ///< --rtl DIR: the VHDL the stage proofs synthesise (empty: the project's rtl/)
 };
 
 /// Analyses every configuration, writes --json, --out (else prints the Markdown) and the

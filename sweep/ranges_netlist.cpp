@@ -545,14 +545,15 @@ std::vector<SignedShrink> signed_shrinks(const RangeReport& rep) {
     return v;
 }
 
-std::vector<std::string> entity_generics(const std::string& e, const Formats& f) {
+std::vector<std::string> entity_generics(const std::string& e, const Formats& f, const Geometry& geo) {
     std::vector<std::pair<const char*, int>> g;
     if (e == "sobel_x" || e == "sobel_y") g = {{"SOBEL_W", f.sobel_w}};
     if (e == "m_products") g = {{"SOBEL_W", f.sobel_w}, {"M_PROD_W", f.m_prod_w}, {"M_DROP", f.m_drop}};
     if (e == "block_filter") g = {{"IN_W", f.m_w()}, {"BF_SUM_W", f.bf_sum_w}, {"BF_DROP", f.bf_drop}};
     if (e == "harris_response")
         g = {{"BF_W", f.bf_w()}, {"RESP_W", f.resp_w}, {"KTR_W", f.ktr_w}, {"K_SHIFT1", f.k_shift1}, {"K_SHIFT2", f.k_shift2}};
-    if (e == "threshold") g = {{"RESP_W", f.resp_w}};
+    if (e == "threshold" || e == "local_maximum") g = {{"RESP_W", f.resp_w}};
+    if (e == "find_max") g = {{"IMG_WIDTH", geo.width}, {"IMG_HEIGHT", geo.height}, {"RESP_W", f.resp_w}};
     std::vector<std::string> v;
     for (const auto& [name, val] : g) v.push_back(fmt::format("-g{}={}", name, val));
     return v;

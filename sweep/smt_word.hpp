@@ -4,6 +4,7 @@
 // stage-equivalence proofs (stage_equivalence.cpp) run the model's own stage functions on it.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -59,7 +60,25 @@ struct SmtWord {
                                                : static_cast<std::uint64_t>(v) & ((std::uint64_t{1} << width) - 1);
         return def(fmt::format("(_ bv{} {})", bits, width), width, true);
     }
+    /// numeric_std's to_signed(v, width) (the stage functions' T::sgn)
+    static SmtWord sgn(std::int64_t v, int width) { return constant(v, width); }
+    /// The most negative value of a signed width: '1' followed by zeros.
+    static SmtWord most_negative(int width) {
+        return def(fmt::format("(concat #b1 (_ bv0 {}))", width - 1), width, true);
+    }
     int width() const { return w; }
+};
+
+/// A Boolean term of the query: what a comparison of two SmtWords gives, and what the stage
+/// functions' choose() and && take (model/harris/types.hpp). Not convertible to bool.
+struct SmtBool {
+    std::string e;
+    static SmtBool def(const std::string& expr) {
+        SmtQuery& q = *smt_query;
+        std::string name = fmt::format("t{}", q.next++);
+        q.text += fmt::format("(define-fun {} () Bool {})\n", name, expr);
+        return {name};
+    }
 };
 
 inline SmtWord extend(const SmtWord& x, int n) {
@@ -95,5 +114,35 @@ inline SmtWord operator+(const SmtWord& a, const SmtWord& b) { return binary("bv
 inline SmtWord operator-(const SmtWord& a, const SmtWord& b) { return binary("bvsub", a, b, std::max(a.w, b.w)); }
 inline SmtWord operator-(const SmtWord& a) { return SmtWord::def(fmt::format("(bvneg {})", a.e), a.w, true); }
 inline SmtWord operator*(const SmtWord& a, const SmtWord& b) { return binary("bvmul", a, b, a.w + b.w); }   // full precision
+
+/// numeric_std's comparison: both sides extended to the wider width, signed where `a` is.
+inline SmtBool compare(const char* signed_op, const char* unsigned_op, const SmtWord& a, const SmtWord& b) {
+    if (a.s != b.s) throw std::logic_error("SmtWord: a comparison of a signed with an unsigned word");
+    const int n = std::max(a.w, b.w);
+    const SmtWord x = extend(a, n), y = extend(b, n);
+    return SmtBool::def(fmt::format("({} {} {})", a.s ? signed_op : unsigned_op, x.e, y.e));
+}
+inline SmtBool operator<(const SmtWord& a, const SmtWord& b) { return compare("bvslt", "bvult", a, b); }
+inline SmtBool operator>(const SmtWord& a, const SmtWord& b) { return compare("bvsgt", "bvugt", a, b); }
+inline SmtBool operator<=(const SmtWord& a, const SmtWord& b) { return compare("bvsle", "bvule", a, b); }
+inline SmtBool operator>=(const SmtWord& a, const SmtWord& b) { return compare("bvsge", "bvuge", a, b); }
+inline SmtBool operator&&(const SmtBool& a, const SmtBool& b) { return SmtBool::def(fmt::format("(and {} {})", a.e, b.e)); }
+
+/// `c ? a : b` on the query (the stage functions' choose, model/harris/types.hpp).
+inline SmtWord choose(const SmtBool& c, const SmtWord& a, const SmtWord& b) {
+    if (a.w != b.w || a.s != b.s) throw std::logic_error("SmtWord: choose between words of different types");
+    return SmtWord::def(fmt::format("(ite {} {} {})", c.e, a.e, b.e), a.w, a.s);
+}
+/// The constant `v` at x's width and signedness (the stage functions' constant_like); a value
+/// that does not fit is a logic_error.
+inline SmtWord constant_like(const SmtWord& x, std::int64_t v) {
+    const bool fits = x.w >= 63 || (x.s ? v >= -(std::int64_t{1} << (x.w - 1)) && v < (std::int64_t{1} << (x.w - 1))
+                                        : v >= 0 && v < (std::int64_t{1} << x.w));
+    if (!fits) throw std::logic_error(fmt::format("SmtWord: {} does not fit a {}-bit word", v, x.w));
+    const SmtWord c = SmtWord::constant(v, x.w);
+    return {c.e, c.w, x.s};
+}
+/// A condition as a one-bit unsigned word ('1' where it holds).
+inline SmtWord as_bit(const SmtBool& c) { return SmtWord::def(fmt::format("(ite {} #b1 #b0)", c.e), 1, false); }
 
 }  // namespace hc::sweep

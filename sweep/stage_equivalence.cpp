@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <limits>
-#include <set>
 #include <sstream>
 #include <type_traits>
 
@@ -16,8 +15,10 @@
 #include "model/util/util.hpp"
 #include "model/fixed/word.hpp"
 #include "model/harris/block_filter.hpp"
+#include "model/harris/find_max.hpp"
 #include "model/harris/formats_json.hpp"
 #include "model/harris/harris_response.hpp"
+#include "model/harris/local_maximum.hpp"
 #include "model/harris/m_products.hpp"
 #include "model/harris/sobel_x.hpp"
 #include "model/harris/sobel_y.hpp"
@@ -37,18 +38,21 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 
 // ---- the stages ------------------------------------------------------------------------
 
-/// One input of a stage: the name of its variable in the query, its term on the netlist,
-/// its width and signedness, and the registers whose range is its domain (none: any value).
+/// One input of a stage: the name of its variable in the query, its term on the netlist
+/// ("@<register>": the register's current value), its width (0: the register's width on the
+/// netlist) and signedness, and the registers whose range is its domain (none: any value).
 struct Input {
     std::string name, netlist;
     int w = 1;
     bool is_signed = true;
     std::vector<Reg> domain;
 };
-/// One next register of a stage: its name and the candidate names of its `.d` output on the netlist.
+/// One next register of a stage: its name and the candidate names of its `.d` output on the
+/// netlist; or, `combinational`, an output port of the wrapper (an entity without registers).
 struct Output {
     std::string name;
     std::vector<std::string> netlist;
+    bool combinational = false;
 };
 struct Spec {
     std::string entity, wrapper;
@@ -118,14 +122,29 @@ Spec spec_of(EqStage s, const Formats& f) {
             sp.in = {{"r0", wire("r0"), rw, true, {}}, {"thr", wire("thr"), rw, true, {}}, {"r0_delay", "@u.r0_delay", rw, true, {}}};
             sp.out = {{"r0_delay", {"u.r0_delay"}}, {"r1", {"r1", "u.r1"}}};
             break;
+        case EqStage::find_max:
+            sp.wrapper = fmt::format("module stage(input clk, input signed [{0}:0] response, output signed [{0}:0] max);\n", rw - 1) +
+                         tied(sp.entity, ".en(1'b1), .response(response), .max(max)") + "endmodule\n";
+            sp.in = {{"response", wire("response"), rw, true, {}}, {"count", "@u.count", 0, false, {}},
+                     {"running", "@u.running", rw, true, {}},     {"max", "@u.max", rw, true, {}}};
+            sp.out = {{"count", {"u.count"}}, {"running", {"u.running"}}, {"max", {"max", "u.max"}}};
+            break;
+        case EqStage::local_maximum:
+            sp.wrapper = fmt::format("module stage(input [{}:0] r, output corner);\n  local_maximum u(.r(r), .corner(corner));\nendmodule\n",
+                                     9 * rw - 1);
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) sp.in.push_back({fmt::format("r_{}_{}", i, j), element("r", i, j, rw), rw, true, {}});
+            sp.out = {{"corner", {"corner"}, true}};
+            break;
         case EqStage::count: break;
     }
     return sp;
 }
 
-/// The model's next registers of stage `s` from its inputs (Spec order), on Word or SmtWord.
+/// The model's next registers of stage `s` from its inputs (Spec order), on Word or SmtWord;
+/// `g`: the image size of find_max's period.
 template <class T>
-std::vector<T> model_outputs(EqStage s, const std::vector<T>& in, const Formats& f) {
+std::vector<T> model_outputs(EqStage s, const std::vector<T>& in, const Formats& f, const Geometry& g) {
     const auto m3 = [&](size_t at) {
         std::array<std::array<T, 3>, 3> m;
         for (int i = 0; i < 3; ++i)
@@ -153,11 +172,23 @@ std::vector<T> model_outputs(EqStage s, const std::vector<T>& in, const Formats&
             const ResponseTermsT<T> t = harris_response_terms(in[0], in[1], in[2], f);
             return {t.ac, t.bb, t.ktr2, harris_response(ResponseTermsT<T>{in[3], in[4], in[5]}, f)};
         }
-        case EqStage::threshold: {
-            // r1 <= r0_delay when r0_delay >= thr else 0 (enable high)
-            if constexpr (std::is_same_v<T, Word>) return {in[0], threshold(in[2], in[1])};
-            else
-                return {in[0], T::def(fmt::format("(ite (bvsge {0} {1}) {0} (_ bv0 {2}))", in[2].e, in[1].e, in[2].w), in[2].w, true)};
+        case EqStage::threshold: return {in[0], threshold(in[2], in[1])};   // enable high: r0_delay <= r0
+        case EqStage::find_max: {
+            if constexpr (std::is_same_v<T, Word>) {   // the cycle model's register step
+                FindMax fm(f);
+                fm.count = in[1].value();
+                fm.running = in[2];
+                fm.max = in[3];
+                const FindMax n = fm.next(in[0], g);
+                return {Word::uns(n.count, in[1].width()), n.running, n.max};
+            } else {
+                const FindMaxStep<T, T> n = find_max_step(in[1], in[2], in[3], in[0], g.find_max_period());
+                return {n.count, n.running, n.max};
+            }
+        }
+        case EqStage::local_maximum: {
+            if constexpr (std::is_same_v<T, Word>) return {Word::uns(local_maximum(m3(0)) ? 1 : 0, 1)};
+            else return {as_bit(local_maximum(m3(0)))};
         }
         case EqStage::count: break;
     }
@@ -166,9 +197,28 @@ std::vector<T> model_outputs(EqStage s, const std::vector<T>& in, const Formats&
 
 // ---- the netlist -----------------------------------------------------------------------
 
+/// GHDL 2.0 writes a constant wider than 32 bits as a quoted string of its bits ("1000...0"),
+/// which Verilog reads as text, 8 bits per character: each such string as a sized binary
+/// literal (38'b1000...0), the constant GHDL's netlist holds.
+std::string sized_bit_literals(const std::string& verilog) {
+    std::string out;
+    size_t at = 0;
+    for (size_t q = verilog.find('"'); q != std::string::npos; q = verilog.find('"', at)) {
+        const size_t end = verilog.find('"', q + 1);
+        if (end == std::string::npos) break;
+        const std::string bits = verilog.substr(q + 1, end - q - 1);
+        const bool binary = !bits.empty() && bits.find_first_not_of("01") == std::string::npos;
+        out += verilog.substr(at, q - at) + (binary ? fmt::format("{}'b{}", bits.size(), bits) : verilog.substr(q, end - q + 1));
+        at = end + 1;
+    }
+    return out + verilog.substr(at);
+}
+/// The shell command that makes <entity>-sized.v as sized_bit_literals does.
+constexpr const char* kSizedCommand = R"(perl -pe "s/\"([01]+)\"/length(\$1).\"'b\$1\"/ge")";
+
 /// The yosys script: the wrapper over GHDL's module, registers everted into inputs (.q) and outputs (.d).
 std::string eq_script(const std::string& entity) {
-    return "read_verilog " + entity + ".v stage.v\nhierarchy -top stage\nproc\nflatten\nopt -nosdff -nodffe\n"
+    return "read_verilog " + entity + "-sized.v stage.v\nhierarchy -top stage\nproc\nflatten\nopt -nosdff -nodffe\n"
            // every register must have folded to a plain flop (enables and resets tied)
            "select -assert-none t:$*latch* t:$sr t:$mem* t:$*dff* t:$dff %d\n"
            "opt_clean -purge\nexpose -evert-dff\nopt_clean\nselect -assert-none t:$dff\n"
@@ -176,9 +226,9 @@ std::string eq_script(const std::string& entity) {
 }
 
 /// Synthesises the stage in `dir`: its SMT-LIB text (module `stage`).
-std::string synthesise(const Spec& sp, const Formats& f, const fs::path& dir, const fs::path& rtl_dir) {
+std::string synthesise(const Spec& sp, const Formats& f, const Geometry& geo, const fs::path& dir, const fs::path& rtl_dir) {
     fs::create_directories(dir / "work");
-    const std::vector<std::string> g = entity_generics(sp.entity, f);
+    const std::vector<std::string> g = entity_generics(sp.entity, f, geo);
     std::vector<std::string> argv = {"ghdl", "--synth", "--std=08", "--workdir=" + (dir / "work").string()};
     argv.insert(argv.end(), g.begin(), g.end());
     argv.push_back("--out=verilog");
@@ -192,6 +242,7 @@ std::string synthesise(const Spec& sp, const Formats& f, const fs::path& dir, co
     const fs::path log = dir / "synth.log";
     if (util::run_process(argv, {.log = log, .stdout_file = dir / (sp.entity + ".v")}) != 0)
         throw SimulatorError("ghdl --synth of " + sp.entity + " failed: " + util::log_tail(log, 1500));
+    util::write_file_atomic(dir / (sp.entity + "-sized.v"), sized_bit_literals(util::read_file(dir / (sp.entity + ".v"))));
     util::write_file_atomic(dir / "stage.v", sp.wrapper);
     util::write_file_atomic(dir / "stage.ys", eq_script(sp.entity));
     const fs::path ylog = dir / "yosys.log";
@@ -199,35 +250,40 @@ std::string synthesise(const Spec& sp, const Formats& f, const fs::path& dir, co
     if (util::run_process({"yosys", "-q", "-s", "stage.ys"}, {.cwd = dir, .log = ylog}) != 0)
         throw SimulatorError("yosys could not write " + sp.entity + "'s transition as SMT-LIB: " + util::log_tail(ylog, 1500));
     util::write_file_atomic(dir / "commands.txt",
-                            fmt::format("ghdl --synth --std=08 --workdir=work{} --out=verilog{} -e {} > {}.v\n"
+                            fmt::format("ghdl --synth --std=08 --workdir=work{0} --out=verilog{1} -e {2} > {2}.v\n"
+                                        "{3} {2}.v > {2}-sized.v    # bit strings as sized literals\n"
                                         "yosys -q -s stage.ys    # writes stage.smt2\n",
-                                        gens, sources, sp.entity, sp.entity));
+                                        gens, sources, sp.entity, kSizedCommand));
     return util::read_file(dir / "stage.smt2");
 }
 
-/// The names yosys declares as ports (`; yosys-smt2-input|output NAME W`).
-std::set<std::string> ports_of(const std::string& smt) {
-    std::set<std::string> names;
+/// The ports yosys declares (`; yosys-smt2-input|output NAME W`): their widths by name.
+std::map<std::string, int> ports_of(const std::string& smt) {
+    std::map<std::string, int> names;
     std::istringstream in(smt);
     std::string line;
     for (std::string kind, name; std::getline(in, line);)
         if (line.rfind("; yosys-smt2-input ", 0) == 0 || line.rfind("; yosys-smt2-output ", 0) == 0) {
             std::istringstream l(line.substr(2));
-            l >> kind >> name;
-            names.insert(name);
+            int w = 0;
+            l >> kind >> name >> w;
+            names[name] = w;
         }
     return names;
 }
 
-/// GHDL's register nets by the signal they drive: "assign ac = n32_q; // (signal)" gives ac -> n32_q.
+/// GHDL's register nets by the signal they drive: "assign ac = n32_q; // (signal)" gives ac -> n32_q,
+/// as does a signal with an initial value, "always @*\n    count = n37_q; // (isignal)".
 std::map<std::string, std::string> register_aliases(const std::string& verilog) {
     std::map<std::string, std::string> a;
     std::istringstream in(verilog);
     std::string line;
     while (std::getline(in, line)) {
         std::istringstream l(line);
-        std::string assign, name, eq, net;
-        if (!(l >> assign >> name >> eq >> net) || assign != "assign" || eq != "=") continue;
+        std::string name, eq, net;
+        if (!(l >> name)) continue;
+        if (name == "assign" && !(l >> name)) continue;
+        if (!(l >> eq >> net) || eq != "=") continue;
         if (net.size() > 3 && net.compare(net.size() - 3, 3, "_q;") == 0) a[name] = net.substr(0, net.size() - 1);
     }
     return a;
@@ -235,7 +291,7 @@ std::map<std::string, std::string> register_aliases(const std::string& verilog) 
 
 /// The name under which yosys everted register `base` ("r", "u.ac"): itself, or the GHDL net
 /// it aliases (opt_clean -purge keeps one of the two); "" when the netlist has neither.
-std::string flop(const std::string& base, const std::set<std::string>& ports, const std::map<std::string, std::string>& aliases) {
+std::string flop(const std::string& base, const std::map<std::string, int>& ports, const std::map<std::string, std::string>& aliases) {
     if (ports.count(base + ".d")) return base;
     const size_t dot = base.rfind('.');
     const std::string prefix = dot == std::string::npos ? "" : base.substr(0, dot + 1);
@@ -245,26 +301,33 @@ std::string flop(const std::string& base, const std::set<std::string>& ports, co
 }
 
 /// The stage with its register names resolved on the netlist: every register input's term
-/// (<flop>.q) and every next register's `.d` output (in `next`).
+/// (<flop>.q) and width, and every next register's `.d` output or combinational output port (in `next`).
 Spec resolve(Spec sp, const std::string& netlist, const std::string& verilog, std::vector<std::string>& next) {
-    const std::set<std::string> ports = ports_of(netlist);
+    const std::map<std::string, int> ports = ports_of(netlist);
     const auto aliases = register_aliases(verilog);
     for (auto& x : sp.in) {
         if (x.netlist.rfind("@", 0) != 0) continue;
-        const std::string f = flop(x.netlist.substr(1), ports, aliases);
+        std::string f = flop(x.netlist.substr(1), ports, aliases);
+        // or under one of the names of the next register of the same name ("max": the wrapper's port it drives)
+        for (const auto& o : sp.out)
+            if (o.name == x.name && !o.combinational)
+                for (const auto& c : o.netlist)
+                    if (f.empty()) f = flop(c, ports, aliases);
         if (f.empty())
             throw std::logic_error(fmt::format("stage equivalence: {}'s netlist has no register {}", sp.entity, x.netlist.substr(1)));
         x.netlist = wire(f + ".q");
+        if (x.w == 0) x.w = ports.at(f + ".q");
     }
     next.clear();
     for (const auto& o : sp.out) {
         std::string found;
         for (const auto& c : o.netlist)
-            if (found.empty()) found = flop(c, ports, aliases);
+            if (found.empty()) found = o.combinational ? (ports.count(c) ? c : "") : flop(c, ports, aliases);
         if (found.empty())
-            throw std::logic_error(fmt::format("stage equivalence: {}'s netlist has no next value of {} (looked for {}.d)", sp.entity,
-                                               o.name, o.netlist.front()));
-        next.push_back(found + ".d");
+            throw std::logic_error(fmt::format("stage equivalence: {}'s netlist has no {} of {} (looked for {}{})", sp.entity,
+                                               o.combinational ? "output" : "next value", o.name, o.netlist.front(),
+                                               o.combinational ? "" : ".d"));
+        next.push_back(o.combinational ? found : found + ".d");
     }
     return sp;
 }
@@ -295,8 +358,8 @@ void reachable_registers(EqStage s, const Spec& sp, const std::vector<SmtWord>& 
 }
 
 /// numeric_std (truncate false) or GHDL's truncation of signed shrinks; `domain`: the inputs' assumed ranges.
-Miter miter(EqStage s, const Formats& f, const Spec& sp, const std::string& netlist, const std::vector<std::string>& next,
-            bool truncate, const std::map<std::string, Interval>& domain) {
+Miter miter(EqStage s, const Formats& f, const Geometry& g, const Spec& sp, const std::string& netlist,
+            const std::vector<std::string>& next, bool truncate, const std::map<std::string, Interval>& domain) {
     Miter m;
     m.text = "(set-logic ALL)\n" + netlist + "(declare-fun s () |stage_s|)\n(assert (|stage_h| s))\n";
     std::vector<SmtWord> in;
@@ -323,7 +386,7 @@ Miter miter(EqStage s, const Formats& f, const Spec& sp, const std::string& netl
     std::vector<SmtWord> out;
     try {
         reachable_registers(s, sp, in, f);
-        out = model_outputs<SmtWord>(s, in, f);
+        out = model_outputs<SmtWord>(s, in, f, g);
     } catch (...) {
         smt_query = nullptr;
         throw;
@@ -333,8 +396,10 @@ Miter miter(EqStage s, const Formats& f, const Spec& sp, const std::string& netl
     m.shrinks = q.shrinks;
     std::string any;
     for (size_t k = 0; k < out.size(); ++k) {
+        // yosys writes a one-bit net as a Bool
+        const std::string net = out[k].w == 1 ? fmt::format("(ite {} #b1 #b0)", wire(next[k])) : wire(next[k]);
         m.text += fmt::format("(define-fun m_{0} () (_ BitVec {1}) {2})\n(define-fun n_{0} () (_ BitVec {1}) {3})\n", k, out[k].w,
-                              out[k].e, wire(next[k]));
+                              out[k].e, net);
         any += fmt::format(" (distinct m_{0} n_{0})", k);
         m.get.push_back(fmt::format("m_{}", k));
         m.get.push_back(fmt::format("n_{}", k));
@@ -362,17 +427,20 @@ std::map<std::string, std::int64_t> inputs_at(const Spec& sp, const Z3Answer& z)
 
 /// The model's next registers at the counterexample on Word must be what the query's model side says; returns
 /// "r: model -123, netlist 456" for the first output that differs.
-std::string check_in_model(EqStage s, const Formats& f, const Spec& sp, const Z3Answer& z) {
+std::string check_in_model(EqStage s, const Formats& f, const Geometry& g, const Spec& sp, const Z3Answer& z) {
     std::vector<Word> in;
     const auto vals = inputs_at(sp, z);
     for (const auto& x : sp.in) in.push_back(x.is_signed ? Word::sgn(vals.at(x.name), x.w) : Word::uns(vals.at(x.name), x.w));
-    const std::vector<Word> out = model_outputs<Word>(s, in, f);
+    const std::vector<Word> out = model_outputs<Word>(s, in, f, g);
     std::string first;
     for (size_t k = 0; k < out.size(); ++k) {
         const int w = out[k].width();
-        const std::int64_t smt = as_signed_bits(z.values.at(fmt::format("m_{}", k)), w);
-        const std::int64_t net = as_signed_bits(z.values.at(fmt::format("n_{}", k)), w);
-        const std::int64_t word = as_signed_bits(out[k].value(), w);
+        const auto read = [&](std::int64_t bits) {   // as the output's type reads them
+            return out[k].is_signed() ? as_signed_bits(bits, w) : static_cast<std::int64_t>(Word::from_bits(bits, w, false).value());
+        };
+        const std::int64_t smt = read(z.values.at(fmt::format("m_{}", k)));
+        const std::int64_t net = read(z.values.at(fmt::format("n_{}", k)));
+        const std::int64_t word = read(out[k].value());
         if (smt != word)
             throw std::logic_error(fmt::format("stage equivalence: {}'s {} at the counterexample is {} in the query, {} in the model",
                                                sp.entity, sp.out[k].name, smt, word));
@@ -462,7 +530,9 @@ std::string pixel_input(int i, int j) { return fmt::format("p_{}_{}", i, j); }
 EqStage eq_stage(const std::string& name) {
     for (int k = 0; k < kEqStageCount; ++k)
         if (name == kEqStageNames[k]) return static_cast<EqStage>(k);
-    throw InputError("no stage named '" + name + "' (sobel_x, sobel_y, m_products, block_filter, harris_response, threshold)");
+    std::string names;
+    for (const char* n : kEqStageNames) names += (names.empty() ? "" : ", ") + std::string(n);
+    throw InputError("no stage named '" + name + "' (" + names + ")");
 }
 
 const char* eq_verdict_name(EqVerdict v) {
@@ -504,10 +574,11 @@ StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
     const fs::path dir = fs::absolute(o.dir.empty() ? scratch.path() : o.dir);
     StageProof p;
     p.stage = s;
-    const std::string netlist = synthesise(spec_of(s, f), f, dir, o.rtl_dir);
+    const Geometry& g = o.geometry;
+    const std::string netlist = synthesise(spec_of(s, f), f, g, dir, o.rtl_dir);
     std::vector<std::string> next;
     const Spec sp = resolve(spec_of(s, f), netlist, util::read_file(dir / (std::string(kEqStageNames[static_cast<int>(s)]) + ".v")), next);
-    const Miter m0 = miter(s, f, sp, netlist, next, false, {});
+    const Miter m0 = miter(s, f, g, sp, netlist, next, false, {});
     const Asked a0 = ask(p, m0, dir, 1, o.rlimit);
     p.command = a0.command;
     p.assumed = domain_text(sp, {});
@@ -518,10 +589,10 @@ StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
         p.detail = a0.z.why;
     } else {
         p.counterexample = inputs_at(sp, a0.z);
-        const std::string differ = check_in_model(s, f, sp, a0.z);
+        const std::string differ = check_in_model(s, f, g, sp, a0.z);
         const std::string shrink = overflowing(m0, sp, a0.z);
         // GHDL's synthesis of a signed shrink: the same question with truncations
-        const Asked a1 = ask(p, miter(s, f, sp, netlist, next, true, {}), dir, 2, o.rlimit);
+        const Asked a1 = ask(p, miter(s, f, g, sp, netlist, next, true, {}), dir, 2, o.rlimit);
         if (a1.z.sat != Sat::unsat || shrink.empty()) {
             p.verdict = a1.z.sat == Sat::unknown ? EqVerdict::open : EqVerdict::counterexample;
             p.detail = fmt::format("{} at {}{}", differ, values_text(p.counterexample),
@@ -531,7 +602,7 @@ StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
                                                          o.rlimit))
                     p.stimulus = st->set.string();
         } else if (const auto d = domain_of(sp, f); !d.empty()) {
-            const Miter m2 = miter(s, f, sp, netlist, next, false, d);
+            const Miter m2 = miter(s, f, g, sp, netlist, next, false, d);
             const Asked a2 = ask(p, m2, dir, 3, o.rlimit);
             p.assumed = domain_text(sp, d);
             if (a2.z.sat == Sat::unsat) {
@@ -544,7 +615,7 @@ StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
                 if (a2.z.sat == Sat::sat) {
                     p.counterexample = inputs_at(sp, a2.z);
                     p.detail = fmt::format("signed {} overflows on the domain: {} at {}", overflowing(m2, sp, a2.z),
-                                           check_in_model(s, f, sp, a2.z), values_text(p.counterexample));
+                                           check_in_model(s, f, g, sp, a2.z), values_text(p.counterexample));
                     p.command = a2.command;
                 } else {
                     p.detail = "on the domain: " + a2.z.why;

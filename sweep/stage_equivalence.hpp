@@ -2,7 +2,8 @@
 // for every input, at a configuration's generics.
 //
 // For one datapath entity and one Formats: GHDL synthesises the entity at the configuration's
-// generics, yosys ties its write, enable and reset ports to their active and inactive levels,
+// generics (a constant wider than 32 bits, which GHDL writes as a quoted bit string, read as a
+// sized literal), yosys ties its write, enable and reset ports to their active and inactive levels,
 // turns every register into an input (its current value, <reg>.q) and an output (its next
 // value, <reg>.d) (`expose -evert-dff`) and writes the transition as SMT-LIB. The model's
 // stage function (model/harris/*.hpp) runs on SmtWord over the same inputs and current
@@ -22,7 +23,10 @@
 // the products and the k-term from a, b, c; the response from the current step-1 registers,
 // which hold step 1's values of the block sums of the write before, a_prev, b_prev, c_prev,
 // free or in their domain as a, b, c are), threshold (r0_delay and r1 from r0, thr and the
-// current r0_delay, enable high).
+// current r0_delay, enable high), find_max (count, running and max from the centre response
+// and the current registers, enable high, at the geometry's period), local_maximum (the
+// corner bit from the 3x3 thresholded responses; combinational, so its output is compared
+// rather than a next register).
 #pragma once
 
 #include <array>
@@ -38,10 +42,10 @@
 
 namespace hc::sweep {
 
-enum class EqStage { sobel_x, sobel_y, m_products, block_filter, harris_response, threshold, count };
+enum class EqStage { sobel_x, sobel_y, m_products, block_filter, harris_response, threshold, find_max, local_maximum, count };
 inline constexpr int kEqStageCount = static_cast<int>(EqStage::count);
-inline constexpr std::array<const char*, kEqStageCount> kEqStageNames{"sobel_x", "sobel_y", "m_products",
-                                                                      "block_filter", "harris_response", "threshold"};
+inline constexpr std::array<const char*, kEqStageCount> kEqStageNames{
+    "sobel_x", "sobel_y", "m_products", "block_filter", "harris_response", "threshold", "find_max", "local_maximum"};
 /// The stage named `name`; InputError naming it otherwise.
 EqStage eq_stage(const std::string& name);
 /// The name of the Sobel stages' input pixel (i, j) of the 3x3 window (row i, column j, from 0)
@@ -82,6 +86,8 @@ struct StageOptions {
     /// rerun commands name them); empty: a scratch directory, and the command names files gone
     std::filesystem::path dir;
     std::filesystem::path rtl_dir;             ///< the VHDL (empty: the project's rtl/)
+    /// the image size find_max's period is built for (its IMG_WIDTH, IMG_HEIGHT generics)
+    Geometry geometry;
     /// the configuration's name: a counterexample's stimulus is written (when `dir` is set) as
     /// <dir>/stimulus/<config>_<stage>.pgm with its regression-set file and golden files
     std::string config = "thesis";
@@ -95,7 +101,7 @@ struct StageEquivalence {
     Formats formats;
     std::vector<StageProof> stages;
     double seconds = 0;
-    /// "6 proven equal" or "5 proven equal, harris_response: netlist differs from the VHDL"
+    /// "8 proven equal" or "7 proven equal, harris_response: netlist differs from the VHDL"
     std::string summary() const;
 };
 /// Every stage (in EqStage order) at formats `f`, each in o.dir/<stage> when o.dir is set.

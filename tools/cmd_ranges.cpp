@@ -36,6 +36,9 @@ void add_ranges_command(CLI::App& app) {
     cmd->add_option("--stages", o->stages,
                     "also prove each stage entity's netlist equal to the model's stage function (z3, then cvc5), keeping\n"
                     "the netlists and queries under DIR/<configuration>/<stage> (the report prints the command that reruns each)");
+    cmd->add_option("--rtl", o->rtl,
+                    "the VHDL the stage proofs (--stages) synthesise, a directory with rtl/'s files (default: the project's\n"
+                    "rtl/), e.g. a mutant's copy; the derived ranges' netlist route keeps rtl/");
     cmd->callback([o] { sweep::run_ranges_command(*o); });
 }
 

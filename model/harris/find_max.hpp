@@ -5,13 +5,34 @@
 // most negative value (the response of the step that ends a period is not counted).
 // Only `max` is reset.
 // Template over the number type T of the response (Word, or LeanWord in the cycle model's
-// format-specialised instances); FindMax is the Word instance.
+// format-specialised instances); FindMax is the Word instance. The step itself,
+// find_max_step, also runs on the stage proofs' symbolic word (sweep/stage_equivalence.hpp).
 #pragma once
 
 #include "model/harris/harris_pkg.hpp"
 #include "model/harris/types.hpp"
 
 namespace hc {
+
+/// find_max's registers after one enabled step.
+template <class T, class C>
+struct FindMaxStep {
+    C count;
+    T running, max;
+};
+
+/// One enabled step on the registers (count, running, max) and the centre response;
+/// `period`: find_max_period. C is the counter's type: long, or the stage proofs' symbolic
+/// word (sweep/smt_word.hpp), as T may be; the choices are written with choose() so both run.
+template <class T, class C>
+FindMaxStep<T, C> find_max_step(const C& count, const T& running, const T& max, const T& response, long period) {
+    const auto counting = count < constant_like(count, period);
+    const C one = constant_like(count, 1);
+    const T updated = choose(response > running, response, running);
+    return {choose(counting, count + one, one),
+            choose(counting, updated, T::most_negative(running.width())),   // the restart overrides the update
+            choose(counting, max, running)};
+}
 
 template <class T>
 struct FindMaxT {
@@ -25,15 +46,11 @@ struct FindMaxT {
     void reset(const Formats& f) { max = T::most_negative(f.resp_w); }
 
     FindMaxT next(const T& response, const Geometry& g) const {
+        const FindMaxStep<T, long> s = find_max_step(count, running, max, response, g.find_max_period());
         FindMaxT n = *this;
-        if (response > running) n.running = response;
-        if (count < g.find_max_period()) {
-            n.count = count + 1;
-        } else {
-            n.count = 1;
-            n.running = T::most_negative(running.width());   // overrides the update
-            n.max = running;
-        }
+        n.count = s.count;
+        n.running = s.running;
+        n.max = s.max;
         return n;
     }
 };

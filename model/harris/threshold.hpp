@@ -5,7 +5,8 @@
 // floor(max/512), about 0.00977*max; OpenCV uses 0.01*max of
 // the current frame; the hardware uses the maximum of the previous find-max period).
 // A response below thr becomes 0; one equal to thr is kept.
-// Templates over the number type T (Word or LeanWord).
+// Templates over the number type T (Word or LeanWord; threshold also on the stage proofs'
+// symbolic word, sweep/smt_word.hpp).
 #pragma once
 
 #include "model/harris/harris_pkg.hpp"
@@ -22,7 +23,7 @@ inline T threshold_value(const T& max, const Formats& f) {
 
 template <class T>
 inline T threshold(const T& r, const T& thr) {
-    return r >= thr ? r : T::sgn(0, r.width());
+    return choose(r >= thr, r, T::sgn(0, r.width()));
 }
 
 }  // namespace hc

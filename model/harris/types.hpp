@@ -29,6 +29,17 @@ auto sub3(const M& m, int i, int j) {
     return s;
 }
 
+/// `c ? a : b` as a call: a stage function that chooses between two values this way also
+/// runs on a symbolic word, whose comparisons give a symbolic condition (sweep/smt_word.hpp
+/// has the overload on it).
+template <class X>
+constexpr X choose(bool c, const X& a, const X& b) {
+    return c ? a : b;
+}
+/// The constant `v` in the number type of `x` (a plain integer here; sweep/smt_word.hpp has
+/// the symbolic word's, at x's width and signedness).
+constexpr long constant_like(long, long v) { return v; }
+
 template <int N>
 WordMatrix<N> filled(const Word& w) {
     WordMatrix<N> m;

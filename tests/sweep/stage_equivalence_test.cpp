@@ -10,7 +10,11 @@
 
 #include "model/util/util.hpp"
 #include "model/fixed/word.hpp"
+#include "model/harris/find_max.hpp"
+#include "model/harris/local_maximum.hpp"
 #include "model/harris/sobel_x.hpp"
+#include "model/util/errors.hpp"
+#include "sweep/ranges_command.hpp"
 #include "sweep/stage_equivalence.hpp"
 
 using namespace hc;
@@ -51,18 +55,110 @@ TEST_CASE("thesis configuration: every stage's netlist is proven equal to its mo
     }
 }
 
-TEST_CASE("a Sobel coefficient changed in a copy of the VHDL yields a counterexample that differs in the model", "[stages]") {
-    const util::ScratchDir dir;
-    const fs::path rtl = dir.path() / "rtl";
+namespace {
+
+/// A copy of rtl/ in `dir` with `from` replaced by `to` in `file` (which must hold it once).
+fs::path mutated_rtl(const fs::path& dir, const std::string& file, const std::string& from, const std::string& to) {
+    const fs::path rtl = dir / "rtl";
     fs::create_directories(rtl);
     for (const auto& e : fs::directory_iterator(HC_SOURCE_DIR "/rtl")) fs::copy_file(e.path(), rtl / e.path().filename());
-    // the middle right coefficient +2 becomes +1
-    const std::string twice = "  p23 <= signed(resize(a(2, 3), PIXEL_W + 2)) + signed(resize(a(2, 3), PIXEL_W + 2));";
-    std::string vhdl = util::read_file(rtl / "sobel_x.vhd");
-    const size_t at = vhdl.find(twice);
+    std::string vhdl = util::read_file(rtl / file);
+    const size_t at = vhdl.find(from);
     REQUIRE(at != std::string::npos);
-    vhdl.replace(at, twice.size(), "  p23 <= signed(resize(a(2, 3), PIXEL_W + 2));");
-    util::write_file_atomic(rtl / "sobel_x.vhd", vhdl);
+    REQUIRE(vhdl.find(from, at + 1) == std::string::npos);
+    vhdl.replace(at, from.size(), to);
+    util::write_file_atomic(rtl / file, vhdl);
+    return rtl;
+}
+
+}  // namespace
+
+TEST_CASE("find_max: the comparison flipped in a copy of the VHDL yields a counterexample that holds in the model", "[stages]") {
+    const util::ScratchDir dir;
+    StageOptions o;
+    o.rtl_dir = mutated_rtl(dir.path(), "find_max.vhd", "if response > running then", "if response < running then");
+    o.dir = dir.path() / "proof";
+    const StageProof p = prove_stage(EqStage::find_max, Formats{}, o);
+    INFO(p.detail);
+    REQUIRE(p.verdict == EqVerdict::counterexample);
+    // the counterexample's registers through the model's step: the mutant differs in the running maximum
+    const auto& x = p.counterexample;
+    FindMax fm(Formats{});
+    fm.count = x.at("count");
+    fm.running = Word::sgn(x.at("running"), 32);
+    fm.max = Word::sgn(x.at("max"), 32);
+    const Word response = Word::sgn(x.at("response"), 32);
+    const FindMax n = fm.next(response, Geometry{});
+    CHECK(x.at("count") < Geometry{}.find_max_period());   // inside the period: the update is not overridden
+    CHECK(response != fm.running);
+    CHECK(n.running.value() == std::max(response.value(), fm.running.value()));
+    CHECK(p.detail.find("running: model " + std::to_string(n.running.value()) + ", netlist ") == 0);
+    // the unchanged VHDL proves equal, also at the smallest image (a period of 32 steps)
+    o.rtl_dir.clear();
+    o.dir = dir.path() / "proof-original";
+    CHECK(prove_stage(EqStage::find_max, Formats{}, o).verdict == EqVerdict::equal);
+    o.geometry = {Geometry::min_width, Geometry::min_height};
+    o.dir = dir.path() / "proof-small";
+    const StageProof small = prove_stage(EqStage::find_max, Formats{}, o);
+    CHECK(small.verdict == EqVerdict::equal);
+    CHECK(util::read_file(o.dir / "commands.txt").find("-gIMG_WIDTH=10 -gIMG_HEIGHT=8") != std::string::npos);
+}
+
+TEST_CASE("find_max at a 38-bit response: GHDL's bit-string constants are read as sized literals, and it proves equal", "[stages]") {
+    const util::ScratchDir dir;
+    Formats f;   // tight-m3-b2 of sweep/configs/bit-widths.json
+    f.m_drop = 3;
+    f.bf_sum_w = 22;
+    f.bf_drop = 2;
+    f.ktr_w = 35;
+    f.resp_w = 38;
+    StageOptions o;
+    o.dir = dir.path();
+    const StageProof p = prove_stage(EqStage::find_max, f, o);
+    INFO(p.detail);
+    CHECK(p.verdict == EqVerdict::equal);
+    // GHDL wrote the most negative value as a string, which Verilog reads as text
+    const std::string most_negative(37, '0');
+    CHECK(util::read_file(dir.path() / "find_max.v").find("\"1" + most_negative + "\"") != std::string::npos);
+    const std::string sized = util::read_file(dir.path() / "find_max-sized.v");
+    CHECK(sized.find("38'b1" + most_negative) != std::string::npos);
+    CHECK(sized.find('"') == std::string::npos);
+    // the command in commands.txt makes the same file
+    const std::string cmds = util::read_file(dir.path() / "commands.txt");
+    const size_t from = cmds.find("perl "), to = cmds.find(" > find_max-sized.v");
+    REQUIRE(from != std::string::npos);
+    REQUIRE(util::run_process({"sh", "-c", cmds.substr(from, to - from) + " > again.v"}, {.cwd = dir.path()}) == 0);
+    CHECK(util::read_file(dir.path() / "again.v") == sized);
+}
+
+TEST_CASE("local_maximum: a strict comparison made non-strict in a copy of the VHDL yields a tie as counterexample", "[stages]") {
+    const util::ScratchDir dir;
+    StageOptions o;
+    o.rtl_dir = mutated_rtl(dir.path(), "local_maximum.vhd", "r(2, 2) > r(1, 3)", "r(2, 2) >= r(1, 3)");
+    o.dir = dir.path() / "proof";
+    Formats f;
+    f.resp_w = 20;
+    const StageProof p = prove_stage(EqStage::local_maximum, f, o);
+    INFO(p.detail);
+    REQUIRE(p.verdict == EqVerdict::counterexample);
+    // the counterexample's responses through the model: the centre ties its top-right neighbour, so no corner
+    Matrix3 r;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) r[i][j] = Word::sgn(p.counterexample.at("r_" + std::to_string(i) + "_" + std::to_string(j)), 20);
+    CHECK(r[1][1] == r[0][2]);
+    CHECK_FALSE(local_maximum(r));
+    CHECK(p.detail.find("corner: model 0, netlist 1") == 0);
+    o.rtl_dir.clear();
+    o.dir = dir.path() / "proof-original";
+    CHECK(prove_stage(EqStage::local_maximum, f, o).verdict == EqVerdict::equal);
+}
+
+TEST_CASE("a Sobel coefficient changed in a copy of the VHDL yields a counterexample that differs in the model", "[stages]") {
+    const util::ScratchDir dir;
+    // the middle right coefficient +2 becomes +1
+    const fs::path rtl = mutated_rtl(dir.path(), "sobel_x.vhd",
+                                     "  p23 <= signed(resize(a(2, 3), PIXEL_W + 2)) + signed(resize(a(2, 3), PIXEL_W + 2));",
+                                     "  p23 <= signed(resize(a(2, 3), PIXEL_W + 2));");
     StageOptions o;
     o.rtl_dir = rtl;
     o.dir = dir.path() / "proof";
@@ -100,4 +196,39 @@ TEST_CASE("resp_w 27: harris_response's netlist differs from the VHDL at an over
     // one of them (all three are not negative there) needs more than 27 signed bits
     CHECK(std::max({x.at("ac"), x.at("bb"), x.at("ktr2")}) >= (std::int64_t{1} << 26));
     CHECK(p.assumed.rfind("ac, bb, ktr2 are step 1's of a_prev, b_prev, c_prev; ", 0) == 0);
+}
+
+TEST_CASE("ranges --rtl: the stage proofs run on a mutated copy of rtl/ give its counterexample", "[stages]") {
+    const util::ScratchDir dir;
+    RangesCommand c;
+    c.no_netlist = true;
+    c.ro.solver_rlimit = 0;
+    c.stages = (dir.path() / "stages").string();
+    c.json = (dir.path() / "ranges.json").string();
+    c.out = (dir.path() / "ranges.md").string();
+    // threshold keeps a response equal to thr; the mutant drops it
+    c.rtl = mutated_rtl(dir.path(), "threshold.vhd", "r0_delay >= thr", "r0_delay > thr").string();
+    run_ranges_command(c);
+    const auto j = nlohmann::json::parse(util::read_file(c.json));
+    REQUIRE(j.size() == 1);
+    const auto& stages = j[0].at("stages").at("stages");
+    REQUIRE(stages.size() == static_cast<size_t>(kEqStageCount));
+    for (const auto& st : stages) {
+        INFO(st.at("stage") << ": " << st.at("detail"));
+        CHECK(st.at("verdict") == (st.at("stage") == "threshold" ? "counterexample" : "proven equal"));
+    }
+    // the counterexample is a tie (r0_delay = thr): the model keeps it, the mutant zeroes it
+    const auto& cx = stages[static_cast<int>(EqStage::threshold)].at("counterexample");
+    CHECK(cx.at("r0_delay") == cx.at("thr"));
+    CHECK(cx.at("r0_delay") != 0);
+    // the proof kept its queries under DIR/<configuration>/<stage>
+    CHECK(fs::exists(dir.path() / "stages" / "thesis" / "threshold" / "query-2.smt2"));
+    // the project's rtl/ proves the same stage equal
+    CHECK(prove_stage(EqStage::threshold, Formats{}, {}).verdict == EqVerdict::equal);
+    // bad input: a directory without the VHDL, or --rtl without --stages
+    c.rtl = (dir.path() / "no-such-rtl").string();
+    CHECK_THROWS_AS(run_ranges_command(c), InputError);
+    c.rtl = mutated_rtl(dir.path() / "again", "threshold.vhd", "r0_delay >= thr", "r0_delay > thr").string();
+    c.stages.clear();
+    CHECK_THROWS_AS(run_ranges_command(c), InputError);
 }
