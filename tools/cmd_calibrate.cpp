@@ -6,7 +6,7 @@
 namespace hc::tools {
 
 void add_calibrate_command(CLI::App& app) {
-    const auto [cmd, o] = add_command<calib::CalibrateCommand>(app,
+    const auto [cmd, o] = add_command<landmarks::CalibrateCommand>(app,
         "calibrate", "stereo calibration from chessboard pairs (thesis 4.3): KITTI calib.txt, YAML/JSON with "
                      "distortion and Q, report");
     cmd->add_option("--left", o->left, "left images: files, quoted glob patterns or folders, paired in sorted order")
@@ -22,7 +22,7 @@ void add_calibrate_command(CLI::App& app) {
     cmd->add_option("--alpha", o->alpha, "stereoRectify scaling: 0 valid pixels only, 1 all pixels, -1 OpenCV's")
         ->capture_default_str();
     cmd->add_flag("--fix-intrinsic", o->fix_intrinsic, "keep each camera's own intrinsics in the stereo optimisation");
-    cmd->callback([o] { calib::run_calibrate_command(*o); });
+    cmd->callback([o] { landmarks::run_calibrate_command(*o); });
 }
 
 }  // namespace hc::tools

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <numeric>
 
-namespace hc::features {
+namespace hc::landmarks {
 namespace {
 
 /// Grey 8-bit copy of `image` (1 or 3/4 channels, CV_8U) for a descriptor that describes
@@ -334,4 +334,4 @@ int FreakDescriptor::descriptorType() const { return CV_8U; }
 int FreakDescriptor::defaultNorm() const { return cv::NORM_HAMMING; }
 cv::String FreakDescriptor::getDefaultName() const { return "hc.features.FreakDescriptor"; }
 
-}  // namespace hc::features
+}  // namespace hc::landmarks

@@ -17,7 +17,7 @@
 #include <map>
 #include <sstream>
 
-namespace hc::calib {
+namespace hc::landmarks {
 
 namespace fs = std::filesystem;
 
@@ -176,7 +176,7 @@ Calibration calibrate_views(const Detection& d, const std::vector<std::vector<cv
     if (std::abs(P2.at<double>(1, 3)) > std::abs(P2.at<double>(0, 3)))
         throw InputError("the cameras are stacked vertically: rectified rows would be columns; "
                          "only side-by-side rigs are supported");
-    c.rectified = stereo::rig_from_projections(P1.ptr<double>(), P2.ptr<double>(), d.image_size.width,
+    c.rectified = landmarks::rig_from_projections(P1.ptr<double>(), P2.ptr<double>(), d.image_size.width,
                                                d.image_size.height);
     return c;
 }
@@ -254,13 +254,13 @@ cv::Mat rectified_pair_figure(const Calibration& c, const cv::Mat& left, const c
     return fig;
 }
 
-cv::Mat projection(const stereo::RectifiedRig& rig, Side side) {
+cv::Mat projection(const landmarks::RectifiedRig& rig, Side side) {
     double P0[12], P1[12];
     rig.projections(P0, P1);
     return cv::Mat(3, 4, CV_64F, side == Side::left ? P0 : P1).clone();
 }
 
-cv::Mat disparity_to_depth(const stereo::RectifiedRig& rig) {
+cv::Mat disparity_to_depth(const landmarks::RectifiedRig& rig) {
     // stereoRectify's Q for a horizontal rig: Tx = tx1 / f is the right camera's offset
     // (negative); W = (d + cx2 - cx1) / (-Tx), so Z = f / W = f b / d when cx1 = cx2.
     const double f = rig.fx, cx1 = rig.cx0, cy = rig.cy;
@@ -343,7 +343,7 @@ Calibration parse_kitti_calib(const std::string& text, const std::string& name) 
         throw InputError(fmt::format("{}: P1 has no baseline (P1[3] = 0)", name));
     Calibration c;
     try {
-        c.rectified = stereo::rig_from_projections(P0.ptr<double>(), P1.ptr<double>());
+        c.rectified = landmarks::rig_from_projections(P0.ptr<double>(), P1.ptr<double>());
     } catch (const hc::InputError& e) {
         throw InputError(fmt::format("{}: {}", name, e.what()));
     }
@@ -427,7 +427,7 @@ Calibration read_opencv_storage(const fs::path& p) {
         c.R2 = mat("R2", 3, 3);
         const cv::Mat P1 = mat("P1", 3, 4), P2 = mat("P2", 3, 4);
         try {
-            c.rectified = stereo::rig_from_projections(P1.ptr<double>(), P2.ptr<double>(), width, height);
+            c.rectified = landmarks::rig_from_projections(P1.ptr<double>(), P2.ptr<double>(), width, height);
         } catch (const hc::InputError& e) {
             throw InputError(fmt::format("{}: {}", p.string(), e.what()));
         }
@@ -525,4 +525,4 @@ std::string report_markdown(const Calibration& c, const Detection& d, const Boar
     return s;
 }
 
-}  // namespace hc::calib
+}  // namespace hc::landmarks

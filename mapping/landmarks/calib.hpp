@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-namespace hc::calib {
+namespace hc::landmarks {
 
 /// A chessboard: its inner corners per row and per column, and the side of one square in the
 /// unit the translation T and the baseline are wanted in (metres, millimetres, or squares).
@@ -92,7 +92,7 @@ struct Calibration {
     cv::Mat R1, R2;            ///< rectifying rotations (3x3)
     /// The rectified pair: stereoRectify's P1 and P2 (calib.txt's P0 and P1) and the images'
     /// size (0x0 when unknown: a KITTI calib.txt does not say).
-    stereo::RectifiedRig rectified;
+    landmarks::RectifiedRig rectified;
     cv::Mat Q;                 ///< disparity-to-depth (4x4)
     double rms = 0;            ///< stereo reprojection RMS, px (0 when not calibrated here)
     /// Standard deviations of fx, fy, cx, cy from each camera's own calibration
@@ -156,14 +156,14 @@ cv::Mat rectified_pair_figure(const Calibration& c, const cv::Mat& left, const c
 /// A rectified camera's projection as OpenCV takes it (3x4, CV_64F): the rig's P0 for the
 /// left camera, P1 for the right (stereoRectify's P1, P2). The focal length of the pair is
 /// rig.fx, its baseline in the board's unit rig.baseline().
-cv::Mat projection(const stereo::RectifiedRig& rig, Side side);
+cv::Mat projection(const landmarks::RectifiedRig& rig, Side side);
 
 /// The KITTI-style calib.txt: two rows "P0: " and "P1: " of the 12 numbers of the rectified
 /// pair's projections, row-major, each in the shortest scientific form that reads back to the same double.
 std::string to_kitti_calib(const Calibration& c);
 /// Reads a KITTI calib.txt: the rows P0 and P1 (12 numbers each) are required; other rows
 /// (P2, P3, Tr, ...) are ignored. The result is a rectified rig: `rectified` from P0 and P1
-/// (stereo::rig_from_projections), K1, K2 the left 3x3 of P0, P1; no distortion; identity
+/// (landmarks::rig_from_projections), K1, K2 the left 3x3 of P0, P1; no distortion; identity
 /// rotations; T = (P1[3]/P1[0] - P0[3]/P0[0], 0, 0), which is -baseline for KITTI's P0
 /// (P0[3] = 0); Q from the rig; rectified_input = true. Throws InputError naming `name` (and
 /// the row) when a row is malformed, P0/P1 is missing, or P0 and P1 are not a rectified pair
@@ -182,7 +182,7 @@ Calibration read_opencv_storage(const std::filesystem::path& p);
 
 /// The disparity-to-depth matrix of a rectified rig (stereoRectify's Q with
 /// CALIB_ZERO_DISPARITY semantics): (x, y, x_l - x_r, 1) -> (X, Y, Z, W).
-cv::Mat disparity_to_depth(const stereo::RectifiedRig& rig);
+cv::Mat disparity_to_depth(const landmarks::RectifiedRig& rig);
 
 /// A Markdown report of a calibration: RMS, per-view errors, intrinsics, distortion,
 /// extrinsics, rectified projections, Q, the rectification check and the skipped pairs;
@@ -192,4 +192,4 @@ std::string report_markdown(const Calibration& c, const Detection& d, const Boar
                             const RectificationCheck& check, const std::string& figure = {},
                             const std::string& figure_view = {});
 
-}  // namespace hc::calib
+}  // namespace hc::landmarks

@@ -13,7 +13,7 @@
 
 namespace fs = std::filesystem;
 
-namespace hc::calib {
+namespace hc::landmarks {
 
 namespace {
 
@@ -74,4 +74,4 @@ void run_calibrate_command(const CalibrateCommand& o) {
     std::printf("wrote %s/{calib.txt, calib.yml, calib.json, views.csv, rectified.png, report.md}\n", o.out.c_str());
 }
 
-}  // namespace hc::calib
+}  // namespace hc::landmarks

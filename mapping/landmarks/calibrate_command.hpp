@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace hc::calib {
+namespace hc::landmarks {
 
 /// The command's settings, one field per flag.
 struct CalibrateCommand {
@@ -21,4 +21,4 @@ struct CalibrateCommand {
 /// Calibrates, writes the files into c.out and prints the figures. InputError for bad input.
 void run_calibrate_command(const CalibrateCommand& c);
 
-}  // namespace hc::calib
+}  // namespace hc::landmarks

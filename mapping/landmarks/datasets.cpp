@@ -102,7 +102,7 @@ Dataset kitti_dataset(const fs::path& kitti_root, const std::string& sequence, u
                          "' is not a KITTI odometry sequence (image_0/, image_1/)");
     const frames::KittiSequence seq = frames::open_kitti(kitti_root, sequence);
     const std::vector<fs::path> paths = frames::stereo_stream(seq, pairs, what);
-    const stereo::RectifiedRig calib = calib::read_kitti_calib(seq.calib_txt()).rectified;
+    const landmarks::RectifiedRig calib = landmarks::read_kitti_calib(seq.calib_txt()).rectified;
     Dataset ds;
     ds.name = "kitti-" + sequence;
     for (std::size_t i = 0; i + 1 < paths.size(); i += 2) {
@@ -119,21 +119,21 @@ Dataset kitti_dataset(const fs::path& kitti_root, const std::string& sequence, u
 
 // ---- a user's own rig ---------------------------------------------------------------------
 
-calib::Calibration read_rig_calibration(const fs::path& file) {
+landmarks::Calibration read_rig_calibration(const fs::path& file) {
     const std::string ext = file.extension().string();
-    if (ext == ".yml" || ext == ".yaml" || ext == ".json") return calib::read_opencv_storage(file);
-    return calib::read_kitti_calib(file);
+    if (ext == ".yml" || ext == ".yaml" || ext == ".json") return landmarks::read_opencv_storage(file);
+    return landmarks::read_kitti_calib(file);
 }
 
-Dataset rig_dataset(const std::vector<fs::path>& left, const std::vector<fs::path>& right, const calib::Calibration& rig) {
+Dataset rig_dataset(const std::vector<fs::path>& left, const std::vector<fs::path>& right, const landmarks::Calibration& rig) {
     if (left.empty()) throw InputError("a rig's stereo pairs: no left image");
     if (left.size() != right.size())
         throw InputError("a rig's stereo pairs: " + std::to_string(left.size()) + " left images but " +
                          std::to_string(right.size()) + " right images");
     Dataset ds;
     ds.name = "rig";
-    ds.rig = std::make_shared<const calib::Calibration>(rig);
-    const cv::Size size = calib::image_size(rig);
+    ds.rig = std::make_shared<const landmarks::Calibration>(rig);
+    const cv::Size size = landmarks::image_size(rig);
     for (size_t k = 0; k < left.size(); ++k) {
         StereoImages p{read_grey(left[k]), read_grey(right[k]), left[k].stem().string() + "+" + right[k].stem().string()};
         for (const auto& [img, file] : {std::pair{&p.left, &left[k]}, std::pair{&p.right, &right[k]}})

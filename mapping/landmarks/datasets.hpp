@@ -44,10 +44,10 @@ struct Dataset {
     std::string name;                    ///< "middlebury-half", "kitti-01", "rig"
     std::vector<StereoImages> pairs;
     std::vector<cv::Mat> disparity;      ///< per pair, empty if unknown
-    std::vector<stereo::RectifiedRig> calib;   ///< per pair: the rectified rig
+    std::vector<landmarks::RectifiedRig> calib;   ///< per pair: the rectified rig
     /// Set when the pairs are a user's rig's unrectified images: every step that matches them
     /// (compare, study, acquire_dataset, score_formats) rectifies keypoints with it (match_pair).
-    std::shared_ptr<const calib::Calibration> rig;
+    std::shared_ptr<const landmarks::Calibration> rig;
 };
 /// All scenes under `root`; InputError for a scene without disp1.png unless `need_truth` is
 /// false (then its ground-truth columns stay empty).
@@ -60,12 +60,12 @@ Dataset kitti_dataset(const std::filesystem::path& kitti_root, const std::string
 /// A calibration file of a user's rig: `harris-cosim calibrate`'s OpenCV storage (.yml, .yaml,
 /// .json: intrinsics, distortion, rectifying rotations and projections) or a KITTI-style
 /// calib.txt (any other name: images already rectified). Throws hc::InputError naming it.
-calib::Calibration read_rig_calibration(const std::filesystem::path& file);
+landmarks::Calibration read_rig_calibration(const std::filesystem::path& file);
 /// Stereo pairs left[i], right[i] of a user's rig (unrectified images, read as grey), with
 /// `rig` to rectify their keypoints. InputError naming an image that is missing, unreadable or
 /// of another size than the calibration's, or when the lists differ in length or are empty.
 Dataset rig_dataset(const std::vector<std::filesystem::path>& left, const std::vector<std::filesystem::path>& right,
-                    const calib::Calibration& rig);
+                    const landmarks::Calibration& rig);
 
 /// A dataset as the `landmarks` command chooses it (its flags in brackets): a user's rig
 /// (--calib with --left and --right), else Middlebury (--middlebury, default

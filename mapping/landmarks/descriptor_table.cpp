@@ -13,22 +13,22 @@ namespace {
 
 cv::Ptr<cv::Feature2D> grid_thesis(const GridParams& p) {
     validate(p);
-    return features::GridDescriptor::create(p.g, p.h, features::GridVariant::thesis);
+    return landmarks::GridDescriptor::create(p.g, p.h, landmarks::GridVariant::thesis);
 }
 cv::Ptr<cv::Feature2D> grid_corrected(const GridParams& p) {
     validate(p);
-    return features::GridDescriptor::create(p.g, p.h, features::GridVariant::corrected);
+    return landmarks::GridDescriptor::create(p.g, p.h, landmarks::GridVariant::corrected);
 }
 cv::Ptr<cv::Feature2D> sift(const GridParams&) { return cv::SIFT::create(); }
 cv::Ptr<cv::Feature2D> orb(const GridParams&) { return cv::ORB::create(); }
 cv::Ptr<cv::Feature2D> brisk(const GridParams&) { return cv::BRISK::create(); }
 cv::Ptr<cv::Feature2D> brief_box(const GridParams&) {
-    return features::BriefDescriptor::create(features::BorderPolicy::drop, features::BriefSmoothing::box);
+    return landmarks::BriefDescriptor::create(landmarks::BorderPolicy::drop, landmarks::BriefSmoothing::box);
 }
 cv::Ptr<cv::Feature2D> brief_gaussian(const GridParams&) {
-    return features::BriefDescriptor::create(features::BorderPolicy::drop, features::BriefSmoothing::gaussian);
+    return landmarks::BriefDescriptor::create(landmarks::BorderPolicy::drop, landmarks::BriefSmoothing::gaussian);
 }
-cv::Ptr<cv::Feature2D> freak(const GridParams&) { return features::FreakDescriptor::create(); }
+cv::Ptr<cv::Feature2D> freak(const GridParams&) { return landmarks::FreakDescriptor::create(); }
 
 const std::vector<Detector> sift_keypoints{Detector::sift, Detector::sift512};
 
@@ -92,7 +92,7 @@ std::vector<Descriptor> reobservation_descriptors() {
 
 double default_ratio(Descriptor d) { return descriptor_info(d).ratio; }
 
-void validate(const GridParams& p) { features::check_grid_params(p.g, p.h); }
+void validate(const GridParams& p) { landmarks::check_grid_params(p.g, p.h); }
 
 cv::Ptr<cv::Feature2D> make_descriptor(Descriptor d, const GridParams& p) { return descriptor_info(d).make(p); }
 

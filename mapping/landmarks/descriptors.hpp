@@ -1,5 +1,5 @@
 // descriptors.hpp: the star-ID grid, BRIEF and FREAK descriptors and the stereo matcher of
-// the landmark chain (namespace hc::features; included by mapping/landmarks/landmarks.hpp).
+// the landmark chain (namespace hc::landmarks; included by mapping/landmarks/landmarks.hpp).
 //
 // Purpose: binary descriptors for stereo landmark acquisition and the stereo matcher that
 // pairs them (thesis sections 5.3.2, 6.1, 6.4; appendices E and F).
@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-namespace hc::features {
+namespace hc::landmarks {
 
 // ---- Grid descriptor (thesis 5.3.2, appendix E) -----------------------------------------
 
@@ -262,4 +262,4 @@ std::vector<cv::DMatch> match_stereo(const cv::Mat& desc_l, const std::vector<cv
                                      const cv::Mat& desc_r, const std::vector<cv::KeyPoint>& kp_r,
                                      const MatchOptions& options, MatchCounts* counts = nullptr);
 
-}  // namespace hc::features
+}  // namespace hc::landmarks

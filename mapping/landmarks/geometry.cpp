@@ -1,5 +1,5 @@
 // geometry.cpp: the Middlebury rig, landmark files and the depth error against ground-truth
-// disparity (triangulation and covariance: stereo::triangulate, mapping/landmarks/stereo.hpp).
+// disparity (triangulation and covariance: landmarks::triangulate, mapping/landmarks/stereo.hpp).
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -13,12 +13,12 @@
 
 namespace hc::landmarks {
 
-stereo::RectifiedRig middlebury_calib(double scale, double dmin_full, cv::Size image) {
+landmarks::RectifiedRig middlebury_calib(double scale, double dmin_full, cv::Size image) {
     // Middlebury 2006: focal length 3740 px, baseline 160 mm at full size; Z = b f / (d + dmin)
     // with d in full-size pixels. At scale s: f s, and the offset dmin s enters as cx1 - cx0.
     const double f = 3740.0 * scale, b = 0.160;
     const double cx = (image.width - 1) / 2.0, cy = (image.height - 1) / 2.0;
-    stereo::RectifiedRig c;
+    landmarks::RectifiedRig c;
     c.fx = c.fy = f;
     c.cx0 = cx;
     c.cx1 = cx + dmin_full * scale;
@@ -57,7 +57,7 @@ std::string landmarks_ply(const std::vector<Landmark>& ls) {
 
 namespace {
 
-void collect_depth_errors(const PairResult& r, const cv::Mat& disparity, const stereo::RectifiedRig& calib,
+void collect_depth_errors(const PairResult& r, const cv::Mat& disparity, const landmarks::RectifiedRig& calib,
                           std::vector<double>& e) {
     if (disparity.empty()) return;
     for (const auto& m : r.matches) {
@@ -66,8 +66,8 @@ void collect_depth_errors(const PairResult& r, const cv::Mat& disparity, const s
         if (x < 0 || y < 0 || x >= disparity.cols || y >= disparity.rows) continue;
         const float d = disparity.at<float>(y, x);
         if (d <= 0) continue;
-        const stereo::Point3 est = stereo::triangulate(calib, pixels(m.left, m.right));
-        const stereo::Point3 gt = stereo::triangulate(calib, pixels(m.left, cv::Point2f(m.left.x - d, m.left.y)));
+        const landmarks::Point3 est = landmarks::triangulate(calib, pixels(m.left, m.right));
+        const landmarks::Point3 gt = landmarks::triangulate(calib, pixels(m.left, cv::Point2f(m.left.x - d, m.left.y)));
         if (!est.valid || !gt.valid) continue;
         e.push_back(std::abs(est.p[2] - gt.p[2]) / gt.p[2]);
     }
@@ -88,7 +88,7 @@ DepthError summarise(std::vector<double>& e) {
 
 }  // namespace
 
-DepthError depth_error(const PairResult& r, const cv::Mat& disparity, const stereo::RectifiedRig& calib) {
+DepthError depth_error(const PairResult& r, const cv::Mat& disparity, const landmarks::RectifiedRig& calib) {
     std::vector<double> e;
     collect_depth_errors(r, disparity, calib, e);
     return summarise(e);

@@ -15,20 +15,19 @@ namespace hc::landmarks {
 
 // ---- geometry ---------------------------------------------------------------------------
 
-// The rig of a pair is stereo::RectifiedRig and its triangulation stereo::triangulate
-// (stereo.hpp): the rig of KITTI's calib.txt is calib::read_kitti_calib(file).rectified.
+// The rig of a pair is landmarks::RectifiedRig and its triangulation landmarks::triangulate
+// (stereo.hpp): the rig of KITTI's calib.txt is landmarks::read_kitti_calib(file).rectified.
 
 /// The Middlebury 2006 rig at image scale s: focal length 3740 px and baseline 160 mm at full
 /// size (the dataset's description), principal point at the image centre, the right
 /// camera's cx at cx + dmin * s so that Z = b f s / (x_l - x_r + dmin s). Units: metres.
-stereo::RectifiedRig middlebury_calib(double scale, double dmin_full, cv::Size image);
+landmarks::RectifiedRig middlebury_calib(double scale, double dmin_full, cv::Size image);
 
-/// The pixel-noise model (sigma_px on each of x_l, y_l, x_r, y_r): hc::stereo's, shared
+/// The pixel-noise model (sigma_px on each of x_l, y_l, x_r, y_r): the landmark chain's, shared
 /// with the EKF-SLAM side's synthetic measurements.
-using PixelNoise = stereo::PixelNoise;
 
-/// The four image coordinates of a stereo match (left, right) as stereo::triangulate takes them.
-inline stereo::StereoPixels pixels(cv::Point2f left, cv::Point2f right) { return {left.x, left.y, right.x, right.y}; }
+/// The four image coordinates of a stereo match (left, right) as landmarks::triangulate takes them.
+inline landmarks::StereoPixels pixels(cv::Point2f left, cv::Point2f right) { return {left.x, left.y, right.x, right.y}; }
 
 /// A landmark as an EKF-SLAM front end consumes it.
 struct Landmark {
@@ -49,6 +48,6 @@ struct DepthError {
     long n = 0;
     double median = 0, mean = 0, p90 = 0;   ///< relative errors
 };
-DepthError depth_error(const PairResult& r, const cv::Mat& disparity, const stereo::RectifiedRig& calib);
+DepthError depth_error(const PairResult& r, const cv::Mat& disparity, const landmarks::RectifiedRig& calib);
 
 }  // namespace hc::landmarks

@@ -18,7 +18,7 @@
 #include <string>
 #include <tuple>
 
-namespace hc::features {
+namespace hc::landmarks {
 namespace {
 
 /// The thesis's grid centre: g/2 + 1 (integer division; 9 at g = 16).
@@ -368,4 +368,4 @@ int GridDescriptor::descriptorType() const { return CV_8U; }
 int GridDescriptor::defaultNorm() const { return cv::NORM_HAMMING; }
 cv::String GridDescriptor::getDefaultName() const { return "hc.features.GridDescriptor"; }
 
-}  // namespace hc::features
+}  // namespace hc::landmarks

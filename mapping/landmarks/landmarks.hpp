@@ -11,13 +11,13 @@
 //                as `spec` (frame model), `cycle` (HarrisTop through the host driver) and
 //                `rtl` (the GHDL-synthesised netlist under Verilator) for any Formats.
 //   descriptors  make_descriptor(): grid (thesis or corrected), sift, orb, brisk, brief, freak
-//                (hc::features for grid, brief, freak; OpenCV for the others).
-//   matching     hc::features::match_stereo (cross-check, 2-NN ratio, epipolar |y_r - y_l| < 5).
+//                (hc::landmarks for grid, brief, freak; OpenCV for the others).
+//   matching     hc::landmarks::match_stereo (cross-check, 2-NN ratio, epipolar |y_r - y_l| < 5).
 //   scoring      a match is "correct (thesis)" when it passes all three tests; "correct
 //                (ground truth)" when besides |x_l - x_r - d(x_l, y_l)| <= 1 px with d the
 //                dataset's disparity at the left keypoint's pixel (0 = unknown: excluded)
 //                and |y_r - y_l| <= 1 px (the x-only count is kept beside it).
-//   geometry     stereo::triangulate() through the pair's stereo::RectifiedRig (KITTI
+//   geometry     landmarks::triangulate() through the pair's landmarks::RectifiedRig (KITTI
 //                calib.txt's P0, P1, a calibrated rig's rectified pair, or Middlebury's focal
 //                length, baseline and offset), covariance by Jacobian propagation of an
 //                isotropic pixel noise.

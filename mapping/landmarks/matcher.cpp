@@ -17,7 +17,7 @@
 #include <immintrin.h>
 #endif
 
-namespace hc::features {
+namespace hc::landmarks {
 namespace {
 
 bool is_hamming(int norm) { return norm == cv::NORM_HAMMING || norm == cv::NORM_HAMMING2; }
@@ -384,4 +384,4 @@ std::vector<cv::DMatch> match_stereo(const cv::Mat& desc_l, const std::vector<cv
     return out;
 }
 
-}  // namespace hc::features
+}  // namespace hc::landmarks

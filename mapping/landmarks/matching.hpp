@@ -25,14 +25,14 @@ namespace hc::landmarks {
 /// for its SIFT reference (section 6.4.1); `sift_ratio1`: the same descriptor matched at ratio
 /// 1, the test the thesis applies to the grid descriptor (6.4.1, appendix F).
 /// `brief`: BRIEF with the authors' 9 x 9 box smoothing over an integral image (their code, as
-/// OpenCV contrib's); `brief_gaussian`: the paper's 9 x 9 Gaussian (features::BriefSmoothing).
+/// OpenCV contrib's); `brief_gaussian`: the paper's 9 x 9 Gaussian (landmarks::BriefSmoothing).
 enum class Descriptor { grid, grid_corrected, sift, sift_ratio1, orb, brisk, brief, brief_gaussian, freak };
 
 struct GridParams {
     int g = 16;   ///< grid side (cells)
     int h = 3;    ///< resolution reduction 2^h
 };
-/// Throws InputError when g or h is outside hc::features' ranges (features::check_grid_params).
+/// Throws InputError when g or h is outside the grid's ranges (landmarks::check_grid_params).
 void validate(const GridParams& p);
 
 /// One row of the descriptor table.
@@ -133,11 +133,11 @@ void from_json(const nlohmann::json& j, PairResult& r);
 /// cv::setNumThreads(1) for one-thread figures). `disparity` (CV_32F, left image's size,
 /// <= 0 unknown) scores the ground truth when non-empty.
 /// `rig`, when given, is the calibration of an unrectified pair (a user's own rig): each
-/// keypoint is moved to its undistorted, rectified position by calib::rectify_points (no
+/// keypoint is moved to its undistorted, rectified position by landmarks::rectify_points (no
 /// image is warped). Descriptors that read the image are computed at the raw positions on the
 /// raw images; the grid, which reads only positions, on the rectified ones. The epipolar test,
 /// the matches' coordinates (and so triangulation and overlays) use the rectified positions.
 PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descriptor d, const GridParams& gp,
-                      const MatchParams& mp, const cv::Mat& disparity = {}, const calib::Calibration* rig = nullptr);
+                      const MatchParams& mp, const cv::Mat& disparity = {}, const landmarks::Calibration* rig = nullptr);
 
 }  // namespace hc::landmarks

@@ -61,11 +61,11 @@ long PairResult::truth_correct_x() const {
 
 namespace {
 
-features::MatchOptions match_options(Descriptor d, const MatchParams& mp) {
-    features::MatchOptions o;
+landmarks::MatchOptions match_options(Descriptor d, const MatchParams& mp) {
+    landmarks::MatchOptions o;
     o.norm = cv_norm(d, mp.norm);
     o.symmetry = true;
-    o.ratio = mp.drop_ties ? features::RatioTest::drop_ties : features::RatioTest::printed;
+    o.ratio = mp.drop_ties ? landmarks::RatioTest::drop_ties : landmarks::RatioTest::printed;
     o.max_ratio = mp.ratio > 0 ? mp.ratio : default_ratio(d);
     o.epipolar = false;   // scored here: matches failing it still count as "all"
     return o;
@@ -97,28 +97,28 @@ void score(const std::vector<cv::DMatch>& dm, const std::vector<cv::KeyPoint>& k
 }
 
 std::vector<cv::DMatch> run_matcher(const cv::Mat& dl, const std::vector<cv::KeyPoint>& kl, const cv::Mat& dr,
-                                    const std::vector<cv::KeyPoint>& kr, const features::MatchOptions& o) {
+                                    const std::vector<cv::KeyPoint>& kr, const landmarks::MatchOptions& o) {
     if (dl.empty() || dr.empty()) return {};   // no keypoints on a side: no matches
-    return features::match_stereo(dl, kl, dr, kr, o);
+    return landmarks::match_stereo(dl, kl, dr, kr, o);
 }
 
 }  // namespace
 
 namespace {
 
-/// Keypoints moved to their rectified positions (calib::rectify_points), the rest kept.
-void rectify(std::vector<cv::KeyPoint>& kp, const calib::Calibration& rig, calib::Side side) {
+/// Keypoints moved to their rectified positions (landmarks::rectify_points), the rest kept.
+void rectify(std::vector<cv::KeyPoint>& kp, const landmarks::Calibration& rig, landmarks::Side side) {
     std::vector<cv::Point2f> pts;
     pts.reserve(kp.size());
     for (const auto& k : kp) pts.push_back(k.pt);
-    const auto rect = calib::rectify_points(rig, side, pts);
+    const auto rect = landmarks::rectify_points(rig, side, pts);
     for (size_t i = 0; i < kp.size(); ++i) kp[i].pt = rect[i];
 }
 
 }  // namespace
 
 PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descriptor d, const GridParams& gp,
-                      const MatchParams& mp, const cv::Mat& disparity, const calib::Calibration* rig) {
+                      const MatchParams& mp, const cv::Mat& disparity, const landmarks::Calibration* rig) {
     check_combination(d, kp.left.source, mp.norm);
     if (img.left.size() != img.right.size()) throw InputError("pair '" + img.name + "': images differ in size");
     if (!disparity.empty() && disparity.size() != img.left.size())
@@ -136,14 +136,14 @@ PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descript
     std::vector<cv::DMatch> dm;
     try {
         if (rig && positions_only) {
-            rectify(r.kp_left, *rig, calib::Side::left);
-            rectify(r.kp_right, *rig, calib::Side::right);
+            rectify(r.kp_left, *rig, landmarks::Side::left);
+            rectify(r.kp_right, *rig, landmarks::Side::right);
         }
         desc->compute(img.left, r.kp_left, r.desc_left);
         desc->compute(img.right, r.kp_right, dr);
         if (rig && !positions_only) {   // the survivors of the descriptor's border
-            rectify(r.kp_left, *rig, calib::Side::left);
-            rectify(r.kp_right, *rig, calib::Side::right);
+            rectify(r.kp_left, *rig, landmarks::Side::left);
+            rectify(r.kp_right, *rig, landmarks::Side::right);
         }
         dm = run_matcher(r.desc_left, r.kp_left, dr, r.kp_right, opts);
     } catch (const hc::InputError& e) {
@@ -160,12 +160,12 @@ PairResult match_pair(const StereoImages& img, const PairKeypoints& kp, Descript
 
 // ---- landmarks ----------------------------------------------------------------------------
 
-std::vector<Landmark> landmarks_from(const PairResult& r, const stereo::RectifiedRig& calib, const PipelineOptions& o) {
+std::vector<Landmark> landmarks_from(const PairResult& r, const landmarks::RectifiedRig& calib, const PipelineOptions& o) {
     std::vector<Landmark> out;
     const size_t row_bytes = r.desc_left.empty() ? 0 : r.desc_left.cols * r.desc_left.elemSize();
     for (const auto& m : r.matches) {
         if (!m.epipolar) continue;
-        const stereo::Point3 t = stereo::triangulate(calib, pixels(m.left, m.right), o.noise);
+        const landmarks::Point3 t = landmarks::triangulate(calib, pixels(m.left, m.right), o.noise);
         const double D = m.left.x - m.right.x - (calib.cx0 - calib.cx1);
         if (!t.valid || D < o.min_disparity) continue;
         Landmark l;
@@ -181,7 +181,7 @@ std::vector<Landmark> landmarks_from(const PairResult& r, const stereo::Rectifie
     return out;
 }
 
-std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const stereo::RectifiedRig& calib,
+std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const landmarks::RectifiedRig& calib,
                               const PipelineOptions& o) {
     calib.validate();
     const StereoImages img{left, right, "frame"};

@@ -28,10 +28,10 @@ struct PipelineOptions {
 /// One stereo frame to landmarks: corners, description, matching (all three tests), and
 /// triangulation of each correct match. Throws InputError for images of different sizes or
 /// not 8-bit. (Hardware sources stream the pair with a seed and a flush, see detect_pairs.)
-std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const stereo::RectifiedRig& calib,
+std::vector<Landmark> acquire(const cv::Mat& left, const cv::Mat& right, const landmarks::RectifiedRig& calib,
                               const PipelineOptions& o);
 /// The same from matches already computed (the command's path, which also scores them).
-std::vector<Landmark> landmarks_from(const PairResult& r, const stereo::RectifiedRig& calib, const PipelineOptions& o);
+std::vector<Landmark> landmarks_from(const PairResult& r, const landmarks::RectifiedRig& calib, const PipelineOptions& o);
 
 // ---- evaluation: comparison and the g x h study ------------------------------------------
 

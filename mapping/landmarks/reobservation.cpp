@@ -127,7 +127,7 @@ std::vector<ReobservationRow> reobservation_study(const Dataset& ds, const Reobs
             if (qi.empty() || next.desc.rows < 2) continue;
             cv::Mat q(static_cast<int>(qi.size()), cur.desc.cols, CV_8U);
             for (size_t n = 0; n < qi.size(); ++n) cur.desc.row(qi[n]).copyTo(q.row(static_cast<int>(n)));
-            const auto nn = features::knn2(q, next.desc, cv::NORM_HAMMING);
+            const auto nn = landmarks::knn2(q, next.desc, cv::NORM_HAMMING);
             std::uniform_int_distribution<int> pick(0, next.desc.rows - 2);
             for (size_t n = 0; n < qi.size(); ++n) {
                 same.push_back(cv::norm(q.row(static_cast<int>(n)), next.desc.row(tj[n]), cv::NORM_HAMMING) / row.bits);

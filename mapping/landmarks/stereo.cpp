@@ -4,7 +4,7 @@
 
 #include "model/util/errors.hpp"
 
-namespace hc::stereo {
+namespace hc::landmarks {
 
 namespace {
 [[noreturn]] void refuse(const std::string& why) { throw InputError("stereo calibration: " + why); }
@@ -97,4 +97,4 @@ StereoPixels PixelNoise::perturb(const StereoPixels& e, std::mt19937_64& rng) co
     return n;
 }
 
-}  // namespace hc::stereo
+}  // namespace hc::landmarks

@@ -23,7 +23,7 @@
 #include <random>
 #include <string>
 
-namespace hc::stereo {
+namespace hc::landmarks {
 
 /// A rectified stereo rig: the entries of the two rectified projections above, and the
 /// images' size.
@@ -90,4 +90,4 @@ Point3 triangulate(const RectifiedRig& rig, const StereoPixels& m, const PixelNo
 /// the projections above, v_l = v_r = v (triangulate's inverse).
 StereoPixels project(const RectifiedRig& rig, const double p[3]);
 
-}  // namespace hc::stereo
+}  // namespace hc::landmarks

@@ -617,9 +617,9 @@ SequenceRun run_sequence(const std::vector<Mat34>& poses, const FrameSource& fra
     return r;
 }
 
-stereo::RectifiedRig synthetic_rig() {
+landmarks::RectifiedRig synthetic_rig() {
     const double fx = 718.856, baseline = 0.5372;
-    stereo::RectifiedRig r;
+    landmarks::RectifiedRig r;
     r.fx = r.fy = fx;
     r.cx0 = r.cx1 = 607.1928;
     r.cy = 185.2157;
@@ -629,7 +629,7 @@ stereo::RectifiedRig synthetic_rig() {
     return r;
 }
 
-StereoLandmarkObs to_observation(const stereo::Point3& t) {
+StereoLandmarkObs to_observation(const landmarks::Point3& t) {
     StereoLandmarkObs o;
     o.p_cam = Eigen::Vector3d(t.p[0], t.p[1], t.p[2]);
     for (int i = 0; i < 3; ++i)
@@ -637,8 +637,8 @@ StereoLandmarkObs to_observation(const stereo::Point3& t) {
     return o;
 }
 
-SyntheticFrames::SyntheticFrames(std::vector<Mat34> poses, const stereo::RectifiedRig& rig,
-                                 const stereo::PixelNoise& noise, int count, int flip_bits, uint64_t seed)
+SyntheticFrames::SyntheticFrames(std::vector<Mat34> poses, const landmarks::RectifiedRig& rig,
+                                 const landmarks::PixelNoise& noise, int count, int flip_bits, uint64_t seed)
     : poses_(std::move(poses)), rig_(rig), noise_(noise), flip_bits_(flip_bits), rng_(seed) {
     if (poses_.empty()) throw InputError("synthetic landmarks need at least one pose");
     if (rig.width < 1 || rig.height < 1) throw InputError("synthetic landmarks need a rig with an image size");
@@ -666,11 +666,11 @@ bool SyntheticFrames::next(StereoFrame& f) {
         const Eigen::Vector3d p = Rt * (world_[i] - T.col(3));
         if (p.z() < 2 || p.z() > 60) continue;
         const double q[3] = {p.x(), p.y(), p.z()};
-        const stereo::StereoPixels m = stereo::project(rig_, q);
+        const landmarks::StereoPixels m = landmarks::project(rig_, q);
         if (m.u_l < 0 || m.u_l >= rig_.width || m.u_r < 0 || m.v_l < 0 || m.v_l >= rig_.height) continue;
-        const stereo::StereoPixels n = noise_.perturb(m, rng_);
+        const landmarks::StereoPixels n = noise_.perturb(m, rng_);
         if (n.u_l - n.u_r < 1) continue;
-        StereoLandmarkObs o = to_observation(stereo::triangulate(rig_, n, noise_));
+        StereoLandmarkObs o = to_observation(landmarks::triangulate(rig_, n, noise_));
         o.descriptor = desc_[i];
         o.id_hint = static_cast<int>(i);
         for (int b = 0; b < flip_bits_; ++b) {
@@ -682,8 +682,8 @@ bool SyntheticFrames::next(StereoFrame& f) {
     return true;
 }
 
-std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const stereo::RectifiedRig& rig,
-                                                  const stereo::PixelNoise& noise, int count, int flip_bits,
+std::vector<StereoFrame> synthesize_stereo_frames(const std::vector<Mat34>& poses, const landmarks::RectifiedRig& rig,
+                                                  const landmarks::PixelNoise& noise, int count, int flip_bits,
                                                   uint64_t seed) {
     SyntheticFrames source(poses, rig, noise, count, flip_bits, seed);
     std::vector<StereoFrame> frames;

@@ -46,8 +46,8 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std
     return as_frames(landmarks::acquire_dataset(ds, kp, o));
 }
 
-FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const stereo::RectifiedRig& calib,
-                            const landmarks::PipelineOptions& o, std::shared_ptr<const calib::Calibration> rig) {
+FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const landmarks::RectifiedRig& calib,
+                            const landmarks::PipelineOptions& o, std::shared_ptr<const landmarks::Calibration> rig) {
     auto one = std::make_shared<landmarks::Dataset>();
     one->calib = {calib};
     one->rig = std::move(rig);
@@ -94,7 +94,7 @@ void report_landmarks(const KittiRunOptions& o, int pairs, const std::string& of
 /// The landmark pipeline on the sequence's first `pairs` stereo pairs (landmark_stream); `rig`,
 /// the first pair's calibration (the sequence's calib.txt).
 FrameSource stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, int pairs,
-                          const KittiRunOptions& o, stereo::RectifiedRig& rig) {
+                          const KittiRunOptions& o, landmarks::RectifiedRig& rig) {
     report_landmarks(o, pairs, sequence);
     rig = landmarks::kitti_dataset(kitti, sequence, {0, 1}).calib.front();
     return landmark_stream(
@@ -208,7 +208,7 @@ KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::strin
                              " has no " + poses_file.string() + "; give --truth FILE");
         if (truth.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
         if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
-        auto synthetic = std::make_shared<SyntheticFrames>(truth, *vo.rig, stereo::PixelNoise{}, o.synthetic_count,
+        auto synthetic = std::make_shared<SyntheticFrames>(truth, *vo.rig, landmarks::PixelNoise{}, o.synthetic_count,
                                                            o.flip_bits, o.seed);
         frames = [synthetic](StereoFrame& f) { return synthetic->next(f); };
         count = truth.size();
@@ -226,7 +226,7 @@ KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o) {
     if (rig.left.empty() || rig.right.empty()) throw InputError("--calib needs the rig's images: --left and --right");
     std::vector<Mat34> truth = o.truth.empty() ? std::vector<Mat34>{} : read_trajectory_file(o.truth);
     VisualOdometryConfig vo = checked_options(o);
-    const auto calibration = std::make_shared<const calib::Calibration>(landmarks::read_rig_calibration(rig.calib));
+    const auto calibration = std::make_shared<const landmarks::Calibration>(landmarks::read_rig_calibration(rig.calib));
     const std::vector<std::filesystem::path> left = frames::expand_image_list(rig.left, "--left");
     const std::vector<std::filesystem::path> right = frames::expand_image_list(rig.right, "--right");
     if (left.size() != right.size())

@@ -29,9 +29,9 @@ std::vector<StereoFrame> landmark_frames(const landmarks::Dataset& ds, const std
 /// then description, matching and triangulation through `calib`; nothing of a pair is kept
 /// once its frame is given out. `rig` set: the pairs are a user's rig's unrectified images and
 /// their keypoints are rectified with it (landmarks::Dataset::rig), as landmark_frames does.
-FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const stereo::RectifiedRig& calib,
+FrameSource landmark_stream(int pairs, landmarks::PairCornerStream::PairAt pair_at, const landmarks::RectifiedRig& calib,
                             const landmarks::PipelineOptions& o,
-                            std::shared_ptr<const calib::Calibration> rig = nullptr);
+                            std::shared_ptr<const landmarks::Calibration> rig = nullptr);
 
 /// One KITTI odometry sequence through the filter (`harris-cosim slam --sequences`): where the
 /// landmarks come from, where the motion comes from, the association. Every default is the

@@ -46,7 +46,7 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 
 /// (u_l, v, u_r) of the camera-frame point X through the rig, and its Jacobian in X.
-Vec3 rig_pixels(const stereo::RectifiedRig& g, const Vec3& X, Mat3* J = nullptr) {
+Vec3 rig_pixels(const landmarks::RectifiedRig& g, const Vec3& X, Mat3* J = nullptr) {
     const double iz = 1 / X.z();
     const Vec3 m((g.fx * X.x() + g.tx0) * iz + g.cx0, (g.fy * X.y() + g.ty) * iz + g.cy,
                  (g.fx * X.x() + g.tx1) * iz + g.cx1);
@@ -265,7 +265,7 @@ Rigid perturbed(const Rigid& T, const Vec7& d) {
 }
 
 /// The point the rig sees at m = (u_l, v, u_r): rig_pixels' inverse (stereo.hpp's model).
-Vec3 rig_point(const stereo::RectifiedRig& g, const Vec3& m) {
+Vec3 rig_point(const landmarks::RectifiedRig& g, const Vec3& m) {
     const double D = m(0) - m(2) - (g.cx0 - g.cx1), Z = (g.tx0 - g.tx1) / D;
     return Vec3(((m(0) - g.cx0) * Z - g.tx0) / g.fx, ((m(1) - g.cy) * Z - g.ty) / g.fy, Z);
 }
@@ -274,7 +274,7 @@ Vec3 rig_point(const stereo::RectifiedRig& g, const Vec3& m) {
 /// the current camera under T, in pixels (u_l, v, u_r), both frames' measurements corrected by
 /// T.c; S, its covariance: both points' covariances carried into those pixels. false when the
 /// moved point is not in front.
-bool pixel_residual(const Match& m, const Rigid& T, const stereo::RectifiedRig& g, Vec3& r, Mat3* S = nullptr) {
+bool pixel_residual(const Match& m, const Rigid& T, const landmarks::RectifiedRig& g, Vec3& r, Mat3* S = nullptr) {
     const Vec3 corr(0, 0, T.c);
     const Vec3 Xp = T.c == 0 ? m.p->X : rig_point(g, m.p->m - corr);
     if (!(Xp.z() > 0)) return false;
@@ -289,7 +289,7 @@ bool pixel_residual(const Match& m, const Rigid& T, const stereo::RectifiedRig& 
     return true;
 }
 
-double pixel_distance2(const Match& m, const Rigid& T, const stereo::RectifiedRig& g) {
+double pixel_distance2(const Match& m, const Rigid& T, const landmarks::RectifiedRig& g) {
     Vec3 r;
     Mat3 S;
     if (!pixel_residual(m, T, g, r, &S)) return std::numeric_limits<double>::infinity();
@@ -300,7 +300,7 @@ double pixel_distance2(const Match& m, const Rigid& T, const stereo::RectifiedRi
 /// the current T; Jacobians by central differences); returns the information matrix at the
 /// end (7 × 7; without `offset` its c row and column are those of a fixed c: H(6, 6) = 1).
 /// With `offset` and prior.sigma > 0, the prior on c enters as one more residual, c − mean.
-Mat7 refine_pixels(const std::vector<const Match*>& in, const stereo::RectifiedRig& g, Rigid& T, bool offset,
+Mat7 refine_pixels(const std::vector<const Match*>& in, const landmarks::RectifiedRig& g, Rigid& T, bool offset,
                    const DisparityPrior& prior = {}) {
     Mat7 H = Mat7::Zero();
     constexpr double h = 1e-6;
@@ -349,7 +349,7 @@ double applied_offset(const DisparityPrior& prior, const VisualOdometryConfig& c
 
 /// Hypotheses keep the disparity correction c0.
 Rigid pixel_hypothesis(const std::vector<Match>& matches, const VisualOdometryConfig& cfg, double c0, int& best_n) {
-    const stereo::RectifiedRig& g = *cfg.rig;
+    const landmarks::RectifiedRig& g = *cfg.rig;
     const double gate = chi2_quantile(cfg.inlier_probability, 3);
     std::mt19937_64 rng(0x5eed);
     std::uniform_int_distribution<size_t> pick(0, matches.size() - 1);
@@ -399,7 +399,7 @@ Mat3 skew(const Vec3& w) {
 /// are eliminated by their Schur complement (Gauss-Newton, at most 10 iterations). Returns the
 /// covariance of (ω, δt), the Schur complement's inverse; `chi2` the residuals' squared
 /// Mahalanobis sum at the end (6 residuals, 3 point parameters each: 3n − 6 dof).
-Eigen::Matrix<double, 6, 6> refine_two_view(const std::vector<const Match*>& in, const stereo::RectifiedRig& g,
+Eigen::Matrix<double, 6, 6> refine_two_view(const std::vector<const Match*>& in, const landmarks::RectifiedRig& g,
                                             Rigid& T, double& chi2) {
     using Mat6 = Eigen::Matrix<double, 6, 6>;
     using Mat63 = Eigen::Matrix<double, 6, 3>;
@@ -451,7 +451,7 @@ Eigen::Matrix<double, 6, 6> refine_two_view(const std::vector<const Match*>& in,
 Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfig& cfg, const DisparityPrior& prior) {
     Solved out;
     if (matches.size() < 3) return out;
-    const stereo::RectifiedRig& g = *cfg.rig;
+    const landmarks::RectifiedRig& g = *cfg.rig;
     const double gate = chi2_quantile(cfg.inlier_probability, 3);
     int best_n = 0;
     // the motion at the correction the earlier steps established
@@ -594,7 +594,7 @@ VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const Vis
     return vo;
 }
 
-StereoFrame with_disparity_offset(const StereoFrame& frame, const stereo::RectifiedRig& g, double c) {
+StereoFrame with_disparity_offset(const StereoFrame& frame, const landmarks::RectifiedRig& g, double c) {
     const Vec3 shift(0, 0, c);
     const auto moved = [&](const Vec3& X) { return rig_point(g, rig_pixels(g, X) - shift); };
     StereoFrame out;

@@ -34,7 +34,7 @@ enum class OdometryResidual { pixels, top_view };
 struct VisualOdometryConfig {
     OdometryResidual residual = OdometryResidual::pixels;
     /// The rig the frames were triangulated through; required by OdometryResidual::pixels.
-    std::optional<stereo::RectifiedRig> rig;
+    std::optional<landmarks::RectifiedRig> rig;
     /// Pixels only: estimate the disparity correction c with each motion (header comment).
     bool estimate_disparity_offset = true;
     /// The correction is applied (to the motions and the filter's frames) once its estimate
@@ -186,7 +186,7 @@ SpatialTrack spatial_track(const VisualOdometry& vo);
 /// `frame` with every disparity made `c` px larger: each point re-triangulated through `rig` at
 /// (u_l, v, u_r − c), its covariance carried by the Jacobian of that map. Points whose
 /// disparity does not stay positive are dropped; descriptors and id hints are kept.
-StereoFrame with_disparity_offset(const StereoFrame& frame, const stereo::RectifiedRig& rig, double c);
+StereoFrame with_disparity_offset(const StereoFrame& frame, const landmarks::RectifiedRig& rig, double c);
 
 /// Visual odometry and EKF-SLAM on stereo frames alone, started at the origin (KITTI's
 /// first pose is the identity); `truth` (one pose per frame) is read after the run only, to

@@ -2,7 +2,7 @@
 // the grid descriptor (thesis variant, g = 16, h = 3: the thesis's Harris choice; and the
 // corrected variant) against BRIEF (the authors' 9 x 9 box smoothing over an integral image,
 // and the paper's 9 x 9 Gaussian), each followed by the same brute-force Hamming matcher
-// (hc::features::match_stereo: 2-NN both ways, symmetry, printed ratio test, |dy| < 5), on
+// (hc::landmarks::match_stereo: 2-NN both ways, symmetry, printed ratio test, |dy| < 5), on
 // the same keypoints, in the same run. Goal: grid + matching faster than BRIEF + matching
 // (thesis Tables 9-10: 1.72-1.88 times slower on a PC), measured by BM_grid_vs_brief_interleaved
 // (the three chains one after the other in every iteration: robust to a changing machine
@@ -27,7 +27,7 @@
 
 namespace {
 
-using namespace hc::features;
+using namespace hc::landmarks;
 
 hc::features_test::StereoSample g_pair;
 

@@ -143,10 +143,10 @@ void BM_synthetic_00(benchmark::State& state) {
     double frames = 0;
     for (auto _ : state) {
         if (state.range(1)) {
-            const auto held = slam::synthesize_stereo_frames(poses, *vc.rig, stereo::PixelNoise{}, 1000, 8, 1);
+            const auto held = slam::synthesize_stereo_frames(poses, *vc.rig, landmarks::PixelNoise{}, 1000, 8, 1);
             benchmark::DoNotOptimize(slam::run_visual_sequence(held, truth, vc, slam::AssociationConfig{}).estimate.back());
         } else {
-            slam::SyntheticFrames synthetic(poses, *vc.rig, stereo::PixelNoise{}, 1000, 8, 1);
+            slam::SyntheticFrames synthetic(poses, *vc.rig, landmarks::PixelNoise{}, 1000, 8, 1);
             const slam::SequenceRun run = slam::run_visual_stream(
                 [&](slam::StereoFrame& f) { return synthetic.next(f); }, truth, vc, slam::AssociationConfig{});
             benchmark::DoNotOptimize(run.estimate.back());

@@ -78,7 +78,7 @@ std::vector<Target> targets(const fs::path& src) {
     t.push_back({"kitti-calib", "KITTI sequences/NN/calib.txt", "calib.txt", {calib, "P0: 1 2 3\n"},
                  with(kTextTokens, {"P0:", "P1:", "P2:", "Tr:", "e+02", "e-300"}),
                  [](const fs::path& p) {
-                     (void)calib::read_kitti_calib(p);
+                     (void)landmarks::read_kitti_calib(p);
                  }});
 
     // --- KITTI poses/NN.txt (slam --sequence) --------------------------------------------

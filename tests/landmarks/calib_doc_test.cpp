@@ -15,7 +15,7 @@
 
 #include "mapping/landmarks/calib.hpp"
 
-using namespace hc::calib;
+using namespace hc::landmarks;
 namespace fs = std::filesystem;
 
 namespace {

@@ -10,7 +10,7 @@
 #include "mapping/landmarks/calib.hpp"
 #include "io/frames/frames.hpp"
 
-using namespace hc::calib;
+using namespace hc::landmarks;
 
 namespace {
 std::filesystem::path g_calib;

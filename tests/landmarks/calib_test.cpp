@@ -13,7 +13,7 @@
 
 #include "mapping/landmarks/calib.hpp"
 
-using namespace hc::calib;
+using namespace hc::landmarks;
 namespace fs = std::filesystem;
 
 namespace {
@@ -165,7 +165,7 @@ TEST_CASE("the disparity-to-depth matrix equals stereoRectify's Q", "[calib]") {
     cv::Rodrigues(s.rvec, R);
     cv::stereoRectify(s.K1, s.D1, s.K2, s.D2, cv::Size(640, 480), R, s.T, R1, R2, P1, P2, Q,
                       cv::CALIB_ZERO_DISPARITY, 0);
-    const cv::Mat q = disparity_to_depth(hc::stereo::rig_from_projections(P1.ptr<double>(), P2.ptr<double>()));
+    const cv::Mat q = disparity_to_depth(hc::landmarks::rig_from_projections(P1.ptr<double>(), P2.ptr<double>()));
     INFO("Q " << Q << "\nours " << q);
     CHECK(cv::norm(q, Q, cv::NORM_INF) <= 1e-12 * cv::norm(Q, cv::NORM_INF));
 }

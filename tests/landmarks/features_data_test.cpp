@@ -10,7 +10,7 @@
 #include "mapping/landmarks/descriptors.hpp"
 #include "tests/landmarks/stereo_sample.hpp"
 
-using namespace hc::features;
+using namespace hc::landmarks;
 
 namespace {
 std::optional<hc::features_test::StereoSample> g_sample;

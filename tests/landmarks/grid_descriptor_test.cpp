@@ -11,7 +11,7 @@
 
 #include "mapping/landmarks/descriptors.hpp"
 
-using namespace hc::features;
+using namespace hc::landmarks;
 
 namespace {
 

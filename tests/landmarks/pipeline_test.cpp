@@ -127,7 +127,7 @@ TEST_CASE("a ground-truth-correct match has |x_l - x_r - d| <= 1 and |y_r - y_l|
 
 TEST_CASE("acquire puts the landmarks of a shifted pair at fx * b / disparity", "[landmarks]") {
     const double P0[12] = {718.856, 0, 160, 0, 0, 718.856, 120, 0, 0, 0, 1, 0}, P1[12] = {718.856, 0, 160, -386.1448, 0, 718.856, 120, 0, 0, 0, 1, 0};
-    const hc::stereo::RectifiedRig c = hc::stereo::rig_from_projections(P0, P1);
+    const hc::landmarks::RectifiedRig c = hc::landmarks::rig_from_projections(P0, P1);
     const StereoImages p = shifted_pair();
     PipelineOptions o;
     o.descriptor = Descriptor::grid;
@@ -164,7 +164,7 @@ TEST_CASE("score_formats scores a configuration as the comparison scores grid on
     ds.pairs = {shifted_pair()};
     ds.disparity = {shifted_truth()};
     const double P0[12] = {700, 0, 160, 0, 0, 700, 120, 0, 0, 0, 1, 0}, P1[12] = {700, 0, 160, -350, 0, 700, 120, 0, 0, 0, 1, 0};
-    const hc::stereo::RectifiedRig c = hc::stereo::rig_from_projections(P0, P1);
+    const hc::landmarks::RectifiedRig c = hc::landmarks::rig_from_projections(P0, P1);
     ds.calib = {c};
     const Totals t = score_formats(ds, hc::Formats{}, Detector::spec, GridParams{16, 2});
     ComparisonOptions o;
@@ -193,7 +193,7 @@ TEST_CASE("the g x h study of a fixed pair gives the counts of the reference mat
     ds.pairs = {shifted_pair(), shifted_pair(400, 300)};
     ds.disparity = {shifted_truth(), shifted_truth(400, 300)};
     const double P0[12] = {700, 0, 160, 0, 0, 700, 120, 0, 0, 0, 1, 0}, P1[12] = {700, 0, 160, -350, 0, 700, 120, 0, 0, 0, 1, 0};
-    const hc::stereo::RectifiedRig c = hc::stereo::rig_from_projections(P0, P1);
+    const hc::landmarks::RectifiedRig c = hc::landmarks::rig_from_projections(P0, P1);
     ds.calib = {c, c};
     StudyOptions o;
     o.g_min = 4;

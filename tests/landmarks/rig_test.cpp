@@ -23,7 +23,7 @@
 
 namespace fs = std::filesystem;
 using namespace hc::landmarks;
-namespace calib = hc::calib;
+namespace landmarks = hc::landmarks;
 
 namespace {
 fs::path g_samples;
@@ -47,13 +47,13 @@ TEST_CASE("on a calibrated rig's unrectified pair, the chessboard's landmarks ar
     const auto left = hc::frames::expand_image_list({(g_samples / "left[0-9]*.jpg").string()}, "left");
     const auto right = hc::frames::expand_image_list({(g_samples / "right[0-9]*.jpg").string()}, "right");
     REQUIRE(left.size() == 13);
-    const calib::Board board{{9, 6}, 1.0};   // unit: one square
-    const calib::Detection det = calib::detect_boards(left, right, board);
-    const calib::Calibration rig = calib::calibrate(det, board);
+    const landmarks::Board board{{9, 6}, 1.0};   // unit: one square
+    const landmarks::Detection det = landmarks::detect_boards(left, right, board);
+    const landmarks::Calibration rig = landmarks::calibrate(det, board);
     // through the file `harris-cosim calibrate` writes
     const fs::path file = fs::temp_directory_path() / ("hc_rig_test_" + std::to_string(::getpid()) + ".yml");
-    write_atomic(file, calib::to_opencv_storage(rig, false));
-    const calib::Calibration read = read_rig_calibration(file);
+    write_atomic(file, landmarks::to_opencv_storage(rig, false));
+    const landmarks::Calibration read = read_rig_calibration(file);
     fs::remove(file);
 
     const fs::path l3 = g_samples / "left03.jpg", r3 = g_samples / "right03.jpg";
@@ -73,20 +73,20 @@ TEST_CASE("on a calibrated rig's unrectified pair, the chessboard's landmarks ar
 
     // the board's corners in both raw images, and where rectification puts them
     const cv::Mat gl = cv::imread(l3.string(), cv::IMREAD_GRAYSCALE), gr = cv::imread(r3.string(), cv::IMREAD_GRAYSCALE);
-    const auto bl = calib::find_board(gl, board), br = calib::find_board(gr, board);
+    const auto bl = landmarks::find_board(gl, board), br = landmarks::find_board(gr, board);
     REQUIRE(bl.size() == 54);
     REQUIRE(br.size() == 54);
-    const auto rl = calib::rectify_points(read, calib::Side::left, bl), rr = calib::rectify_points(read, calib::Side::right, br);
+    const auto rl = landmarks::rectify_points(read, landmarks::Side::left, bl), rr = landmarks::rectify_points(read, landmarks::Side::right, br);
     double raw_dy = 0, rect_dy = 0;
     for (size_t i = 0; i < bl.size(); ++i) {
         raw_dy += std::abs(bl[i].y - br[i].y) / 54.0;
         rect_dy += std::abs(rl[i].y - rr[i].y) / 54.0;
     }
     // the board's corners triangulated through the rectified rig: one square apart, flat
-    const hc::stereo::RectifiedRig rect = ds.calib.at(0);
+    const hc::landmarks::RectifiedRig rect = ds.calib.at(0);
     std::vector<cv::Vec3d> corners;
     for (size_t i = 0; i < 54; ++i) {
-        const hc::stereo::Point3 t = hc::stereo::triangulate(rect, pixels(rl[i], rr[i]));
+        const hc::landmarks::Point3 t = hc::landmarks::triangulate(rect, pixels(rl[i], rr[i]));
         REQUIRE(t.valid);
         corners.emplace_back(t.p[0], t.p[1], t.p[2]);
     }
@@ -139,7 +139,7 @@ TEST_CASE("a bad rig calibration file is an input error naming it", "[landmarks]
     fs::remove(bad);
     CHECK_THROWS_WITH(read_rig_calibration("no/such/calib.yml"), Catch::Contains("no/such/calib.yml"));
     CHECK_THROWS_WITH(read_rig_calibration("no/such/calib.txt"), Catch::Contains("no/such/calib.txt"));
-    const calib::Calibration kitti = calib::parse_kitti_calib(
+    const landmarks::Calibration kitti = landmarks::parse_kitti_calib(
         "P0: 700 0 320 0 0 700 240 0 0 0 1 0\nP1: 700 0 320 -350 0 700 240 0 0 0 1 0\n", "t");
     CHECK_THROWS_WITH(rig_dataset({g_samples / "left01.jpg"}, {}, kitti), Catch::Contains("1 left images but 0 right"));
     CHECK_THROWS_WITH(rig_dataset({g_samples / "left01.jpg"}, {g_samples / "nothere.jpg"}, kitti), Catch::Contains("nothere.jpg"));

@@ -58,4 +58,4 @@ inline std::optional<StereoSample> load_stereo_sample(int corners, int border = 
     return s;
 }
 
-}  // namespace hc::features_test
+}  // namespace hc::landmarks_test

@@ -71,7 +71,7 @@ std::filesystem::path kitti_root() {
     return d ? *d / "kitti" : std::filesystem::path();
 }
 
-slam::VisualOdometryConfig odometry(const stereo::RectifiedRig& rig) {
+slam::VisualOdometryConfig odometry(const landmarks::RectifiedRig& rig) {
     slam::VisualOdometryConfig vc;
     vc.rig = rig;
     return vc;
@@ -82,7 +82,7 @@ slam::VisualOdometryConfig odometry(const stereo::RectifiedRig& rig) {
 TEST_CASE("spec corners on KITTI 01's pairs cycled: peak under 512 MB, flat from N to 2N frames", "[memory][real]") {
     const auto kitti = kitti_root();
     constexpr size_t n = 800;
-    const stereo::RectifiedRig rig = landmarks::kitti_dataset(kitti, "01", {0, 1}).calib.front();
+    const landmarks::RectifiedRig rig = landmarks::kitti_dataset(kitti, "01", {0, 1}).calib.front();
     landmarks::PipelineOptions po = slam::kitti_pipeline_defaults();
     po.detector = landmarks::Detector::spec;
     slam::FrameSource pairs = slam::landmark_stream(
@@ -101,7 +101,7 @@ TEST_CASE("synthetic landmarks on sequence 00's 4,541 poses: peak under 512 MB, 
     REQUIRE(poses.size() == 4541);
     const size_t n = poses.size() / 2;
     std::vector<slam::Mat34> used(poses.begin(), poses.begin() + static_cast<long>(2 * n));
-    auto synthetic = std::make_shared<slam::SyntheticFrames>(used, slam::synthetic_rig(), stereo::PixelNoise{}, 1000, 8, 1);
+    auto synthetic = std::make_shared<slam::SyntheticFrames>(used, slam::synthetic_rig(), landmarks::PixelNoise{}, 1000, 8, 1);
     std::vector<slam::Pose> truth;
     for (const auto& T : used) truth.push_back(slam::planar_pose(T));
     Sampled s;

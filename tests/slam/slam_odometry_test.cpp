@@ -39,20 +39,20 @@ Scene make_scene(int count, uint64_t seed, double z_max = 30) {
 /// sigma_px (the camera's model: on each of u_l, v_l, u_r, v_r) drawn from `noise` when it
 /// is given, else exact pixels (the covariance is the same).
 StereoFrame view(const Scene& s, const Pose& r, std::mt19937_64* noise,
-                 double sigma_px = hc::stereo::PixelNoise{}.sigma_px, double disparity_bias = 0) {
-    const hc::stereo::RectifiedRig cam = synthetic_rig();
-    const hc::stereo::PixelNoise pixel_noise{sigma_px};
+                 double sigma_px = hc::landmarks::PixelNoise{}.sigma_px, double disparity_bias = 0) {
+    const hc::landmarks::RectifiedRig cam = synthetic_rig();
+    const hc::landmarks::PixelNoise pixel_noise{sigma_px};
     const Mat34 T = kitti_pose(r);
     StereoFrame f;
     for (size_t i = 0; i < s.world.size(); ++i) {
         const Eigen::Vector3d p = T.leftCols<3>().transpose() * (s.world[i] - T.col(3));
         if (p.z() < 2) continue;
         const double q[3] = {p.x(), p.y(), p.z()};
-        hc::stereo::StereoPixels m = hc::stereo::project(cam, q);
+        hc::landmarks::StereoPixels m = hc::landmarks::project(cam, q);
         if (m.u_l < 0 || m.u_l >= cam.width || m.v_l < 0 || m.v_l >= cam.height || m.u_r < 0) continue;
         if (noise) m = pixel_noise.perturb(m, *noise);
         m.u_r += disparity_bias;   // a rig whose disparities all read disparity_bias px small
-        StereoLandmarkObs o = to_observation(hc::stereo::triangulate(cam, m, pixel_noise));
+        StereoLandmarkObs o = to_observation(hc::landmarks::triangulate(cam, m, pixel_noise));
         o.descriptor = s.desc[i];
         o.id_hint = static_cast<int>(i);
         f.push_back(std::move(o));
@@ -137,7 +137,7 @@ TEST_CASE("visual odometry with pixel noise errs within its covariance (NEES ove
     // On the top view the first-order covariance of each point, evaluated at its noisy
     // position, is over-confident (3.51; 3.51-3.83 over seeds 11-13, against 3.00-3.39 at
     // 0.02 px): bounded here at 1.25 times the upper bound
-    const double nominal = mean_odometry_nees(hc::stereo::PixelNoise{}.sigma_px, draws, residual);
+    const double nominal = mean_odometry_nees(hc::landmarks::PixelNoise{}.sigma_px, draws, residual);
     INFO("residual " << name(residual) << ", 0.5 px: mean NEES " << nominal);
     CHECK(nominal > lo);
     CHECK(nominal < (residual == OdometryResidual::pixels ? hi : 1.25 * hi));
@@ -147,7 +147,7 @@ TEST_CASE("visual odometry refined on two views errs within its covariance (NEES
           "[slam][odometry]") {
     const int draws = 200;
     const double lo = chi2_quantile(0.025, 3.0 * draws) / draws, hi = chi2_quantile(0.975, 3.0 * draws) / draws;
-    for (const double sigma : {0.02, hc::stereo::PixelNoise{}.sigma_px}) {
+    for (const double sigma : {0.02, hc::landmarks::PixelNoise{}.sigma_px}) {
         const double m = mean_odometry_nees(sigma, draws, OdometryResidual::pixels, true);
         INFO("two-view, " << sigma << " px: mean NEES " << m << ", 95 % bounds [" << lo << ", " << hi << "]");
         CHECK(m > lo);
@@ -301,13 +301,13 @@ TEST_CASE("levelled motions of a tilting camera integrate to its top-view trajec
 
 TEST_CASE("a stereo observation's noise carried to another point is the triangulation's covariance there",
           "[slam]") {
-    const hc::stereo::RectifiedRig rig = synthetic_rig();
-    const hc::stereo::PixelNoise noise;
+    const hc::landmarks::RectifiedRig rig = synthetic_rig();
+    const hc::landmarks::PixelNoise noise;
     for (const Eigen::Vector3d& a : {Eigen::Vector3d(-4, 1, 8), Eigen::Vector3d(12, -2, 35)})
         for (const Eigen::Vector3d& b : {Eigen::Vector3d(6, 0.5, 50), Eigen::Vector3d(-3, -1, 5)}) {
             const double pa[3] = {a.x(), a.y(), a.z()}, pb[3] = {b.x(), b.y(), b.z()};
-            const StereoLandmarkObs at_a = to_observation(hc::stereo::triangulate(rig, hc::stereo::project(rig, pa), noise));
-            const StereoLandmarkObs at_b = to_observation(hc::stereo::triangulate(rig, hc::stereo::project(rig, pb), noise));
+            const StereoLandmarkObs at_a = to_observation(hc::landmarks::triangulate(rig, hc::landmarks::project(rig, pa), noise));
+            const StereoLandmarkObs at_b = to_observation(hc::landmarks::triangulate(rig, hc::landmarks::project(rig, pb), noise));
             const Vec2 q(b.z(), -b.x());   // b in the robot frame
             const Mat2 carried = observation_noise_at(at_a, q), direct = camera_to_range_bearing(at_b.p_cam, at_b.cov).R;
             INFO("from " << a.transpose() << " to " << b.transpose());
@@ -315,7 +315,7 @@ TEST_CASE("a stereo observation's noise carried to another point is the triangul
         }
     // not in front: the observation's own covariance
     const double p[3] = {1, 0, 10};
-    const StereoLandmarkObs o = to_observation(hc::stereo::triangulate(rig, hc::stereo::project(rig, p), noise));
+    const StereoLandmarkObs o = to_observation(hc::landmarks::triangulate(rig, hc::landmarks::project(rig, p), noise));
     CHECK(observation_noise_at(o, Vec2(-1, 0)) == camera_to_range_bearing(o.p_cam, o.cov).R);
 }
 
@@ -355,12 +355,12 @@ TEST_CASE("the descriptor threshold is a fraction of the descriptor's bits", "[s
     CHECK(hamming_threshold(0.1, 32) == 25);
     CHECK(hamming_threshold(0, 64) == 0);
     // 100 differing bits: refused for a 256-bit descriptor, accepted for a 512-bit one
-    const hc::stereo::RectifiedRig cam = synthetic_rig();
+    const hc::landmarks::RectifiedRig cam = synthetic_rig();
     for (const size_t bytes : {size_t(32), size_t(64)}) {
         AssociationConfig ac;
         ac.forget_after = 0;
         LandmarkSlam s(Pose::Zero(), ac);
-        StereoLandmarkObs a = to_observation(hc::stereo::triangulate(cam, {700, 200, 670, 200}));
+        StereoLandmarkObs a = to_observation(hc::landmarks::triangulate(cam, {700, 200, 670, 200}));
         a.descriptor.assign(bytes, 0x00);
         s.first_frame({a});
         StereoLandmarkObs b = a;

@@ -254,12 +254,12 @@ TEST_CASE("a TUM ground truth is paired with the frames by timestamp when the se
 TEST_CASE("a rig's plain images with a rig file from calib.txt give the KITTI-layout run, pair by pair", "[slam][kitti]") {
     // the rig: calib.txt's rectified pair as calibrate's YAML, zero distortion, identity
     // rotations, marked unrectified so that every keypoint goes through cv::undistortPoints
-    hc::calib::Calibration c = hc::calib::read_kitti_calib(g_kitti / "sequences/01/calib.txt");
+    hc::landmarks::Calibration c = hc::landmarks::read_kitti_calib(g_kitti / "sequences/01/calib.txt");
     c.rectified_input = false;
     c.rectified.width = 1241;
     c.rectified.height = 376;
     const fs::path rig_file = g_work / "rig.yml";
-    std::ofstream(rig_file) << hc::calib::to_opencv_storage(c, false);
+    std::ofstream(rig_file) << hc::landmarks::to_opencv_storage(c, false);
     const fs::path left = g_work / "rig_left", right = g_work / "rig_right";
     fs::create_directories(left);
     fs::create_directories(right);

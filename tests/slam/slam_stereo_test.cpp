@@ -100,13 +100,13 @@ TEST_CASE("trajectories are written in the KITTI and TUM formats", "[slam]") {
 }
 
 TEST_CASE("triangulation covariance is the pixel noise on u_l, v_l, u_r, v_r through the Jacobian", "[slam]") {
-    const hc::stereo::RectifiedRig cam = synthetic_rig();
+    const hc::landmarks::RectifiedRig cam = synthetic_rig();
     const Eigen::Vector4d m(800, 150, 780, 151);   // disparity 20 px, rows one apart
     const auto f = [&](const Eigen::Vector4d& x) {
-        return to_observation(hc::stereo::triangulate(cam, {x(0), x(1), x(2), x(3)})).p_cam;
+        return to_observation(hc::landmarks::triangulate(cam, {x(0), x(1), x(2), x(3)})).p_cam;
     };
-    const StereoLandmarkObs o = to_observation(hc::stereo::triangulate(cam, {m(0), m(1), m(2), m(3)}));
-    const double z = cam.fx * cam.baseline() / 20, s = hc::stereo::PixelNoise{}.sigma_px;
+    const StereoLandmarkObs o = to_observation(hc::landmarks::triangulate(cam, {m(0), m(1), m(2), m(3)}));
+    const double z = cam.fx * cam.baseline() / 20, s = hc::landmarks::PixelNoise{}.sigma_px;
     CHECK(o.p_cam.z() == Approx(z));
     CHECK(o.p_cam.y() == Approx((150.5 - cam.cy) * z / cam.fx));   // v = (v_l + v_r) / 2
     const Eigen::Matrix<double, 3, 4> J = numeric_jacobian<3, 4>(f, m);
@@ -123,14 +123,14 @@ TEST_CASE("triangulation covariance is the pixel noise on u_l, v_l, u_r, v_r thr
 
 TEST_CASE("the pixel noise is σ on each of u_l, v_l, u_r, v_r: Σ(u, v, d) = σ² [[1,0,1],[0,½,0],[1,0,2]]",
           "[slam]") {
-    hc::stereo::PixelNoise noise{0.7};
-    const hc::stereo::StereoPixels exact{600, 200, 580, 200};
+    hc::landmarks::PixelNoise noise{0.7};
+    const hc::landmarks::StereoPixels exact{600, 200, 580, 200};
     std::mt19937_64 rng(5);
     const int n = 200000;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
     for (int k = 0; k < n; ++k) {
-        const hc::stereo::StereoPixels m = noise.perturb(exact, rng);
+        const hc::landmarks::StereoPixels m = noise.perturb(exact, rng);
         // error of (u, v, d) = (u_l, (v_l + v_r)/2, u_l - u_r)
         const Eigen::Vector3d e(m.u_l - exact.u_l, (m.v_l + m.v_r) / 2 - 200, (m.u_l - m.u_r) - 20);
         mean += e;
@@ -147,7 +147,7 @@ TEST_CASE("the pixel noise is σ on each of u_l, v_l, u_r, v_r: Σ(u, v, d) = σ
     CHECK((C - model).cwiseAbs().maxCoeff() < 0.01);
     // a zero σ leaves the pixels exact
     noise.sigma_px = 0;
-    const hc::stereo::StereoPixels same = noise.perturb(exact, rng);
+    const hc::landmarks::StereoPixels same = noise.perturb(exact, rng);
     CHECK((same.u_l == exact.u_l && same.v_l == exact.v_l && same.u_r == exact.u_r && same.v_r == exact.v_r));
 }
 
@@ -162,8 +162,8 @@ TEST_CASE("association matches inside the gate and refuses a descriptor that dif
     ac.forget_after = 0;
     LandmarkSlam s(Pose::Zero(), ac);
     StereoFrame f0;
-    const hc::stereo::RectifiedRig cam = synthetic_rig();
-    StereoLandmarkObs a = to_observation(hc::stereo::triangulate(cam, {700, 200, 670, 200})), b = to_observation(hc::stereo::triangulate(cam, {400, 200, 375, 200}));
+    const hc::landmarks::RectifiedRig cam = synthetic_rig();
+    StereoLandmarkObs a = to_observation(hc::landmarks::triangulate(cam, {700, 200, 670, 200})), b = to_observation(hc::landmarks::triangulate(cam, {400, 200, 375, 200}));
     a.descriptor = std::vector<uint8_t>(32, 0x00);
     b.descriptor = std::vector<uint8_t>(32, 0xff);
     f0 = {a, b};
@@ -195,8 +195,8 @@ TEST_CASE("landmarks unseen for forget_after frames are removed", "[slam]") {
     AssociationConfig ac;
     ac.forget_after = 2;
     LandmarkSlam s(Pose::Zero(), ac);
-    const hc::stereo::RectifiedRig cam = synthetic_rig();
-    StereoLandmarkObs a = to_observation(hc::stereo::triangulate(cam, {700, 200, 670, 200}));
+    const hc::landmarks::RectifiedRig cam = synthetic_rig();
+    StereoLandmarkObs a = to_observation(hc::landmarks::triangulate(cam, {700, 200, 670, 200}));
     s.first_frame({a});
     CHECK(s.next_frame(Motion::Zero(), Q0, {}).removed == 0);
     const FrameStats f = s.next_frame(Motion::Zero(), Q0, {});
