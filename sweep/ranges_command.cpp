@@ -21,6 +21,13 @@ void run_ranges_command(const RangesCommand& c) {
     if (!c.config.empty() && !c.spec.empty()) throw InputError("ranges: --config and --spec exclude each other");
     if (!c.propose.empty() && !c.spec.empty())
         throw InputError("ranges: --propose " + c.propose + " proposes the widths of one configuration: give --config, not --spec");
+    if (!c.propose.empty()) {
+        const fs::path dir = fs::absolute(c.propose).parent_path();
+        for (fs::path d = dir; !d.empty(); d = d.parent_path()) {
+            if (fs::exists(d) && !fs::is_directory(d)) throw InputError("ranges: --propose " + c.propose + ": " + d.string() + " is not a directory");
+            if (fs::exists(d) || d == d.parent_path()) break;
+        }
+    }
     if (c.pixel_max > 255) throw InputError("ranges: --pixel-max " + std::to_string(c.pixel_max) + " is above 255");
     if (!c.rtl.empty()) {
         if (c.stages.empty()) throw InputError("ranges: --rtl " + c.rtl + " names the VHDL of the stage proofs: give --stages DIR too");

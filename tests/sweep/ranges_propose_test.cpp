@@ -8,7 +8,10 @@
 #include "model/harris/formats_json.hpp"
 #include "model/harris/harris_top.hpp"
 #include "model/util/util.hpp"
+#include "cosim/cosim.hpp"
+#include "sweep/cost.hpp"
 #include "sweep/ranges.hpp"
+#include "sweep/stage_equivalence.hpp"
 #include "sweep/sweep_config.hpp"
 
 using namespace hc;
@@ -175,4 +178,36 @@ TEST_CASE("the thesis's proposal reads the same corners and maxima as the thesis
         ++streams;
     }
     CHECK(streams == 21);
+}
+
+TEST_CASE("the thesis's proposal: proven on both routes, its stages proven equal, fewer flip-flops and LUTs in yosys",
+          "[propose-slow]") {
+    const Formats base{};
+    const Formats prop = propose_widths(model_route(base)).formats;
+    // (a) every register proven, the netlist route included
+    const RangeReport r = analyse_ranges(prop);
+    CHECK(r.summary() == "proven safe");
+    for (const auto& x : r.regs) {
+        INFO(kRegNames[static_cast<int>(x.reg)]);
+        CHECK(x.verdict == Verdict::proven);
+    }
+    // (c) every stage entity's netlist at the proposal's generics equals the model's stage function
+    util::ScratchDir dir("propose-stages");
+    StageOptions so;
+    so.dir = dir.path();
+    so.config = "proposed-thesis";
+    const StageEquivalence se = stage_equivalence(prop, so);
+    CHECK(se.summary() == "8 proven equal");
+    // (b) the cost beside the base's (the sweep's synthesis and cache)
+    CostOptions o;
+    o.rtl_sources = cosim::rtl_sources();
+    o.cache_dir = std::string(HC_BUILD_DIR) + "/sweep-cache";
+    const CostContext ctx(o);
+    const Cost b = synth_cost(ctx, base, Variant::signed_mul), p = synth_cost(ctx, prop, Variant::signed_mul);
+    WARN("thesis: " << b.luts << " LUT, " << b.ffs << " FF, " << b.dsps << " DSP; proposal: " << p.luts << " LUT, " << p.ffs
+                    << " FF, " << p.dsps << " DSP; register bits " << datapath_register_bits(base, Geometry{}) << " -> "
+                    << datapath_register_bits(prop, Geometry{}));
+    CHECK(p.ffs < b.ffs);
+    CHECK(p.luts < b.luts);
+    CHECK(p.dsps <= b.dsps);
 }
