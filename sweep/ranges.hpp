@@ -309,3 +309,38 @@ RangeReport cached_ranges(const Formats& f, const std::string& key, const std::f
                           const RangeOptions& o = {});
 
 }  // namespace hc::sweep
+
+namespace hc::sweep {
+
+/// One width field of Formats in a proposal (propose_widths).
+struct ProposedWidth {
+    std::string field;              ///< the field's name in format_fields() ("resp_w")
+    int base = 0, proposed = 0;
+    std::vector<Reg> regs;          ///< the registers whose width the field sets
+    Reg setter = Reg::sobel_x;      ///< the register with the fewest bits to spare: it sets `proposed`
+    Interval range;                 ///< the setter's proven range
+    int bits = 0;                   ///< the fewest bits (of the setter's signedness) that hold `range`
+    std::string from;               ///< what `range` rests on ("interval bound", "exact maximum (solver)", ...)
+    std::string kept;               ///< why the width stays at `base` when it could not be narrowed ("" otherwise)
+};
+/// The narrowest widths a range report proves safe, and how each was set.
+struct WidthProposal {
+    Formats base, formats;          ///< the report's formats; the proposal (only width fields differ)
+    std::vector<ProposedWidth> widths;   ///< one per width field, in format_fields() order
+};
+
+/// The narrowest widths that hold every register's proven range, from a configuration's report.
+/// A width field is a field of format_fields() that, raised by one, widens registers of the
+/// report's table by one bit and narrows none (the drops and the shifts are not widths); the
+/// registers it widens are the ones it governs. Each register's proven range is its interval
+/// bound, with the solver's closed exact extreme on its side where the solver closed it (not
+/// for det, whose narrowings are a*c and b*b, not det); the maximum's is the response's (its
+/// other value, the reset, is the most negative of any width). A width is its base value minus
+/// the fewest bits any governed register has to spare; it stays where a governed register is
+/// not proven (wraps, open), and where the proposal's interval pass no longer proves a register
+/// the base's interval pass proves (a narrowing inside a stage). Drops and shifts are unchanged.
+WidthProposal propose_widths(const RangeReport& rep);
+/// The report's section: one row per width field (base, proposed, the register and range that set it).
+std::string proposal_markdown(const WidthProposal& p);
+
+}  // namespace hc::sweep

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -18,6 +19,15 @@ namespace hc::sweep {
 
 void run_ranges_command(const RangesCommand& c) {
     if (!c.config.empty() && !c.spec.empty()) throw InputError("ranges: --config and --spec exclude each other");
+    if (!c.propose.empty() && !c.spec.empty())
+        throw InputError("ranges: --propose " + c.propose + " proposes the widths of one configuration: give --config, not --spec");
+    if (!c.propose.empty()) {
+        const fs::path dir = fs::absolute(c.propose).parent_path();
+        for (fs::path d = dir; !d.empty(); d = d.parent_path()) {
+            if (fs::exists(d) && !fs::is_directory(d)) throw InputError("ranges: --propose " + c.propose + ": " + d.string() + " is not a directory");
+            if (fs::exists(d) || d == d.parent_path()) break;
+        }
+    }
     if (c.pixel_max > 255) throw InputError("ranges: --pixel-max " + std::to_string(c.pixel_max) + " is above 255");
     if (!c.rtl.empty()) {
         if (c.stages.empty()) throw InputError("ranges: --rtl " + c.rtl + " names the VHDL of the stage proofs: give --stages DIR too");
@@ -34,6 +44,7 @@ void run_ranges_command(const RangesCommand& c) {
     std::string md;
     nlohmann::json all = nlohmann::json::array();
     std::vector<std::string> lines;
+    std::optional<WidthProposal> proposal;
     for (const auto& cfg : configs) {
         if (!c.netlist_dir.empty()) ro.netlist_dir = fs::path(c.netlist_dir) / file_stem(cfg.name);
         const RangeReport r = analyse_ranges(cfg.formats, ro);
@@ -41,6 +52,11 @@ void run_ranges_command(const RangesCommand& c) {
         md += ranges_markdown(cfg.name, r) + "\n";
         nlohmann::json j = range_report_to_json(r);
         j["name"] = cfg.name;
+        if (!c.propose.empty()) {
+            proposal = propose_widths(r);
+            md += proposal_markdown(*proposal) + "\n";
+            j["proposal"] = nlohmann::json::parse(formats_to_json(proposal->formats));
+        }
         all.push_back(j);
         if (!c.stages.empty()) {
             StageOptions so;
@@ -59,6 +75,7 @@ void run_ranges_command(const RangesCommand& c) {
             for (const auto& w : write_witnesses(cfg.name, r, c.witnesses))
                 lines.push_back(w.regression_line(c.set_dir.empty() ? fs::path("golden") : fs::path(c.set_dir)));
     }
+    if (proposal) util::write_file_atomic(c.propose, formats_to_json(proposal->formats));
     if (!c.json.empty()) util::write_file_atomic(c.json, all.dump(1) + "\n");
     if (!c.out.empty()) util::write_file_atomic(c.out, md);
     else std::fputs(md.c_str(), stdout);

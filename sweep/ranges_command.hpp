@@ -18,10 +18,13 @@ struct RangesCommand {
     std::string netlist_dir;
     std::string stages;   ///< --stages DIR: stage equivalence too, its netlists and queries kept under DIR/<config>/<stage>
     std::string rtl;      ///< --rtl DIR: the VHDL the stage proofs synthesise (empty: the project's rtl/)
+    std::string propose;  ///< --propose FILE: the narrowest proven widths (propose_widths) as a --config file
 };
 
 /// Analyses every configuration, writes --json, --out (else prints the Markdown) and the
-/// witnesses, and prints each witness's regression-set line. InputError for bad input.
+/// witnesses, and prints each witness's regression-set line; with --propose (one configuration),
+/// adds the proposed widths to the report and writes them as a --config file, atomically, once
+/// every report is made. InputError for bad input.
 void run_ranges_command(const RangesCommand& c);
 
 }  // namespace hc::sweep

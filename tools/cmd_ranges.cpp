@@ -33,6 +33,10 @@ void add_ranges_command(CLI::App& app) {
     cmd->add_flag("--no-netlist", o->no_netlist, "skip the netlist route (GHDL, yosys, z3 on the synthesised stage chain)");
     cmd->add_option("--netlist-dir", o->netlist_dir,
                     "keep the netlists (GHDL's Verilog, the yosys scripts, the SMT-LIB) here, one folder per configuration");
+    cmd->add_option("--propose", o->propose,
+                    "write the narrowest widths the report proves safe (drops and shifts unchanged) as a --config\n"
+                    "file here, and add a section to the report: each width, base and proposed, the register and range\n"
+                    "that set it (one configuration: not with --spec)");
     cmd->add_option("--stages", o->stages,
                     "also prove each stage entity's netlist equal to the model's stage function (z3, then cvc5), keeping\n"
                     "the netlists and queries under DIR/<configuration>/<stage> (the report prints the command that reruns each)");
