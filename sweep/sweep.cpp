@@ -170,11 +170,12 @@ std::string score_trajectories(std::vector<PointResult>& pts, const fs::path& ki
     k.stereo_landmarks = true;
     k.pipeline.detector = landmarks::Detector::spec;
     k.pipeline.descriptor = landmarks::parse_descriptor(spec.descriptor);
+    k.keep_frames = false;   // the scores only
     for (auto& p : pts) {
         k.pipeline.corners.formats = p.config.formats;
         const slam::KittiRun r = slam::run_kitti_sequence(kitti, spec.sequence, k);
         p.trajectory = {r.run.slam_metrics.ape, r.run.odometry_metrics.ape, r.run.slam_metrics.path_length,
-                        static_cast<int>(r.run.truth.size()), r.vo.failures};
+                        static_cast<int>(r.run.scored_frames), r.vo.failures};
         p.has_trajectory = true;
         progress(show, fmt::format("[trajectory] {}: APE EKF-SLAM {:.3f} m ({:.2f} % of {:.1f} m), visual odometry alone "
                                    "{:.3f} m, {} odometry failures",

@@ -78,6 +78,9 @@ std::vector<Pose> dead_reckoning(const Pose& start, const std::vector<Motion>& m
 std::string kitti_trajectory(const std::vector<Mat34>& poses);
 std::string tum_trajectory(const std::vector<Mat34>& poses, const std::vector<double>& timestamps);
 std::string kitti_trajectory(const std::vector<Pose>& poses);
+/// One line of each: kitti_trajectory's and tum_trajectory's line of one pose (the same text).
+std::string kitti_line(const Mat34& pose);
+std::string tum_line(const Mat34& pose, double timestamp);
 /// Reads a trajectory file of ground-truth poses of camera 0 in the first camera's frame (KITTI's
 /// convention): KITTI (12 numbers a line, read_kitti_poses) or TUM ("t tx ty tz qx qy qz qw",
 /// lines starting with '#' skipped), told apart by the count of numbers on its first pose line.
@@ -126,21 +129,42 @@ struct TrajectoryMetrics {
     double nees_within_95 = 0;   ///< fraction of those frames whose NEES is ≤ χ²(0.95; 3) = 7.81
     double ape_percent() const { return path_length > 0 ? 100 * ape / path_length : 0; }
 };
+/// The SE(2)-aligned APE (aligned_ape) from running sums, pose by pose: the means of the
+/// estimate's and the truth's positions and their centred second moments (Σ|e − ē|², Σ|t − t̄|²,
+/// Σ (e − ē)·(t − t̄), Σ (e − ē)×(t − t̄)), updated as Welford's running moments. The closed form
+/// of the 2-D alignment (Horn; Umeyama without scale): the rotation φ = atan2(Σ×, Σ·) leaves the
+/// residual Σ|e − ē|² + Σ|t − t̄|² − 2·hypot(Σ·, Σ×), so no pose is kept. Not aligned_ape's bits:
+/// the residual is a difference of sums, with an absolute error of about 1e-16 times the
+/// positions' spread squared (relative 1e-9 or better when the aligned error is above about 1e-3
+/// of that spread, tested).
+class AlignedApeSums {
+public:
+    void add(const Vec2& estimate, const Vec2& truth);
+    size_t count() const { return n_; }
+    /// The aligned APE of the poses added (m); std::invalid_argument before the first.
+    double ape() const;
+
+private:
+    size_t n_ = 0;
+    Vec2 me_ = Vec2::Zero(), mt_ = Vec2::Zero();
+    double see_ = 0, stt_ = 0, dot_ = 0, cross_ = 0;
+};
 /// score_trajectory's metrics as running sums, frame by frame: APE, RPE, path length, final
 /// error and the NEES count, mean and share within χ²(0.95; 3), summed in frame order as
-/// score_trajectory sums them (the same bits). Held: the sums and the previous frame's poses.
-/// Not here: the SE(2)-aligned APE, whose alignment needs the whole trajectory (aligned_ape).
+/// score_trajectory sums them (the same bits), and the SE(2)-aligned APE from AlignedApeSums
+/// (not aligned_ape's bits: relative 1e-9). Held: the sums and the previous frame's poses.
 class TrajectoryScore {
 public:
     /// The next frame's estimate and true pose, and the estimate's covariance (nullptr: no
     /// NEES); returns the frame's pose NEES (NaN where it is not defined).
     double add(const Pose& estimate, const Pose& truth, const Mat3* cov);
     size_t frames() const { return n_; }
-    /// The metrics of the frames added so far (at least one), with ape_se2 0 and no per-frame
-    /// NEES (add returned them). Throws std::invalid_argument before the first frame.
+    /// The metrics of the frames added so far (at least one), ape_se2 from the running sums, no
+    /// per-frame NEES (add returned them). Throws std::invalid_argument before the first frame.
     TrajectoryMetrics metrics() const;
 
 private:
+    AlignedApeSums aligned_;
     size_t n_ = 0;
     double ape_ss_ = 0, rpe_ss_ = 0, rpe_heading_ss_ = 0, path_ = 0, final_ = 0, nees_sum_ = 0;
     int nees_frames_ = 0, nees_within_ = 0;
@@ -150,7 +174,8 @@ private:
 /// position errors (m). Throws std::invalid_argument on size mismatch.
 double aligned_ape(const std::vector<Pose>& estimate, const std::vector<Pose>& truth);
 /// The metrics of `estimate` against `truth` (same length ≥ 1); `cov` (empty or one per pose)
-/// gives the NEES: TrajectoryScore over the frames, and aligned_ape. Throws
+/// gives the NEES: TrajectoryScore over the frames, and aligned_ape (the pass over the poses,
+/// not the running sums) as ape_se2. Throws
 /// std::invalid_argument on size mismatch.
 TrajectoryMetrics score_trajectory(const std::vector<Pose>& estimate, const std::vector<Pose>& truth,
                                    const std::vector<Mat3>& cov = {});
@@ -264,11 +289,46 @@ private:
 /// Number of differing bits; descriptors of different lengths differ in every extra bit.
 int hamming_distance(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
 
+/// One frame of a run as it comes (FilterRun): what states.csv and the trajectory files write of it.
+struct FrameRecord {
+    size_t frame = 0;
+    const Pose* truth = nullptr;       ///< the frame's true pose; nullptr when the frame is not scored
+    const Mat34* truth_3d = nullptr;   ///< its 3×4 pose, when the run has them (RunRecord::truth_3d)
+    Pose estimate = Pose::Zero(), dead_reckoning = Pose::Zero();
+    Mat3 pose_cov = Mat3::Zero();
+    /// 6-DoF poses (spatial_poses of estimate and dead_reckoning with the frame's tilt and height).
+    Mat34 estimate_3d = Mat34::Zero(), dead_reckoning_3d = Mat34::Zero();
+    double nees_slam = 0, nees_odometry = 0;   ///< NaN when not scored or not defined
+    double timestamp = 0;                      ///< TUM time (s), set by run_kitti_sequence's runs; else 0
+    FrameStats stats;
+};
+using FrameSink = std::function<void(const FrameRecord&)>;
+/// What a run gives besides its summary (SequenceRun): each frame's record as it comes, whether
+/// SequenceRun keeps its per-frame vectors, and the truth's 3×4 poses for the 3-D APE.
+struct RunRecord {
+    FrameSink sink;                  ///< called once per frame, in order (may be empty)
+    bool keep = true;                ///< false: SequenceRun's per-frame vectors stay empty
+    std::vector<Mat34> truth_3d;     ///< the scored frames' 3×4 true poses (empty: no 3-D APE)
+};
+/// The counts of a run's frames, summed as frames come.
+struct RunTotals {
+    int matched = 0, observed = 0, peak = 0, final_map_size = 0, hinted = 0, agreeing = 0, checked = 0, wrong = 0,
+        jcbb_cut = 0;
+    void add(const FrameStats& f);
+};
+
 /// A run on a sequence: the filter, and the same motions integrated alone (dead reckoning
 /// of the odometry: synthetic odometry, or visual odometry alone). `truth` holds the true poses
 /// of the frames scored: one per frame, the first frames' only (the overlap of a shorter ground
 /// truth), or none (no ground truth: every metric and the wrong-association counts stay 0).
+/// The per-frame vectors (truth to disparity_offset, and the metrics' per-frame NEES) are kept
+/// only with RunRecord::keep; the counts, totals, metrics and 3-D APE always (running sums).
 struct SequenceRun {
+    size_t frame_count = 0, scored_frames = 0;
+    RunTotals totals;
+    /// The disparity correction over the frames (with visual odometry estimating it): final, min, max.
+    bool disparity_estimated = false;
+    double disparity_final = 0, disparity_min = 0, disparity_max = 0;
     std::vector<Pose> truth, estimate, dead_reckoning;
     /// 6-DoF poses: the estimate and the odometry alone (top view of the filter or the odometry,
     /// height, roll and pitch of visual odometry's 6-DoF steps where it has them, else level at
@@ -305,58 +365,65 @@ using FrameSource = std::function<bool(StereoFrame& frame)>;
 /// The frames of a vector, in order (they are referenced, not copied).
 FrameSource frames_of(const std::vector<StereoFrame>& frames);
 
-/// run_filter frame by frame: each frame is used as it comes and not kept. Kept per frame: the
-/// poses, covariances, motions and counts (SequenceRun's). The metrics against `truth` are
-/// running sums (TrajectoryScore) of the filter's and the odometry alone's poses as frames come
-/// (the same bits as score_trajectory on the run's vectors), but the SE(2)-aligned APE, made
-/// at the end from the kept poses. The wrong-association check against
-/// `truth` is made as frames come, with the world point of each landmark's first observation
-/// (under the true pose of its frame) held while the landmark is mapped.
+/// run_filter frame by frame: each frame is used as it comes and not kept; its record goes to
+/// record.sink. Kept per frame only with record.keep: the poses, covariances, motions and counts
+/// (SequenceRun's). The metrics against `truth` are running sums (TrajectoryScore) of the
+/// filter's and the odometry alone's poses as frames come (the same bits as score_trajectory on
+/// the run's vectors, the SE(2)-aligned APE to relative 1e-9), the counts too (RunTotals), and
+/// the 3-D APE against record.truth_3d. The wrong-association check against `truth` is made as
+/// frames come, with the world point of each landmark's first observation (under the true pose
+/// of its frame) held while the landmark is mapped.
 class FilterRun {
 public:
-    FilterRun(const Pose& start, const AssociationConfig& association, std::vector<Pose> truth);
+    FilterRun(const Pose& start, const AssociationConfig& association, std::vector<Pose> truth, RunRecord record = {});
+    /// The tilt and height (spatial_poses) of the frames given from now on; until it is called,
+    /// the 6-DoF poses are kitti_pose's (level, height 0).
+    void set_spatial(const Mat3& tilt, double height);
     void first_frame(const StereoFrame& frame);
     /// A later frame: the motion from the previous one, its covariance, the frame.
     void next_frame(const Motion& u, const Mat3& Q, const StereoFrame& frame);
-    size_t frames() const { return run_.frames.size(); }
+    size_t frames() const { return run_.frame_count; }
     /// The run as run_filter returns it. InputError on fewer than 2 frames or a truth longer
     /// than the frames.
     SequenceRun finish();
 
 private:
     void after_frame(const FrameStats& st, const StereoFrame& frame);
+    void record_frame(FrameRecord& rec);
     LandmarkSlam slam_;
     std::vector<Pose> truth_;
+    RunRecord record_;
     SequenceRun run_;
+    Pose dead_reckoning_ = Pose::Zero();
+    Mat3 tilt_ = Mat3::Identity();
+    bool spatial_ = false;
+    double height_ = 0, ape_3d_slam_ss_ = 0, ape_3d_odometry_ss_ = 0;
+    size_t scored_3d_ = 0;
     double wrong_gate_;
     std::unordered_map<int, std::pair<Vec2, Mat2>> first_seen_;   // landmark id -> world point, covariance
     Mat3 dead_reckoning_cov_ = Mat3::Zero();   // the odometry alone's covariance, integrated
     TrajectoryScore slam_score_, odometry_score_;
-    std::vector<double> slam_nees_, odometry_nees_;   // per frame scored (states.csv)
+    std::vector<double> slam_nees_, odometry_nees_;   // per frame scored, with record.keep
 };
 
 /// The filter over frames with the given motions (motions.size() == frames.size() − 1),
 /// started at `start`, then scored against `truth` (used only after the run, for the metrics
 /// and the wrong-association counts): one pose per frame, or fewer (the first truth.size()
 /// frames are scored), or none (not scored). estimate_3d and dead_reckoning_3d are level at
-/// height 0; truth_3d and the 3-D APE are score_spatial's. Throws InputError on a size mismatch
-/// of the motions or a truth longer than the frames.
+/// height 0; no truth_3d nor 3-D APE (RunRecord::truth_3d is run_sequence's). Throws InputError
+/// on a size mismatch of the motions or a truth longer than the frames.
 SequenceRun run_filter(const std::vector<StereoFrame>& frames, const std::vector<Motion>& motions,
                        const std::vector<Mat3>& motion_cov, const Pose& start, const AssociationConfig& association,
                        const std::vector<Pose>& truth);
-/// Sets run.truth_3d to the first run.truth.size() poses of `truth` (the frames run_filter
-/// scored) and the 3-D APE of estimate_3d and dead_reckoning_3d against them. Throws
-/// std::invalid_argument when `truth` has fewer poses than run.truth.
-void score_spatial(SequenceRun& run, const std::vector<Mat34>& truth);
 /// Synthetic odometry on a real trajectory: run_filter over frames[k] seen at ground-truth
 /// poses[k] (poses.size() == frames.size() ≥ 2) with noisy_odometry(truth, odometry, seed),
 /// started at the first true pose. Throws InputError on a size mismatch or fewer than 2 poses.
 SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<StereoFrame>& frames,
                          const SyntheticOdometry& odometry, const AssociationConfig& association, uint64_t seed);
-/// The same frame by frame (FilterRun): InputError as above, the count of frames checked
-/// when the source ends.
+/// The same frame by frame (FilterRun, with `record`; its truth_3d is `poses`): InputError as
+/// above, the count of frames checked when the source ends.
 SequenceRun run_sequence(const std::vector<Mat34>& poses, const FrameSource& frames, const SyntheticOdometry& odometry,
-                         const AssociationConfig& association, uint64_t seed);
+                         const AssociationConfig& association, uint64_t seed, RunRecord record = {});
 
 /// The rig of the synthetic landmarks: KITTI's rectified cameras 0 and 1 (sequences 00-02):
 /// fx = fy = 718.856 px, principal point (607.1928, 185.2157) px for both, the right camera

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -121,29 +122,35 @@ std::string kitti_trajectory(const std::vector<Pose>& poses) {
     return kitti_trajectory(T);
 }
 
-std::string kitti_trajectory(const std::vector<Mat34>& poses) {
+std::string kitti_line(const Mat34& T) {
     std::ostringstream o;
     o << std::setprecision(9);
-    for (const auto& T : poses) {
-        for (int i = 0; i < 12; ++i) o << (i ? " " : "") << T(i / 4, i % 4);
-        o << '\n';
-    }
+    for (int i = 0; i < 12; ++i) o << (i ? " " : "") << T(i / 4, i % 4);
+    o << '\n';
     return o.str();
+}
+
+std::string tum_line(const Mat34& T, double timestamp) {
+    Eigen::Quaterniond q(Mat3(T.leftCols<3>()));
+    q.normalize();
+    if (q.w() < 0) q.coeffs() = -q.coeffs();
+    std::ostringstream o;
+    o << std::setprecision(9) << timestamp << ' ' << T(0, 3) << ' ' << T(1, 3) << ' ' << T(2, 3) << ' ' << q.x() << ' '
+      << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+    return o.str();
+}
+
+std::string kitti_trajectory(const std::vector<Mat34>& poses) {
+    std::string s;
+    for (const auto& T : poses) s += kitti_line(T);
+    return s;
 }
 
 std::string tum_trajectory(const std::vector<Mat34>& poses, const std::vector<double>& timestamps) {
     if (timestamps.size() != poses.size()) throw std::invalid_argument("tum_trajectory: one timestamp per pose");
-    std::ostringstream o;
-    o << std::setprecision(9);
-    for (size_t k = 0; k < poses.size(); ++k) {
-        const Mat34& T = poses[k];
-        Eigen::Quaterniond q(Mat3(T.leftCols<3>()));
-        q.normalize();
-        if (q.w() < 0) q.coeffs() = -q.coeffs();
-        o << timestamps[k] << ' ' << T(0, 3) << ' ' << T(1, 3) << ' ' << T(2, 3) << ' ' << q.x() << ' ' << q.y() << ' '
-          << q.z() << ' ' << q.w() << '\n';
-    }
-    return o.str();
+    std::string s;
+    for (size_t k = 0; k < poses.size(); ++k) s += tum_line(poses[k], timestamps[k]);
+    return s;
 }
 
 namespace {
@@ -478,16 +485,34 @@ std::pair<Vec2, Mat2> world_point(const StereoLandmarkObs& o, const Pose& truth)
 }  // namespace
 
 namespace {
-/// The metrics of a run's running sums, with the per-frame NEES and the SE(2)-aligned APE of the
-/// first truth.size() poses of `estimate` (the alignment needs the whole trajectory).
-TrajectoryMetrics finished_metrics(const TrajectoryScore& score, std::vector<double> nees,
-                                   const std::vector<Pose>& estimate, const std::vector<Pose>& truth) {
+/// The metrics of a run's running sums, with the per-frame NEES when they were kept.
+TrajectoryMetrics finished_metrics(const TrajectoryScore& score, std::vector<double> nees) {
     TrajectoryMetrics m = score.metrics();
     m.nees = std::move(nees);
-    m.ape_se2 = aligned_ape(std::vector(estimate.begin(), estimate.begin() + static_cast<long>(truth.size())), truth);
     return m;
 }
+/// A 6-DoF pose of a top-view pose with a tilt and a height (spatial_poses of one pose), or
+/// level at height 0 without (`tilt` nullptr).
+Mat34 spatial_pose(const Pose& planar, const Mat3* tilt, double height) {
+    Mat34 T = kitti_pose(planar);
+    if (!tilt) return T;
+    T.leftCols<3>() = Mat3(T.leftCols<3>()) * *tilt;
+    T(1, 3) = height;
+    return T;
+}
 }  // namespace
+
+void RunTotals::add(const FrameStats& f) {
+    matched += f.matched;
+    observed += f.observed;
+    peak = std::max(peak, f.map_size);
+    final_map_size = f.map_size;
+    hinted += f.matched_with_hints;
+    agreeing += f.matched_agreeing;
+    checked += f.matched_checked;
+    wrong += f.matched_wrong;
+    jcbb_cut += f.jcbb_complete ? 0 : 1;
+}
 
 FrameSource frames_of(const std::vector<StereoFrame>& frames) {
     return [&frames, k = size_t{0}](StereoFrame& f) mutable {
@@ -497,25 +522,36 @@ FrameSource frames_of(const std::vector<StereoFrame>& frames) {
     };
 }
 
-FilterRun::FilterRun(const Pose& start, const AssociationConfig& association, std::vector<Pose> truth)
-    : slam_(start, association), truth_(std::move(truth)), wrong_gate_(chi2_quantile(0.999, 2)) {
-    run_.dead_reckoning.push_back(start);
+FilterRun::FilterRun(const Pose& start, const AssociationConfig& association, std::vector<Pose> truth,
+                     RunRecord record)
+    : slam_(start, association), truth_(std::move(truth)), record_(std::move(record)), dead_reckoning_(start),
+      wrong_gate_(chi2_quantile(0.999, 2)) {}
+
+void FilterRun::set_spatial(const Mat3& tilt, double height) {
+    tilt_ = tilt;
+    height_ = height;
+    spatial_ = true;
 }
 
 void FilterRun::first_frame(const StereoFrame& frame) { after_frame(slam_.first_frame(frame), frame); }
 
 void FilterRun::next_frame(const Motion& u, const Mat3& Q, const StereoFrame& frame) {
-    run_.odometry.push_back(u);
-    run_.odometry_cov.push_back(Q);
+    if (record_.keep) {
+        run_.odometry.push_back(u);
+        run_.odometry_cov.push_back(Q);
+    }
     Mat3 R_r, R_u;   // the odometry alone: its pose and covariance integrated
-    run_.dead_reckoning.push_back(compose(run_.dead_reckoning.back(), u, &R_r, &R_u));
+    dead_reckoning_ = compose(dead_reckoning_, u, &R_r, &R_u);
     dead_reckoning_cov_ = R_r * dead_reckoning_cov_ * R_r.transpose() + R_u * Q * R_u.transpose();
     after_frame(slam_.next_frame(u, Q, frame), frame);
 }
 
 void FilterRun::after_frame(const FrameStats& stats, const StereoFrame& frame) {
-    const size_t k = run_.frames.size();
-    FrameStats st = stats;
+    const size_t k = run_.frame_count;
+    FrameRecord rec;
+    rec.frame = k;
+    rec.stats = stats;
+    FrameStats& st = rec.stats;
     if (k < truth_.size()) {   // scored: each match against its landmark's first observation
         for (const auto& [i, id] : slam_.last_matches()) {
             const auto& [p0, C0] = first_seen_.at(id);
@@ -528,17 +564,49 @@ void FilterRun::after_frame(const FrameStats& stats, const StereoFrame& frame) {
             first_seen_.emplace(id, world_point(frame[static_cast<size_t>(i)], truth_[k]));
     }
     for (int id : slam_.last_removed()) first_seen_.erase(id);
-    run_.frames.push_back(st);
-    run_.estimate.push_back(slam_.filter().pose());
-    run_.pose_cov.push_back(slam_.filter().pose_covariance());
+    rec.estimate = slam_.filter().pose();
+    rec.pose_cov = slam_.filter().pose_covariance();
+    rec.dead_reckoning = dead_reckoning_;
+    rec.nees_slam = rec.nees_odometry = std::numeric_limits<double>::quiet_NaN();
     if (k < truth_.size()) {   // the metrics' running sums
-        slam_nees_.push_back(slam_score_.add(run_.estimate.back(), truth_[k], &run_.pose_cov.back()));
-        odometry_nees_.push_back(odometry_score_.add(run_.dead_reckoning[k], truth_[k], &dead_reckoning_cov_));
+        rec.truth = &truth_[k];
+        rec.nees_slam = slam_score_.add(rec.estimate, truth_[k], &rec.pose_cov);
+        rec.nees_odometry = odometry_score_.add(dead_reckoning_, truth_[k], &dead_reckoning_cov_);
     }
+    record_frame(rec);
+}
+
+void FilterRun::record_frame(FrameRecord& rec) {
+    const size_t k = rec.frame;
+    rec.estimate_3d = spatial_pose(rec.estimate, spatial_ ? &tilt_ : nullptr, height_);
+    rec.dead_reckoning_3d = spatial_pose(rec.dead_reckoning, spatial_ ? &tilt_ : nullptr, height_);
+    if (rec.truth && k < record_.truth_3d.size()) {   // the 3-D APE's sums
+        rec.truth_3d = &record_.truth_3d[k];
+        ape_3d_slam_ss_ += (rec.estimate_3d.col(3) - rec.truth_3d->col(3)).squaredNorm();
+        ape_3d_odometry_ss_ += (rec.dead_reckoning_3d.col(3) - rec.truth_3d->col(3)).squaredNorm();
+        ++scored_3d_;
+    }
+    ++run_.frame_count;
+    run_.scored_frames += rec.truth != nullptr;
+    run_.totals.add(rec.stats);
+    if (record_.keep) {
+        run_.frames.push_back(rec.stats);
+        run_.estimate.push_back(rec.estimate);
+        run_.pose_cov.push_back(rec.pose_cov);
+        run_.dead_reckoning.push_back(rec.dead_reckoning);
+        run_.estimate_3d.push_back(rec.estimate_3d);
+        run_.dead_reckoning_3d.push_back(rec.dead_reckoning_3d);
+        if (rec.truth) {
+            slam_nees_.push_back(rec.nees_slam);
+            odometry_nees_.push_back(rec.nees_odometry);
+        }
+        if (rec.truth_3d) run_.truth_3d.push_back(*rec.truth_3d);
+    }
+    if (record_.sink) record_.sink(rec);
 }
 
 SequenceRun FilterRun::finish() {
-    const size_t n = run_.frames.size();
+    const size_t n = run_.frame_count;
     if (n < 2) throw InputError("a sequence needs at least 2 frames, got " + std::to_string(n));
     if (truth_.size() > n)
         throw InputError("a sequence needs at most one landmark frame per pose: " + std::to_string(n) + " frames, " +
@@ -547,15 +615,17 @@ SequenceRun FilterRun::finish() {
         run_.map.push_back(slam_.filter().landmark(id));
         run_.map_cov.push_back(slam_.filter().landmark_covariance(id));
     }
-    run_.estimate_3d = spatial_poses(run_.estimate);
-    run_.dead_reckoning_3d = spatial_poses(run_.dead_reckoning);
-    // the scores summed as the frames came; the SE(2) alignment over the whole trajectory
-    run_.truth = truth_;
+    // the scores summed as the frames came
+    if (record_.keep) run_.truth = truth_;
     if (!truth_.empty()) {
-        run_.slam_metrics = finished_metrics(slam_score_, std::move(slam_nees_), run_.estimate, truth_);
-        run_.odometry_metrics = finished_metrics(odometry_score_, std::move(odometry_nees_), run_.dead_reckoning, truth_);
+        run_.slam_metrics = finished_metrics(slam_score_, std::move(slam_nees_));
+        run_.odometry_metrics = finished_metrics(odometry_score_, std::move(odometry_nees_));
         run_.ate_slam = run_.slam_metrics.ape;
         run_.ate_dead_reckoning = run_.odometry_metrics.ape;
+    }
+    if (scored_3d_ > 0) {
+        run_.ape_3d_slam = std::sqrt(ape_3d_slam_ss_ / static_cast<double>(scored_3d_));
+        run_.ape_3d_dead_reckoning = std::sqrt(ape_3d_odometry_ss_ / static_cast<double>(scored_3d_));
     }
     return std::move(run_);
 }
@@ -575,16 +645,6 @@ SequenceRun run_filter(const std::vector<StereoFrame>& frames, const std::vector
     return run.finish();
 }
 
-void score_spatial(SequenceRun& run, const std::vector<Mat34>& truth) {
-    const size_t n = run.truth.size();
-    if (truth.size() < n) throw std::invalid_argument("score_spatial: fewer poses than the frames scored");
-    run.truth_3d.assign(truth.begin(), truth.begin() + static_cast<long>(n));
-    if (n == 0) return;
-    const auto first = [n](const std::vector<Mat34>& v) { return std::vector(v.begin(), v.begin() + static_cast<long>(n)); };
-    run.ape_3d_slam = absolute_trajectory_error_3d(first(run.estimate_3d), run.truth_3d);
-    run.ape_3d_dead_reckoning = absolute_trajectory_error_3d(first(run.dead_reckoning_3d), run.truth_3d);
-}
-
 SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<StereoFrame>& frames,
                          const SyntheticOdometry& odometry, const AssociationConfig& association, uint64_t seed) {
     if (poses.size() >= 2 && frames.size() != poses.size())
@@ -594,14 +654,15 @@ SequenceRun run_sequence(const std::vector<Mat34>& poses, const std::vector<Ster
 }
 
 SequenceRun run_sequence(const std::vector<Mat34>& poses, const FrameSource& frames, const SyntheticOdometry& odometry,
-                         const AssociationConfig& association, uint64_t seed) {
+                         const AssociationConfig& association, uint64_t seed, RunRecord record) {
     if (poses.size() < 2) throw InputError("a sequence needs at least 2 poses, got " + std::to_string(poses.size()));
     odometry.validate();
     std::vector<Pose> truth;
     for (const auto& T : poses) truth.push_back(planar_pose(T));
     const std::vector<Motion> u = noisy_odometry(truth, odometry, seed);
     const Mat3 Q = odometry.covariance();
-    FilterRun run(truth[0], association, truth);
+    record.truth_3d = poses;
+    FilterRun run(truth[0], association, truth, std::move(record));
     StereoFrame frame;
     size_t count = 0;
     for (; frames(frame); ++count) {
@@ -612,9 +673,7 @@ SequenceRun run_sequence(const std::vector<Mat34>& poses, const FrameSource& fra
     if (count != poses.size())
         throw InputError("a sequence needs one landmark frame per pose: " + std::to_string(count) + " frames, " +
                          std::to_string(poses.size()) + " poses");
-    SequenceRun r = run.finish();
-    score_spatial(r, poses);
-    return r;
+    return run.finish();
 }
 
 landmarks::RectifiedRig synthetic_rig() {

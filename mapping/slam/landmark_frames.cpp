@@ -130,25 +130,13 @@ VisualOdometryConfig checked_options(const KittiRunOptions& o) {
     return vo;
 }
 
-/// The filter over `frames` with the odometry of `o`, scored against `truth` (none, one per
-/// frame, or the first frames').
-KittiRun run_frames(const FrameSource& frames, size_t count, const std::vector<Mat34>& truth,
-                    const VisualOdometryConfig& vo, const KittiRunOptions& o) {
-    KittiRun r;
-    if (o.visual_odometry) {
-        std::vector<Pose> planar;
-        for (const auto& T : truth) planar.push_back(planar_pose(T));
-        r.run = run_visual_stream(frames, planar, vo, o.association, &r.vo);
-        score_spatial(r.run, truth);
-    } else {
-        if (truth.size() != count)
-            throw InputError("--odometry synthetic is made from the ground truth: it needs one true pose per frame, "
-                             "got " + std::to_string(truth.size()) + " poses for " + std::to_string(count) +
-                             " frames");
-        r.run = run_sequence(truth, frames, o.synthetic, o.association, o.seed);
-    }
-    return r;
-}
+/// The TUM timestamps of a run's frames: a times.txt's, or frame index × a period.
+struct FrameTimes {
+    std::vector<double> times;   // empty: index × period
+    double period = 0.1;
+    std::string from;
+    double at(size_t k) const { return times.empty() ? static_cast<double>(k) * period : times[k]; }
+};
 
 /// The first `n` timestamps of a times.txt; InputError when it has fewer.
 std::vector<double> frame_times(const std::filesystem::path& times, size_t n) {
@@ -160,17 +148,50 @@ std::vector<double> frame_times(const std::filesystem::path& times, size_t n) {
     return t;
 }
 
-void set_timestamps(SequenceRun& run, const std::filesystem::path& times, const KittiRunOptions& o) {
-    const size_t n = run.estimate.size();
+/// The timestamps of `n` frames: from `times` when it exists, else frame index × o.frame_period.
+FrameTimes timestamps_of(const std::filesystem::path& times, size_t n, const KittiRunOptions& o) {
+    FrameTimes t;
+    t.period = o.frame_period;
     if (!times.empty() && std::filesystem::exists(times)) {
-        run.timestamps = frame_times(times, n);
-        run.timestamps_from = "the sequence's times.txt";
-        return;
+        t.times = frame_times(times, n);
+        t.from = "the sequence's times.txt";
+        return t;
     }
-    for (size_t k = 0; k < n; ++k) run.timestamps.push_back(static_cast<double>(k) * o.frame_period);
     std::ostringstream period;
     period << o.frame_period;
-    run.timestamps_from = "frame index × " + period.str() + " s (no times.txt)";
+    t.from = "frame index × " + period.str() + " s (no times.txt)";
+    return t;
+}
+
+/// The filter over `frames` with the odometry of `o`, scored against `truth` (none, one per
+/// frame, or the first frames'); each frame's record to o.sink with its timestamp.
+KittiRun run_frames(const FrameSource& frames, size_t count, const std::vector<Mat34>& truth,
+                    const VisualOdometryConfig& vo, const KittiRunOptions& o, const FrameTimes& times) {
+    RunRecord record;
+    record.keep = o.keep_frames;
+    record.truth_3d = truth;
+    if (o.sink)
+        record.sink = [&times, &sink = o.sink](const FrameRecord& f) {
+            FrameRecord stamped = f;
+            stamped.timestamp = times.at(f.frame);
+            sink(stamped);
+        };
+    KittiRun r;
+    if (o.visual_odometry) {
+        std::vector<Pose> planar;
+        for (const auto& T : truth) planar.push_back(planar_pose(T));
+        r.run = run_visual_stream(frames, planar, vo, o.association, &r.vo, std::move(record));
+    } else {
+        if (truth.size() != count)
+            throw InputError("--odometry synthetic is made from the ground truth: it needs one true pose per frame, "
+                             "got " + std::to_string(truth.size()) + " poses for " + std::to_string(count) +
+                             " frames");
+        r.run = run_sequence(truth, frames, o.synthetic, o.association, o.seed, std::move(record));
+    }
+    r.run.timestamps_from = times.from;
+    if (o.keep_frames)
+        for (size_t k = 0; k < r.run.frame_count; ++k) r.run.timestamps.push_back(times.at(k));
+    return r;
 }
 
 }  // namespace
@@ -213,8 +234,7 @@ KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::strin
         frames = [synthetic](StereoFrame& f) { return synthetic->next(f); };
         count = truth.size();
     }
-    KittiRun r = run_frames(frames, count, truth, vo, o);
-    set_timestamps(r.run, times_file, o);
+    KittiRun r = run_frames(frames, count, truth, vo, o, timestamps_of(times_file, count, o));
     if (!truth.empty()) r.run.truth_pairing = pairing;
     return r;
 }
@@ -243,8 +263,7 @@ KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o) {
         return landmarks::rig_dataset({left[i]}, {right[i]}, *calibration).pairs.front();
     };
     const FrameSource frames = landmark_stream(pairs, pair_at, calibration->rectified, o.pipeline, calibration);
-    KittiRun r = run_frames(frames, left.size(), truth, vo, o);
-    set_timestamps(r.run, {}, o);
+    KittiRun r = run_frames(frames, left.size(), truth, vo, o, timestamps_of({}, left.size(), o));
     if (!truth.empty()) r.run.truth_pairing = "in file order (a rig has no frame times)";
     return r;
 }

@@ -68,6 +68,10 @@ struct KittiRunOptions {
     /// default difference). A KITTI ground truth, or none of the frames' times: file order.
     double truth_time_tolerance = 0.02;
     std::function<void(const std::string&)> progress;   ///< one line per step (may be empty)
+    /// Each frame's record as it comes, with its TUM timestamp (may be empty), and whether the
+    /// run keeps its per-frame vectors (RunRecord; the command keeps none and writes the sink's rows).
+    FrameSink sink;
+    bool keep_frames = true;
 };
 struct KittiRun {
     SequenceRun run;
@@ -77,8 +81,9 @@ struct KittiRun {
 /// score, and for the synthetic odometry and landmarks, which are made from it), and runs the
 /// filter frame by frame on the sequence's frames (its stereo pairs, their corners streamed
 /// pair by pair by landmarks::PairCornerStream, or synthetic landmarks: one frame per true
-/// pose, SyntheticFrames), none held once used (run_visual_stream, FilterRun); TUM timestamps from the sequence's times.txt when present, else frame index
-/// × o.frame_period. A TUM ground truth is paired with the stereo pairs by timestamp when the
+/// pose, SyntheticFrames), none held once used (run_visual_stream, FilterRun, with o.sink and
+/// o.keep_frames); TUM timestamps from the sequence's times.txt when present (read before the
+/// run), else frame index × o.frame_period. A TUM ground truth is paired with the stereo pairs by timestamp when the
 /// sequence has a times.txt (truth_by_timestamp, o.truth_time_tolerance: a pair without a pose
 /// within it is an InputError unless o.score_overlap), else in file order; the run's
 /// truth_pairing says which. InputError (slam's or landmarks') for fewer than 2 pairs, a ground truth

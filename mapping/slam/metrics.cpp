@@ -1,5 +1,7 @@
 // metrics.cpp: trajectory scores as evo's APE and RPE compute them, on the top view: APE
-// without and with SE(2) alignment, RPE per frame, path length, pose NEES per frame.
+// without and with SE(2) alignment (a pass over the poses, or running sums), RPE per frame, path
+// length, pose NEES per frame.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -32,8 +34,28 @@ Pose se2_alignment(const std::vector<Pose>& estimate, const std::vector<Pose>& t
     return {t.x(), t.y(), phi};
 }
 
+void AlignedApeSums::add(const Vec2& e, const Vec2& t) {
+    ++n_;
+    const Vec2 de = e - me_, dt = t - mt_;
+    me_ += de / static_cast<double>(n_);
+    mt_ += dt / static_cast<double>(n_);
+    const Vec2 ce = e - me_, ct = t - mt_;   // against the updated means (Welford)
+    see_ += de.dot(ce);
+    stt_ += dt.dot(ct);
+    dot_ += de.x() * ct.x() + de.y() * ct.y();
+    cross_ += de.x() * ct.y() - de.y() * ct.x();
+}
+
+double AlignedApeSums::ape() const {
+    if (n_ == 0) throw std::invalid_argument("AlignedApeSums: no pose added");
+    // Σ|R(φ)(e − ē) − (t − t̄)|² at φ = atan2(cross, dot): cos φ·dot + sin φ·cross = hypot(dot, cross)
+    const double residual = see_ + stt_ - 2 * std::hypot(dot_, cross_);
+    return std::sqrt(std::max(residual, 0.0) / static_cast<double>(n_));
+}
+
 double TrajectoryScore::add(const Pose& estimate, const Pose& truth, const Mat3* cov) {
     ape_ss_ += (estimate - truth).head<2>().squaredNorm();
+    aligned_.add(estimate.head<2>(), truth.head<2>());
     if (n_ > 0) {
         const Motion dt = between(last_truth_, truth), de = between(last_estimate_, estimate);
         rpe_ss_ += (de - dt).head<2>().squaredNorm();
@@ -62,6 +84,7 @@ TrajectoryMetrics TrajectoryScore::metrics() const {
     if (n_ == 0) throw std::invalid_argument("TrajectoryScore: no frame scored");
     TrajectoryMetrics m;
     m.ape = std::sqrt(ape_ss_ / static_cast<double>(n_));
+    m.ape_se2 = aligned_.ape();
     if (n_ > 1) {
         m.rpe = std::sqrt(rpe_ss_ / static_cast<double>(n_ - 1));
         m.rpe_heading = std::sqrt(rpe_heading_ss_ / static_cast<double>(n_ - 1));

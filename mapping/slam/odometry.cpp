@@ -554,14 +554,15 @@ MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& c
     return est;
 }
 
-VisualOdometryStream::VisualOdometryStream(const VisualOdometryConfig& cfg)
+VisualOdometryStream::VisualOdometryStream(const VisualOdometryConfig& cfg, bool keep)
     : cfg_(cfg),
+      keep_(keep),
       fail_(Eigen::Vector3d(cfg.fail_sigma_xy * cfg.fail_sigma_xy, cfg.fail_sigma_xy * cfg.fail_sigma_xy,
                             cfg.fail_sigma_theta * cfg.fail_sigma_theta)
                 .asDiagonal()),
       level_(cfg.level && cfg.residual == OdometryResidual::pixels) {
     cfg_.validate();
-    vo_.tilt.push_back(tilt_);
+    if (keep_) vo_.tilt.push_back(tilt_);
 }
 
 void VisualOdometryStream::step(const StereoFrame& previous, const StereoFrame& current) {
@@ -570,20 +571,23 @@ void VisualOdometryStream::step(const StereoFrame& previous, const StereoFrame& 
         Mat3 Q = e.cov;
         last_ = level_ ? levelled_motion(tilt_, e.rotation, e.translation, e.cov6, &Q) : e.u;
         if (level_) tilt_ = tilt_of(tilt_ * e.rotation);
-        vo_.motions.push_back(last_);
-        vo_.covariances.push_back(Q);
+        last_cov_ = Q;
         if (e.disparity_offset_sigma > 0) offset_ = {e.disparity_offset, e.disparity_offset_sigma};
     } else {
         ++vo_.failures;
-        vo_.motions.push_back(last_);
-        vo_.covariances.push_back(fail_);
+        last_cov_ = fail_;
     }
     // frame 0 takes step 1's correction, frame k step k's
-    const double c = applied_offset(offset_, cfg_);
-    if (vo_.disparity_offset.empty()) vo_.disparity_offset.push_back(c);
-    vo_.disparity_offset.push_back(c);
-    vo_.tilt.push_back(tilt_);
-    vo_.estimates.push_back(std::move(e));
+    frame_offset_ = applied_offset(offset_, cfg_);
+    if (keep_) {
+        vo_.motions.push_back(last_);
+        vo_.covariances.push_back(last_cov_);
+        if (vo_.disparity_offset.empty()) vo_.disparity_offset.push_back(frame_offset_);
+        vo_.disparity_offset.push_back(frame_offset_);
+        vo_.tilt.push_back(tilt_);
+        vo_.estimates.push_back(e);
+    }
+    last_estimate_ = std::move(e);
 }
 
 VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const VisualOdometryConfig& cfg) {
@@ -656,50 +660,73 @@ VisualOdometry odometry_on_measured_noise(const std::vector<StereoFrame>& frames
 
 }  // namespace
 
+void SpatialTracker::step(const MotionEstimate& e) {
+    stepped_ = true;
+    if (!e.ok) return;
+    p_ += M_ * e.translation;
+    M_ = M_ * e.rotation;
+}
+
+Mat3 SpatialTracker::tilt() const { return stepped_ ? tilt_of(M_) : M_; }
+
 SpatialTrack spatial_track(const VisualOdometry& vo) {
     SpatialTrack s;
-    Mat3 M = Mat3::Identity();   // the camera's orientation and position in the first camera's frame
-    Vec3 p = Vec3::Zero();
-    s.tilt.push_back(M);
-    s.height.push_back(0);
+    SpatialTracker t;
+    s.tilt.push_back(t.tilt());
+    s.height.push_back(t.height());
     for (const MotionEstimate& e : vo.estimates) {
-        if (e.ok) {
-            p += M * e.translation;
-            M = M * e.rotation;
-        }
-        s.tilt.push_back(tilt_of(M));
-        s.height.push_back(p.y());
+        t.step(e);
+        s.tilt.push_back(t.tilt());
+        s.height.push_back(t.height());
     }
     return s;
 }
 
 namespace {
 
-/// The frame the filter sees of frame k: corrected by the step's disparity correction when it
-/// has one, levelled by its tilt; `f` itself when neither applies (else built in `buf`).
-const StereoFrame& seen_frame(const StereoFrame& f, size_t k, const VisualOdometry& vo, const VisualOdometryConfig& cfg,
+/// The frame the filter sees of a frame: corrected by the disparity correction `c` when it is
+/// estimated and not 0, levelled by `tilt`; `f` itself when neither applies (else built in `buf`).
+const StereoFrame& seen_frame(const StereoFrame& f, double c, const Mat3& tilt, const VisualOdometryConfig& cfg,
                               StereoFrame& buf) {
     const bool pixels = cfg.residual == OdometryResidual::pixels;
     const bool offset = pixels && cfg.estimate_disparity_offset, level = pixels && cfg.level;
     if (!offset && !level) return f;
-    const bool corrected = offset && vo.disparity_offset[k] != 0;   // a frame given no correction is seen as measured
-    if (!level) return corrected ? buf = with_disparity_offset(f, *cfg.rig, vo.disparity_offset[k]) : f;
-    return buf = levelled(corrected ? with_disparity_offset(f, *cfg.rig, vo.disparity_offset[k]) : f, vo.tilt[k]);
+    const bool corrected = offset && c != 0;   // a frame given no correction is seen as measured
+    if (!level) return corrected ? buf = with_disparity_offset(f, *cfg.rig, c) : f;
+    return buf = levelled(corrected ? with_disparity_offset(f, *cfg.rig, c) : f, tilt);
+}
+
+/// The final, smallest and largest of the disparity corrections the frames were given.
+void note_offset(SequenceRun& run, double c) {
+    run.disparity_min = run.disparity_estimated ? std::min(run.disparity_min, c) : c;
+    run.disparity_max = run.disparity_estimated ? std::max(run.disparity_max, c) : c;
+    run.disparity_final = c;
+    run.disparity_estimated = true;
 }
 
 /// run_visual_stream's loop on frames whose noise is as given (`noise_scale` is recorded).
 SequenceRun visual_run(const FrameSource& frames, const std::vector<Pose>& truth, const VisualOdometryConfig& cfg,
-                       const AssociationConfig& association, VisualOdometry* odometry, double noise_scale) {
-    VisualOdometryStream vos(cfg);
-    FilterRun filter(Pose::Zero(), association, truth);
+                       const AssociationConfig& association, VisualOdometry* odometry, double noise_scale,
+                       RunRecord record) {
+    const bool keep = record.keep, pixels = cfg.residual == OdometryResidual::pixels;
+    const bool offsets = pixels && cfg.estimate_disparity_offset;
+    VisualOdometryStream vos(cfg, keep);
+    FilterRun filter(Pose::Zero(), association, truth, std::move(record));
+    SpatialTracker track;   // the height and tilt of the 6-DoF poses, on pixels
+    SequenceRun offset_range;
     StereoFrame previous, current, buf;
     size_t k = 0;
     if (frames(previous)) {
         for (k = 1; frames(current); ++k) {
             vos.step(previous, current);
-            const VisualOdometry& vo = vos.odometry();
-            if (k == 1) filter.first_frame(seen_frame(previous, 0, vo, cfg, buf));
-            filter.next_frame(vo.motions.back(), vo.covariances.back(), seen_frame(current, k, vo, cfg, buf));
+            if (offsets) note_offset(offset_range, vos.disparity_offset());
+            if (k == 1) {
+                if (pixels) filter.set_spatial(track.tilt(), track.height());
+                filter.first_frame(seen_frame(previous, vos.disparity_offset(), Mat3::Identity(), cfg, buf));
+            }
+            track.step(vos.estimate());
+            if (pixels) filter.set_spatial(track.tilt(), track.height());
+            filter.next_frame(vos.motion(), vos.covariance(), seen_frame(current, vos.disparity_offset(), vos.tilt(), cfg, buf));
             std::swap(previous, current);
         }
     }
@@ -709,24 +736,27 @@ SequenceRun visual_run(const FrameSource& frames, const std::vector<Pose>& truth
                          std::to_string(truth.size()) + " poses");
     SequenceRun run = filter.finish();
     VisualOdometry vo = vos.take();
-    if (cfg.residual == OdometryResidual::pixels && cfg.estimate_disparity_offset) run.disparity_offset = vo.disparity_offset;
+    if (offsets) {
+        run.disparity_estimated = true;
+        run.disparity_final = offset_range.disparity_final;
+        run.disparity_min = offset_range.disparity_min;
+        run.disparity_max = offset_range.disparity_max;
+        if (keep) run.disparity_offset = vo.disparity_offset;
+    }
     vo.noise_scale = noise_scale;
     run.noise_scale = noise_scale;
-    if (cfg.residual == OdometryResidual::pixels) {
-        const SpatialTrack s = spatial_track(vo);
-        run.estimate_3d = spatial_poses(run.estimate, s.tilt, s.height);
-        run.dead_reckoning_3d = spatial_poses(run.dead_reckoning, s.tilt, s.height);
-        run.spatial_from_odometry = true;
-    }
+    run.spatial_from_odometry = pixels;
     if (odometry) *odometry = std::move(vo);
     return run;
 }
 
 }  // namespace
 
-SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames_in, const std::vector<Pose>& truth,
-                                const VisualOdometryConfig& cfg, const AssociationConfig& association,
-                                VisualOdometry* odometry) {
+namespace {
+/// run_visual_sequence with the filter's `record`.
+SequenceRun held_run(const std::vector<StereoFrame>& frames_in, const std::vector<Pose>& truth,
+                     const VisualOdometryConfig& cfg, const AssociationConfig& association, VisualOdometry* odometry,
+                     RunRecord record) {
     if (frames_in.size() < 2)
         throw InputError("a sequence needs at least 2 frames, got " + std::to_string(frames_in.size()));
     if (truth.size() > frames_in.size())
@@ -737,17 +767,25 @@ SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames_in, const
     double scale = 1;
     if (cfg.noise_from_residuals) scale = odometry_on_measured_noise(frames_in, cfg, scaled).noise_scale;
     // the odometry is run again on the frames it settled on (deterministic: the same motions)
-    return visual_run(frames_of(scaled.empty() ? frames_in : scaled), truth, cfg, association, odometry, scale);
+    return visual_run(frames_of(scaled.empty() ? frames_in : scaled), truth, cfg, association, odometry, scale,
+                      std::move(record));
+}
+}  // namespace
+
+SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames_in, const std::vector<Pose>& truth,
+                                const VisualOdometryConfig& cfg, const AssociationConfig& association,
+                                VisualOdometry* odometry) {
+    return held_run(frames_in, truth, cfg, association, odometry, {});
 }
 
 SequenceRun run_visual_stream(const FrameSource& frames, const std::vector<Pose>& truth, const VisualOdometryConfig& cfg,
-                              const AssociationConfig& association, VisualOdometry* odometry) {
+                              const AssociationConfig& association, VisualOdometry* odometry, RunRecord record) {
     cfg.validate();
-    if (!cfg.noise_from_residuals) return visual_run(frames, truth, cfg, association, odometry, 1);
+    if (!cfg.noise_from_residuals) return visual_run(frames, truth, cfg, association, odometry, 1, std::move(record));
     std::vector<StereoFrame> all;
     StereoFrame f;
     while (frames(f)) all.push_back(std::move(f));
-    return run_visual_sequence(all, truth, cfg, association, odometry);
+    return held_run(all, truth, cfg, association, odometry, std::move(record));
 }
 
 }  // namespace hc::slam

@@ -148,17 +148,28 @@ VisualOdometry visual_odometry(const std::vector<StereoFrame>& frames, const Vis
 
 /// visual_odometry step by step: step(previous, current) for each pair of consecutive frames
 /// extends odometry() by one motion (and after the first step, frame 0's and frame 1's
-/// disparity correction and tilt; after step k, frame k's).
+/// disparity correction and tilt; after step k, frame k's). With `keep` false, odometry() keeps
+/// the failures only (no per-step vectors); the last step is in motion(), covariance() and
+/// estimate(), the current frame's correction and tilt in disparity_offset() and tilt().
 class VisualOdometryStream {
 public:
-    explicit VisualOdometryStream(const VisualOdometryConfig& config);   ///< InputError as validate()
+    explicit VisualOdometryStream(const VisualOdometryConfig& config, bool keep = true);   ///< InputError as validate()
     void step(const StereoFrame& previous, const StereoFrame& current);
     const VisualOdometry& odometry() const { return vo_; }
     VisualOdometry take() { return std::move(vo_); }
+    const Motion& motion() const { return last_; }
+    const Mat3& covariance() const { return last_cov_; }
+    const MotionEstimate& estimate() const { return last_estimate_; }
+    double disparity_offset() const { return frame_offset_; }
+    const Mat3& tilt() const { return tilt_; }
 
 private:
     VisualOdometryConfig cfg_;
+    bool keep_;
     VisualOdometry vo_;
+    MotionEstimate last_estimate_;
+    Mat3 last_cov_ = Mat3::Zero();
+    double frame_offset_ = 0;
     Motion last_ = Motion::Zero();
     Mat3 fail_;
     DisparityPrior offset_;        // the posterior of the last step that estimated c
@@ -182,6 +193,19 @@ struct SpatialTrack {
     std::vector<double> height;
 };
 SpatialTrack spatial_track(const VisualOdometry& vo);
+/// spatial_track step by step (the same bits): frame 0 level at height 0, then one step per
+/// estimate.
+class SpatialTracker {
+public:
+    void step(const MotionEstimate& e);
+    Mat3 tilt() const;
+    double height() const { return p_.y(); }
+
+private:
+    Mat3 M_ = Mat3::Identity();   // the camera's orientation and position in the first camera's frame
+    Eigen::Vector3d p_ = Eigen::Vector3d::Zero();
+    bool stepped_ = false;   // frame 0's tilt is M_ itself (the identity), as spatial_track's
+};
 
 /// `frame` with every disparity made `c` px larger: each point re-triangulated through `rig` at
 /// (u_l, v, u_r − c), its covariance carried by the Jacobian of that map. Points whose
@@ -203,9 +227,12 @@ SequenceRun run_visual_sequence(const std::vector<StereoFrame>& frames, const st
 /// before it, and given to the filter (FilterRun) with the correction and tilt of that step;
 /// frame 0 waits for step 1 (it takes step 1's correction). Held: two frames. With
 /// noise_from_residuals the whole sequence is read first and held (the noise is measured on
-/// the run's own residuals before the filter starts: run_visual_sequence on it). InputError as
-/// run_visual_sequence, the counts checked when the source ends.
+/// the run's own residuals before the filter starts: run_visual_sequence on it). `record` is
+/// the filter's (FilterRun); without record.keep the odometry keeps no per-step vectors either
+/// (`odometry` gets its failures only). InputError as run_visual_sequence, the counts checked
+/// when the source ends.
 SequenceRun run_visual_stream(const FrameSource& frames, const std::vector<Pose>& truth, const VisualOdometryConfig& vo,
-                              const AssociationConfig& association, VisualOdometry* odometry = nullptr);
+                              const AssociationConfig& association, VisualOdometry* odometry = nullptr,
+                              RunRecord record = {});
 
 }  // namespace hc::slam

@@ -25,7 +25,11 @@ namespace hc::slam {
 namespace {
 
 fs::path temp_beside(const fs::path& target) {
-    return target.parent_path() / ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()));
+    std::string name = ".";   // appended rather than "." + ...: GCC 12's -Wrestrict misfires on the latter here
+    name += target.filename().string();
+    name += ".tmp.";
+    name += std::to_string(::getpid());
+    return target.parent_path() / name;
 }
 
 void make_dir(const fs::path& dir) {
@@ -294,23 +298,6 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
 }
 
 namespace {
-struct SequenceTotals {
-    int matched = 0, observed = 0, peak = 0, hinted = 0, agreeing = 0, checked = 0, wrong = 0, jcbb_cut = 0;
-};
-SequenceTotals totals(const SequenceRun& r) {
-    SequenceTotals t;
-    for (const auto& f : r.frames) {
-        t.matched += f.matched;
-        t.observed += f.observed;
-        t.peak = std::max(t.peak, f.map_size);
-        t.hinted += f.matched_with_hints;
-        t.agreeing += f.matched_agreeing;
-        t.checked += f.matched_checked;
-        t.wrong += f.matched_wrong;
-        t.jcbb_cut += f.jcbb_complete ? 0 : 1;
-    }
-    return t;
-}
 nlohmann::json metrics_json(const TrajectoryMetrics& m) {
     return {{"ape_m", m.ape},          {"ape_se2_m", m.ape_se2},   {"ape_percent_of_path", m.ape_percent()},
             {"rpe_m", m.rpe},          {"rpe_heading_rad", m.rpe_heading}, {"final_error_m", m.final_error},
@@ -319,50 +306,42 @@ nlohmann::json metrics_json(const TrajectoryMetrics& m) {
             {"nees_frames_within_chi2_95", m.nees_within_95}};
 }
 
-void save_sequence_states(const fs::path& dir, const SequenceRun& r) {
-    std::ostringstream st;
-    st << "frame,true_x,true_y,true_theta,est_x,est_y,est_theta,sigma_x,sigma_y,sigma_theta,odo_x,odo_y,odo_theta,"
-          "nees_slam,nees_odometry,observed,matched,added,rejected_by_descriptor,removed,map_size,matched_agreeing,"
-          "matched_checked,matched_wrong\n";
+const char* const kStatesHeader =
+    "frame,true_x,true_y,true_theta,est_x,est_y,est_theta,sigma_x,sigma_y,sigma_theta,odo_x,odo_y,odo_theta,"
+    "nees_slam,nees_odometry,observed,matched,added,rejected_by_descriptor,removed,map_size,matched_agreeing,"
+    "matched_checked,matched_wrong\n";
+
+// One frame's row of states.csv; past the ground truth (or without one) the truth and NEES are NaN.
+std::string states_row(const FrameRecord& r) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    for (size_t k = 0; k < r.estimate.size(); ++k) {
-        const bool scored = k < r.truth.size();   // past the ground truth (or without one): NaN
-        st << k;
-        for (int i = 0; i < 3; ++i) st << ',' << num(scored ? r.truth[k](i) : nan);
-        for (int i = 0; i < 3; ++i) st << ',' << num(r.estimate[k](i));
-        for (int i = 0; i < 3; ++i) st << ',' << num(std::sqrt(r.pose_cov[k](i, i)));
-        for (int i = 0; i < 3; ++i) st << ',' << num(r.dead_reckoning[k](i));
-        st << ',' << num(scored ? r.slam_metrics.nees[k] : nan) << ',' << num(scored ? r.odometry_metrics.nees[k] : nan);
-        const FrameStats& f = r.frames[k];
-        st << ',' << f.observed << ',' << f.matched << ',' << f.added << ',' << f.rejected_by_descriptor << ','
-           << f.removed << ',' << f.map_size << ',' << f.matched_agreeing << ',' << f.matched_checked << ','
-           << f.matched_wrong << '\n';
-    }
-    save(dir / "states.csv", st.str());
+    std::ostringstream st;
+    st << r.frame;
+    for (int i = 0; i < 3; ++i) st << ',' << num(r.truth ? (*r.truth)(i) : nan);
+    for (int i = 0; i < 3; ++i) st << ',' << num(r.estimate(i));
+    for (int i = 0; i < 3; ++i) st << ',' << num(std::sqrt(r.pose_cov(i, i)));
+    for (int i = 0; i < 3; ++i) st << ',' << num(r.dead_reckoning(i));
+    st << ',' << num(r.nees_slam) << ',' << num(r.nees_odometry);
+    const FrameStats& f = r.stats;
+    st << ',' << f.observed << ',' << f.matched << ',' << f.added << ',' << f.rejected_by_descriptor << ','
+       << f.removed << ',' << f.map_size << ',' << f.matched_agreeing << ',' << f.matched_checked << ','
+       << f.matched_wrong << '\n';
+    return st.str();
 }
 
-// The 6-DoF trajectories in KITTI's format, the estimate also in TUM's and as the filter's top
-// view (height 0); the truth's poses when there is a ground truth.
-void save_trajectories(const fs::path& dir, const SequenceRun& r) {
-    save(dir / "estimate_kitti.txt", kitti_trajectory(r.estimate_3d));
-    save(dir / "estimate_planar_kitti.txt", kitti_trajectory(r.estimate));
-    save(dir / "dead_reckoning_kitti.txt", kitti_trajectory(r.dead_reckoning_3d));
-    if (!r.truth_3d.empty()) save(dir / "truth_kitti.txt", kitti_trajectory(r.truth_3d));
-    save(dir / "estimate_tum.txt", tum_trajectory(r.estimate_3d, r.timestamps));
-}
-
-void save_sequence_summary(const fs::path& dir, const SequenceRun& r, const SequenceTotals& t,
-                           const std::string& command, const std::string& odometry_label) {
+void save_sequence_summary(const fs::path& file, const SequenceRun& r, const std::string& command,
+                           const std::string& odometry_label) {
+    const RunTotals& t = r.totals;
+    const bool scored = r.scored_frames > 0;
     nlohmann::json j;
     j["command"] = command;
-    j["frames"] = r.estimate.size();
-    j["scored_frames"] = r.truth.size();
-    j["ground_truth"] = !r.truth.empty();
+    j["frames"] = r.frame_count;
+    j["scored_frames"] = r.scored_frames;
+    j["ground_truth"] = scored;
     j["odometry"] = odometry_label;
     j["timestamps"] = r.timestamps_from;
-    if (!r.truth.empty()) j["truth_pairing"] = r.truth_pairing;
+    if (scored) j["truth_pairing"] = r.truth_pairing;
     j["height_roll_pitch"] = r.spatial_from_odometry ? "visual odometry's 6-DoF steps" : "none (level, height 0)";
-    if (!r.truth.empty()) {
+    if (scored) {
         j["ate_m"] = {{"slam", r.ate_slam}, {"dead_reckoning", r.ate_dead_reckoning}};
         j["ape_3d_m"] = {{"slam", r.ape_3d_slam}, {"dead_reckoning", r.ape_3d_dead_reckoning}};
         j["slam"] = metrics_json(r.slam_metrics);
@@ -371,40 +350,52 @@ void save_sequence_summary(const fs::path& dir, const SequenceRun& r, const Sequ
     }
     j["observations"] = t.observed;
     j["matched"] = t.matched;
-    j["map_size"] = {{"final", r.frames.back().map_size}, {"peak", t.peak}};
+    j["map_size"] = {{"final", t.final_map_size}, {"peak", t.peak}};
     j["matches_with_id_hints"] = {{"total", t.hinted}, {"agreeing", t.agreeing}};
     j["matches_checked_against_truth"] = {{"total", t.checked}, {"wrong", t.wrong}};
     j["jcbb_frames_cut_at_node_limit"] = t.jcbb_cut;
-    if (!r.disparity_offset.empty())
-        j["disparity_correction_px"] = {{"final", r.disparity_offset.back()},
-                                        {"min", *std::min_element(r.disparity_offset.begin(), r.disparity_offset.end())},
-                                        {"max", *std::max_element(r.disparity_offset.begin(), r.disparity_offset.end())}};
+    if (r.disparity_estimated)
+        j["disparity_correction_px"] = {{"final", r.disparity_final}, {"min", r.disparity_min}, {"max", r.disparity_max}};
     j["pixel_noise_variance_factor"] = r.noise_scale;
-    save(dir / "summary.json", j.dump(2) + "\n");
+    save(file, j.dump(2) + "\n");
 }
 
-bool plot_sequence_trajectory(const fs::path& dir, const SequenceRun& r, const std::string& title,
+// A file name in gnuplot's single quotes (appended: GCC 12's -Wrestrict misfires on "'" + ...).
+std::string gnuplot_file(const fs::path& file) {
+    std::string q = "'";
+    q += file.string();
+    q += '\'';
+    return q;
+}
+
+// The top view's trajectories from states.csv (columns: truth 2:3, estimate 5:6, odometry alone
+// 11:12), framed on `extent` and the map, with the map's 3σ ellipses.
+bool plot_sequence_trajectory(const fs::path& dir, const fs::path& states, const SequenceRun& r,
+                              const std::vector<Vec2>& extent, const std::string& title,
                               const std::string& odometry_label) {
     std::string ell;
     for (size_t i = 0; i < r.map.size(); ++i) ell += ellipse(r.map[i], r.map_cov[i], 3);
-    const TopView view = top_view(positions({&r.truth, &r.estimate, &r.dead_reckoning}, r.map), title,
-                                  "top view, final map with 3-sigma ellipses", "forward x (m)", "left y (m)");
-    const std::string truth_curve = r.truth.empty() ? "" : " $truth w l lw 2 lc rgb 'black' t 'ground truth',";
+    std::replace(ell.begin(), ell.end(), ' ', ',');
+    std::vector<Vec2> xy(r.map);
+    xy.insert(xy.end(), extent.begin(), extent.end());
+    const TopView view = top_view(xy, title, "top view, final map with 3-sigma ellipses", "forward x (m)", "left y (m)");
+    const std::string file = gnuplot_file(states);
+    const std::string truth_curve =
+        r.scored_frames == 0 ? "" : " " + file + " every ::1 u 2:3 w l lw 2 lc rgb 'black' t 'ground truth',";
     return plot(dir / "trajectory.png",
-        block("truth", poses_xy(r.truth)) + block("est", poses_xy(r.estimate)) + block("dr", poses_xy(r.dead_reckoning)) +
-        block("ell", ell) + view.script +
-        "plot $ell w l lc rgb '#cc8888' t 'landmark 3{/Symbol s}'," + truth_curve +
-        " $est w l lw 2 lc rgb 'blue' t 'EKF-SLAM', $dr w l lw 2 dt 2 lc rgb 'orange' t '" + odometry_label + "'\n", view.width, view.height);
+        block("ell", ell) + "set datafile separator ','\n" + view.script +
+        "plot $ell w l lc rgb '#cc8888' t 'landmark 3{/Symbol s}'," + truth_curve + " " + file +
+        " every ::1 u 5:6 w l lw 2 lc rgb 'blue' t 'EKF-SLAM', " + file + " every ::1 u 11:12 w l lw 2 dt 2 lc rgb "
+        "'orange' t '" + odometry_label + "'\n", view.width, view.height);
 }
 
-bool plot_map_size(const fs::path& dir, const SequenceRun& r, const std::string& title) {
-    std::string ms;
-    for (size_t k = 0; k < r.frames.size(); ++k)
-        ms += std::to_string(k) + ' ' + std::to_string(r.frames[k].map_size) + ' ' + std::to_string(r.frames[k].matched) +
-              ' ' + std::to_string(r.frames[k].added) + '\n';
-    return plot(dir / "map_size.png", block("ms", ms) +
-        "set grid\nset xlabel 'frame'\nset ylabel 'landmarks'\nset title '" + title + ": map size and associations'\n"
-        "plot $ms u 1:2 w l lw 2 t 'map size', $ms u 1:3 w l t 'matched', $ms u 1:4 w l t 'added'\n");
+// Map size, matched and added per frame from states.csv (columns 21, 17, 18).
+bool plot_map_size(const fs::path& dir, const fs::path& states, const std::string& title) {
+    const std::string file = gnuplot_file(states);
+    return plot(dir / "map_size.png",
+        "set datafile separator ','\nset grid\nset xlabel 'frame'\nset ylabel 'landmarks'\nset title '" + title +
+        ": map size and associations'\nplot " + file + " every ::1 u 1:21 w l lw 2 t 'map size', " + file +
+        " every ::1 u 1:17 w l t 'matched', " + file + " every ::1 u 1:18 w l t 'added'\n");
 }
 
 // A mean pose NEES with the 95 % bounds of a mean over its frames and the share of frames under
@@ -435,17 +426,18 @@ std::string metrics_row(const std::string& name, const TrajectoryMetrics& m, dou
 
 /// The report's scores: the metrics table and the frames' counts, or the statement that there
 /// is no ground truth.
-std::string scores_markdown(const SequenceRun& r, const SequenceTotals& t, const std::string& odometry_label) {
+std::string scores_markdown(const SequenceRun& r, const std::string& odometry_label) {
+    const RunTotals& t = r.totals;
     std::ostringstream md;
     md << std::setprecision(4);
-    if (r.truth.empty()) {
+    if (r.scored_frames == 0) {
         md << "No ground truth: the trajectory and the map are not scored.\n\n"
-           << r.estimate.size() << " frames; " << t.observed << " observations, " << t.matched
-           << " associated; map size final " << r.frames.back().map_size << ", peak " << t.peak << ".\n\n";
+           << r.frame_count << " frames; " << t.observed << " observations, " << t.matched
+           << " associated; map size final " << t.final_map_size << ", peak " << t.peak << ".\n\n";
         return md.str();
     }
-    if (r.truth.size() < r.estimate.size())
-        md << "The ground truth covers the first " << r.truth.size() << " of the " << r.estimate.size()
+    if (r.scored_frames < r.frame_count)
+        md << "The ground truth covers the first " << r.scored_frames << " of the " << r.frame_count
            << " frames (--score-overlap): every score below is of those frames.\n\n";
     md << "APE 2-D is on the top view; APE 3-D on the 6-DoF poses of `estimate_kitti.txt` and "
           "`dead_reckoning_kitti.txt` against `truth_kitti.txt` (" << height_source(r)
@@ -454,19 +446,20 @@ std::string scores_markdown(const SequenceRun& r, const SequenceTotals& t, const
           "RPE heading (°) | final error (m) | mean pose NEES [95 % bounds of the mean], frames ≤ χ²(0.95; 3) |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n"
        << metrics_row("EKF-SLAM", r.slam_metrics, r.ape_3d_slam)
        << metrics_row(odometry_label, r.odometry_metrics, r.ape_3d_dead_reckoning) << "\n"
-       << r.estimate.size() << " frames, path length " << r.slam_metrics.path_length << " m; " << t.observed
-       << " observations, " << t.matched << " associated; map size final " << r.frames.back().map_size << ", peak "
+       << r.frame_count << " frames, path length " << r.slam_metrics.path_length << " m; " << t.observed
+       << " observations, " << t.matched << " associated; map size final " << t.final_map_size << ", peak "
        << t.peak << ".\n\n";
     return md.str();
 }
 
 /// A sequence's report.md, linking the plots that were drawn.
-std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, const SequenceReportText& text,
-                              bool traj_png, bool map_png) {
+std::string sequence_markdown(const SequenceRun& r, const SequenceReportText& text, bool traj_png, bool map_png,
+                              bool truth_file) {
+    const RunTotals& t = r.totals;
     std::ostringstream md;
     md << std::setprecision(4);
     md << "# EKF-SLAM on " << text.title << "\n\nCommand: `" << text.command << "`\n\n" << text.provenance << "\n\n"
-       << scores_markdown(r, t, text.odometry_label);
+       << scores_markdown(r, text.odometry_label);
     if (t.checked > 0)
         md << "Associations checked against the ground truth (observation and the landmark's first observation "
               "placed in the world with the true poses, χ²(2) 0.999): " << t.wrong << " of " << t.checked
@@ -474,11 +467,9 @@ std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, con
     if (t.hinted > 0)
         md << "Matches whose observation and landmark carry id hints: " << t.hinted << ", of which " << t.agreeing
            << " agree (" << 100.0 * t.agreeing / t.hinted << " %).\n\n";
-    if (!r.disparity_offset.empty())
+    if (r.disparity_estimated)
         md << "Disparity correction estimated by the visual odometry from the frames alone (no ground truth): "
-           << r.disparity_offset.back() << " px at the end of the run (from "
-           << *std::min_element(r.disparity_offset.begin(), r.disparity_offset.end()) << " to "
-           << *std::max_element(r.disparity_offset.begin(), r.disparity_offset.end())
+           << r.disparity_final << " px at the end of the run (from " << r.disparity_min << " to " << r.disparity_max
            << " px over the frames); the filter saw every disparity that much larger.\n\n";
     if (t.jcbb_cut > 0) md << "JCBB stopped at its node limit in " << t.jcbb_cut << " frames (best hypothesis so far kept).\n\n";
     if (traj_png) md << "![trajectory](trajectory.png)\n\n";
@@ -487,23 +478,107 @@ std::string sequence_markdown(const SequenceRun& r, const SequenceTotals& t, con
           "`summary.json`, `estimate_kitti.txt` and `estimate_tum.txt` (the estimate, 6-DoF: " << height_source(r)
        << "; TUM timestamps from " << r.timestamps_from << "), `estimate_planar_kitti.txt` (the filter's top view, "
           "height 0), `dead_reckoning_kitti.txt` (" << text.odometry_label << ", 6-DoF as the estimate)"
-       << (r.truth_3d.empty() ? "" : ", `truth_kitti.txt` (the ground truth's poses of the frames scored, paired with "
+       << (!truth_file ? "" : ", `truth_kitti.txt` (the ground truth's poses of the frames scored, paired with "
                                       "the frames " + r.truth_pairing + ")") << ".\n";
     return md.str();
 }
+
+const char* const kSequenceFiles[] = {"states.csv", "estimate_kitti.txt", "estimate_planar_kitti.txt",
+                                      "dead_reckoning_kitti.txt", "truth_kitti.txt", "estimate_tum.txt"};
 }  // namespace
 
-void write_sequence_report(const fs::path& dir, const SequenceRun& r, const SequenceReportText& text) {
-    if (r.timestamps.size() != r.estimate.size())
-        throw std::invalid_argument("write_sequence_report: one timestamp per frame");
+SequenceFiles::SequenceFiles(const fs::path& dir) : dir_(dir) {
+    created_dir_ = !fs::exists(dir);
     make_dir(dir);
-    save_sequence_states(dir, r);
-    save_trajectories(dir, r);
-    const SequenceTotals t = totals(r);
-    save_sequence_summary(dir, r, t, text.command, text.odometry_label);
-    const bool traj_png = plot_sequence_trajectory(dir, r, text.title, text.odometry_label);
-    const bool map_png = plot_map_size(dir, r, text.title);
-    save(dir / "report.md", sequence_markdown(r, t, text, traj_png, map_png));
+    for (int i = 0; i < kFiles; ++i) {
+        tmp_[i] = temp_beside(dir / kSequenceFiles[i]);
+        out_[i].open(tmp_[i], std::ios::binary);
+        if (!out_[i]) {
+            discard();
+            throw InputError("cannot write '" + (dir / kSequenceFiles[i]).string() + "'");
+        }
+    }
+    out_[kStates] << kStatesHeader;
+}
+
+SequenceFiles::~SequenceFiles() {
+    if (!committed_) discard();
+}
+
+void SequenceFiles::discard() {
+    std::error_code ec;
+    for (int i = 0; i < kFiles; ++i) {
+        if (out_[i].is_open()) out_[i].close();
+        if (!tmp_[i].empty()) fs::remove(tmp_[i], ec);
+    }
+    if (created_dir_ && fs::is_empty(dir_, ec)) fs::remove(dir_, ec);
+}
+
+void SequenceFiles::add(const FrameRecord& f) {
+    out_[kStates] << states_row(f);
+    out_[kEstimate] << kitti_line(f.estimate_3d);
+    out_[kPlanar] << kitti_line(kitti_pose(f.estimate));
+    out_[kOdometry] << kitti_line(f.dead_reckoning_3d);
+    if (f.truth_3d) {
+        out_[kTruth] << kitti_line(*f.truth_3d);
+        has_truth_ = true;
+    }
+    out_[kTum] << tum_line(f.estimate_3d, f.timestamp);
+    const auto extend = [this](const Vec2& p) {
+        if (!std::isfinite(p.x()) || !std::isfinite(p.y())) return;
+        lo_ = extent_ ? lo_.cwiseMin(p) : p;
+        hi_ = extent_ ? hi_.cwiseMax(p) : p;
+        extent_ = true;
+    };
+    if (f.truth) extend(f.truth->head<2>());
+    extend(f.estimate.head<2>());
+    extend(f.dead_reckoning.head<2>());
+}
+
+void SequenceFiles::commit(const SequenceRun& run, const SequenceReportText& text) {
+    for (int i = 0; i < kFiles; ++i) {
+        out_[i].close();
+        if (!out_[i]) throw InputError("cannot write '" + (dir_ / kSequenceFiles[i]).string() + "'");
+    }
+    const std::vector<Vec2> extent = extent_ ? std::vector<Vec2>{lo_, hi_} : std::vector<Vec2>{};
+    const bool traj_png = plot_sequence_trajectory(dir_, tmp_[kStates], run, extent, text.title, text.odometry_label);
+    const bool map_png = plot_map_size(dir_, tmp_[kStates], text.title);
+    save_sequence_summary(dir_ / "summary.json", run, text.command, text.odometry_label);
+    save(dir_ / "report.md", sequence_markdown(run, text, traj_png, map_png, has_truth_));
+    for (int i = 0; i < kFiles; ++i) {
+        if (i == kTruth && !has_truth_) continue;
+        std::error_code ec;
+        fs::rename(tmp_[i], dir_ / kSequenceFiles[i], ec);
+        if (ec) throw InputError("cannot write '" + (dir_ / kSequenceFiles[i]).string() + "': " + ec.message());
+    }
+    std::error_code ec;
+    if (!has_truth_) fs::remove(tmp_[kTruth], ec);
+    committed_ = true;
+}
+
+void write_sequence_report(const fs::path& dir, const SequenceRun& r, const SequenceReportText& text) {
+    const size_t n = r.estimate.size();
+    if (r.timestamps.size() != n || n != r.frame_count)
+        throw std::invalid_argument("write_sequence_report: a run that kept its frames, one timestamp per frame");
+    SequenceFiles files(dir);
+    for (size_t k = 0; k < n; ++k) {
+        FrameRecord f;
+        f.frame = k;
+        const bool scored = k < r.truth.size();
+        f.truth = scored ? &r.truth[k] : nullptr;
+        f.truth_3d = k < r.truth_3d.size() ? &r.truth_3d[k] : nullptr;
+        f.estimate = r.estimate[k];
+        f.dead_reckoning = r.dead_reckoning[k];
+        f.pose_cov = r.pose_cov[k];
+        f.estimate_3d = r.estimate_3d[k];
+        f.dead_reckoning_3d = r.dead_reckoning_3d[k];
+        f.nees_slam = scored ? r.slam_metrics.nees[k] : std::numeric_limits<double>::quiet_NaN();
+        f.nees_odometry = scored ? r.odometry_metrics.nees[k] : std::numeric_limits<double>::quiet_NaN();
+        f.timestamp = r.timestamps[k];
+        f.stats = r.frames[k];
+        files.add(f);
+    }
+    files.commit(r, text);
 }
 
 std::string sequences_markdown(const std::vector<std::pair<std::string, SequenceRun>>& runs,
@@ -514,15 +589,15 @@ std::string sequences_markdown(const std::vector<std::pair<std::string, Sequence
        << odometry_label << " (m) | % of path | RPE (m) | mean NEES [95 % bounds], frames ≤ 7.81 | matched | wrong vs truth |\n"
        << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& [name, r] : runs) {
-        const SequenceTotals t = totals(r);
+        const RunTotals& t = r.totals;
         const auto& s = r.slam_metrics;
         const auto& o = r.odometry_metrics;
-        if (r.truth.empty()) {
-            md << "| " << name << " | " << r.estimate.size() << " | no ground truth |||||||||||| " << t.matched
+        if (r.scored_frames == 0) {
+            md << "| " << name << " | " << r.frame_count << " | no ground truth |||||||||||| " << t.matched
                << " | - |\n";
             continue;
         }
-        md << "| " << name << " | " << r.estimate.size() << " | " << s.path_length << " | " << s.ape << " | "
+        md << "| " << name << " | " << r.frame_count << " | " << s.path_length << " | " << s.ape << " | "
            << r.ape_3d_slam << " | " << s.ape_percent() << " | " << s.ape_se2 << " | " << s.rpe << " | "
            << nees_cell(s) << " | " << o.ape << " | " << o.ape_percent()
            << " | " << o.rpe << " | " << nees_cell(o) << " | " << t.matched

@@ -147,26 +147,30 @@ std::string run_title(const SlamCommand& o, const KittiRunOptions& k, const std:
                               : what + " (synthetic landmarks on the real trajectory, " + o.odometry + " odometry)";
 }
 
-/// One run (a KITTI-layout sequence, or the rig's pairs when `sequence` is empty): its report
-/// into `out` and its figures on stdout.
+/// One run (a KITTI-layout sequence, or the rig's pairs when `sequence` is empty): states.csv and
+/// the trajectory files written into `out` as frames come (SequenceFiles; put in place when the
+/// run succeeds), its report, and its figures on stdout. Nothing is kept per frame.
 SequenceRun run_one_sequence(const SlamCommand& o, const fs::path& kitti, const std::string& sequence, const fs::path& out) {
-    const KittiRunOptions k = kitti_options(o);
+    KittiRunOptions k = kitti_options(o);
+    SequenceFiles files(out);
+    k.sink = files.sink();
+    k.keep_frames = false;
     const KittiRun kr = sequence.empty() ? run_rig_sequence({o.calib, o.left, o.right}, k)
                                          : run_kitti_sequence(kitti, sequence, k);
     const SequenceRun& run = kr.run;
     const std::string name = sequence.empty() ? "rig" : sequence;
-    write_sequence_report(out, run, {run_title(o, k, sequence), sequence_command(o, k, sequence, out), odometry_label(o),
-                                     provenance(o, !run.truth.empty())});
-    if (run.truth.empty()) {
-        std::printf("%s: %zu frames, no ground truth (not scored)", name.c_str(), run.estimate.size());
+    files.commit(run, {run_title(o, k, sequence), sequence_command(o, k, sequence, out), odometry_label(o),
+                       provenance(o, run.scored_frames > 0)});
+    if (run.scored_frames == 0) {
+        std::printf("%s: %zu frames, no ground truth (not scored)", name.c_str(), run.frame_count);
     } else {
         std::printf("%s: %zu frames (%zu scored), path %.1f m; APE 2-D / 3-D: EKF-SLAM %.3f / %.3f m (%.2f %%), "
                     "%s %.3f / %.3f m (%.2f %%)",
-                    name.c_str(), run.estimate.size(), run.truth.size(), run.slam_metrics.path_length,
+                    name.c_str(), run.frame_count, run.scored_frames, run.slam_metrics.path_length,
                     run.slam_metrics.ape, run.ape_3d_slam, run.slam_metrics.ape_percent(), odometry_label(o).c_str(),
                     run.odometry_metrics.ape, run.ape_3d_dead_reckoning, run.odometry_metrics.ape_percent());
     }
-    if (k.visual_odometry) std::printf("; odometry failed in %d of %zu steps", kr.vo.failures, kr.vo.motions.size());
+    if (k.visual_odometry) std::printf("; odometry failed in %d of %zu steps", kr.vo.failures, run.frame_count - 1);
     std::printf("\nreport: %s/report.md\n", out.c_str());
     return run;
 }
@@ -202,7 +206,7 @@ void run_sequences(const SlamCommand& o) {
     std::vector<std::pair<std::string, SequenceRun>> runs;
     for (const auto& s : list) runs.emplace_back(s, run_one_sequence(o, kitti, s, fs::path(o.out) / s));
     int scored = 0;
-    for (const auto& [name, run] : runs) scored += !run.truth.empty();
+    for (const auto& [name, run] : runs) scored += run.scored_frames > 0;
     const bool some_unscored = scored > 0 && scored < static_cast<int>(runs.size());
     const std::string md = "# EKF-SLAM per sequence\n\n" + provenance(o, scored > 0) +
                            (some_unscored ? " Sequences without a ground truth are not scored." : "") + "\n\n" +

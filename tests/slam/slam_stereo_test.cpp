@@ -3,9 +3,11 @@
 // distance, association by Mahalanobis gate and descriptor, and a synthetic sequence.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 
 #include <unistd.h>
@@ -244,10 +246,12 @@ TEST_CASE("on a synthetic curved drive EKF-SLAM beats dead reckoning with the sa
 }
 
 namespace {
-/// Every field of two metrics equal to the last bit (NaN equal to NaN in the per-frame NEES).
+/// Every field of two metrics equal to the last bit (NaN equal to NaN in the per-frame NEES), but
+/// the SE(2)-aligned APE: running sums against a pass over the poses, relative 1e-9.
 void check_same_metrics(const TrajectoryMetrics& a, const TrajectoryMetrics& b) {
     CHECK(a.ape == b.ape);
-    CHECK(a.ape_se2 == b.ape_se2);
+    CHECK(a.ape_se2 > 0);
+    CHECK(std::abs(a.ape_se2 - b.ape_se2) <= 1e-9 * b.ape_se2);
     CHECK(a.rpe == b.rpe);
     CHECK(a.rpe_heading == b.rpe_heading);
     CHECK(a.path_length == b.path_length);
@@ -265,7 +269,7 @@ void check_same_metrics(const TrajectoryMetrics& a, const TrajectoryMetrics& b) 
 }
 }  // namespace
 
-TEST_CASE("a run's metrics summed as frames come are score_trajectory's on its poses to the last bit", "[slam]") {
+TEST_CASE("a run's metrics summed as frames come are score_trajectory's on its poses to the last bit, the aligned APE to 1e-9", "[slam]") {
     const auto poses = arc_poses(60, 0.01);
     const auto frames = synthesize_stereo_frames(poses, synthetic_rig(), {}, 300, 8, 3);
     const SequenceRun r = run_sequence(poses, frames, SyntheticOdometry{}, AssociationConfig{}, 5);
@@ -283,11 +287,113 @@ TEST_CASE("a run's metrics summed as frames come are score_trajectory's on its p
     CHECK(r.slam_metrics.nees_frames == 59);
     CHECK(std::isnan(r.slam_metrics.nees.front()));
     CHECK(std::isnan(r.odometry_metrics.nees.front()));
-    // the running sums alone: no SE(2) alignment, no per-frame NEES; nothing before a frame
+    // the running sums alone: the run's bits, no per-frame NEES; nothing before a frame
     TrajectoryScore score;
     CHECK_THROWS_AS(score.metrics(), std::invalid_argument);
     for (size_t k = 0; k < r.truth.size(); ++k) score.add(r.estimate[k], r.truth[k], &r.pose_cov[k]);
     CHECK(score.metrics().ape == r.slam_metrics.ape);
-    CHECK(score.metrics().ape_se2 == 0);
+    CHECK(score.metrics().ape_se2 == r.slam_metrics.ape_se2);
     CHECK(score.metrics().nees.empty());
+}
+
+TEST_CASE("the SE(2)-aligned APE from running sums is aligned_ape's to relative 1e-9", "[slam]") {
+    // by hand: a unit square turned by 90° and moved by (10, -5), one corner 0.3 m off away from
+    // the centre. The square stays symmetric about that diagonal, so the best rotation is the
+    // 90° and the translation takes the mean error, 0.3 / 4: left are 0.3 · 3/4 at that corner
+    // and 0.3 / 4 at the three others, Σ = 0.09 · 3/4, RMS over four 0.3 · √3 / 4.
+    const std::vector<Pose> truth{Pose(0, 0, 0), Pose(1, 0, 0), Pose(1, 1, 0), Pose(0, 1, 0)};
+    std::vector<Pose> estimate;
+    for (const Pose& t : truth) estimate.push_back(Pose(10 - t.y(), -5 + t.x(), 0));
+    estimate[2].head<2>() += 0.3 * Vec2(-1, 1) / std::sqrt(2.0);   // corner (9, -4), centre (9.5, -4.5)
+    AlignedApeSums sums;
+    CHECK_THROWS_AS(sums.ape(), std::invalid_argument);
+    for (size_t k = 0; k < truth.size(); ++k) sums.add(estimate[k].head<2>(), truth[k].head<2>());
+    const double pass = aligned_ape(estimate, truth);
+    INFO("sums " << sums.ape() << ", pass " << pass);
+    CHECK(sums.count() == 4);
+    CHECK(std::abs(pass - 0.3 * std::sqrt(3.0) / 4) < 1e-12);
+    CHECK(std::abs(sums.ape() - pass) <= 1e-9 * pass);
+    // a long run: 1,500 frames of synthetic landmarks on a 1.5 km drive, its kept poses
+    const auto poses = arc_poses(1500, 0.004);
+    SyntheticOdometry om;
+    om.sigma_dtheta = 0.004;
+    const SequenceRun r = run_sequence(poses, synthesize_stereo_frames(poses, synthetic_rig(), {}, 3000, 8, 9), om,
+                                       AssociationConfig{}, 11);
+    const double slam_pass = aligned_ape(r.estimate, r.truth), odometry_pass = aligned_ape(r.dead_reckoning, r.truth);
+    INFO("EKF-SLAM " << r.slam_metrics.ape_se2 << " against " << slam_pass << " m; odometry alone "
+         << r.odometry_metrics.ape_se2 << " against " << odometry_pass << " m");
+    CHECK(slam_pass > 0.01);
+    CHECK(odometry_pass > slam_pass);
+    CHECK(std::abs(r.slam_metrics.ape_se2 - slam_pass) <= 1e-9 * slam_pass);
+    CHECK(std::abs(r.odometry_metrics.ape_se2 - odometry_pass) <= 1e-9 * odometry_pass);
+}
+
+namespace {
+/// The files of a folder and their text.
+std::map<std::string, std::string> folder_text(const fs::path& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        std::ifstream f(e.path(), std::ios::binary);
+        out[e.path().filename().string()] = std::string(std::istreambuf_iterator<char>(f), {});
+    }
+    return out;
+}
+}  // namespace
+
+TEST_CASE("a run's files written as frames come are write_sequence_report's, and a failed run leaves the folder as it was", "[slam]") {
+    const auto poses = arc_poses(40, 0.01);
+    const auto frames = synthesize_stereo_frames(poses, synthetic_rig(), {}, 300, 8, 3);
+    const SequenceReportText text{"test", "none", "synthetic odometry alone", "provenance"};
+    const fs::path root = fs::temp_directory_path() / ("slam_test_files_" + std::to_string(::getpid()));
+    fs::remove_all(root);
+    // kept, then written at the end; and written row by row, nothing kept
+    SequenceRun kept = run_sequence(poses, frames, SyntheticOdometry{}, AssociationConfig{}, 5);
+    for (size_t k = 0; k < kept.frame_count; ++k) kept.timestamps.push_back(0.1 * static_cast<double>(k));
+    write_sequence_report(root / "kept", kept, text);
+    SequenceRun streamed;
+    {
+        SequenceFiles files(root / "streamed");
+        RunRecord record{[&files](const FrameRecord& f) {
+                             FrameRecord stamped = f;
+                             stamped.timestamp = 0.1 * static_cast<double>(f.frame);
+                             files.add(stamped);
+                         },
+                         false, {}};
+        streamed = run_sequence(poses, frames_of(frames), SyntheticOdometry{}, AssociationConfig{}, 5, record);
+        files.commit(streamed, text);
+    }
+    CHECK(streamed.estimate.empty());
+    CHECK(streamed.frames.empty());
+    CHECK(streamed.frame_count == 40);
+    CHECK(streamed.scored_frames == 40);
+    CHECK(streamed.slam_metrics.ape == kept.slam_metrics.ape);
+    CHECK(streamed.ape_3d_slam == kept.ape_3d_slam);
+    CHECK(streamed.ape_3d_slam > 0);
+    const auto a = folder_text(root / "kept"), b = folder_text(root / "streamed");
+    for (const char* name : {"states.csv", "estimate_kitti.txt", "estimate_planar_kitti.txt", "dead_reckoning_kitti.txt",
+                             "truth_kitti.txt", "estimate_tum.txt", "summary.json", "report.md"}) {
+        INFO(name);
+        REQUIRE(a.count(name));
+        REQUIRE(b.count(name));
+        CHECK(a.at(name) == b.at(name));
+    }
+    CHECK(std::count(b.at("states.csv").begin(), b.at("states.csv").end(), '\n') == 41);
+    // a run failing at frame 30 into the folder of the first: its files untouched, no temporaries
+    // left; into a new folder: the folder is removed
+    const auto failing = [&frames, k = size_t{0}](StereoFrame& f) mutable {
+        if (k == 30) throw hc::InputError("frame 30 unreadable");
+        f = frames[k++];
+        return true;
+    };
+    for (const fs::path& dir : {root / "kept", root / "new"}) {
+        {
+            SequenceFiles files(dir);
+            CHECK_THROWS_WITH(run_sequence(poses, failing, SyntheticOdometry{}, AssociationConfig{}, 5,
+                                           RunRecord{files.sink(), false, {}}),
+                              Catch::Contains("frame 30"));
+        }
+        if (dir == root / "kept") CHECK(folder_text(dir) == a);
+        else CHECK_FALSE(fs::exists(dir));
+    }
+    fs::remove_all(root);
 }
