@@ -335,10 +335,13 @@ struct WidthProposal {
 /// registers it widens are the ones it governs. Each register's proven range is its interval
 /// bound, with the solver's closed exact extreme on its side where the solver closed it (not
 /// for det, whose narrowings are a*c and b*b, not det); the maximum's is the response's (its
-/// other value, the reset, is the most negative of any width). A width is its base value minus
-/// the fewest bits any governed register has to spare; it stays where a governed register is
-/// not proven (wraps, open), and where the proposal's interval pass no longer proves a register
-/// the base's interval pass proves (a narrowing inside a stage). Drops and shifts are unchanged.
+/// other value, the reset, is the most negative of any width). For det, the response and the
+/// maximum, where the block sums' relations apply (response_relation) and need fewer bits: the
+/// hull of the values their stage narrows (a*c, b*b, det; and the k-term and the response). A
+/// width is its base value minus the fewest bits any governed register has to spare; it stays
+/// where a governed register is not proven (wraps, open), and where a register the base proves
+/// by its interval bound or the relations is proven by neither at the proposal's widths (a
+/// narrowing inside a stage). Drops and shifts are unchanged.
 WidthProposal propose_widths(const RangeReport& rep);
 /// The report's section: one row per width field (base, proposed, the register and range that set it).
 std::string proposal_markdown(const WidthProposal& p);

@@ -1,4 +1,7 @@
 // ranges_propose.cpp: the narrowest widths a range report proves safe (propose_widths in ranges.hpp).
+#include <algorithm>
+#include <initializer_list>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -55,8 +58,34 @@ int fewest_bits(const Interval& v, bool is_signed) {
     throw std::logic_error(fmt::format("propose_widths: [{}, {}] fits no width", v.lo, v.hi));
 }
 
+Interval hull(std::initializer_list<Interval> parts) {
+    Interval h = *parts.begin();
+    for (const Interval& x : parts) h = {std::min(h.lo, x.lo), std::max(h.hi, x.hi)};
+    return h;
+}
+
+/// What the block sums' relations (response_relation) prove of det, the response and the
+/// maximum, whatever resp_w is: every value their stage narrows to resp_w lies in the hull
+/// returned (det: a*c, b*b and det; the response and the maximum, which takes the response's
+/// values: also the k-term and the response). Empty for another register or when the relation
+/// does not apply.
+std::optional<Interval> relation_range(const ResponseRelation& rel, Reg r) {
+    if (!rel.applies) return std::nullopt;
+    if (r == Reg::det) return hull({rel.ac, rel.bb, rel.det});
+    if (r == Reg::response || r == Reg::maximum) return hull({rel.ac, rel.bb, rel.det, rel.ktr2, rel.response});
+    return std::nullopt;
+}
+
+/// Whether the relation proves register r at its report's widths (see relation_range).
+bool relation_proves(const ResponseRelation& rel, Reg r) {
+    if (r == Reg::det) return rel.applies && rel.det_fits;
+    if (r == Reg::response || r == Reg::maximum) return rel.applies && rel.response_fits;
+    return false;
+}
+
 /// One width field from the report: the setter, its range, the proposed value (or why it stays).
-ProposedWidth propose_field(const RangeReport& rep, const FormatField& field, const std::vector<Reg>& regs) {
+ProposedWidth propose_field(const RangeReport& rep, const ResponseRelation& rel, const FormatField& field,
+                            const std::vector<Reg>& regs) {
     ProposedWidth p;
     p.field = field.name;
     p.base = p.proposed = rep.formats.*(field.member);
@@ -70,8 +99,16 @@ ProposedWidth propose_field(const RangeReport& rep, const FormatField& field, co
             continue;
         }
         std::string from;
-        const Interval range = proven_range(rep, r, from);
-        const int bits = fewest_bits(range, x.held.lo < 0);
+        Interval range = proven_range(rep, r, from);
+        int bits = fewest_bits(range, x.held.lo < 0);
+        if (const auto by_relation = relation_range(rel, r)) {
+            const int b = fewest_bits(*by_relation, true);
+            if (b < bits) {
+                range = *by_relation;
+                bits = b;
+                from = "the block sums' relations (a*c, b*b, det" + std::string(r == Reg::det ? ")" : ", k-term, response)");
+            }
+        }
         if (first || x.width - bits < spare) {
             spare = x.width - bits;
             p.setter = r;
@@ -86,12 +123,16 @@ ProposedWidth propose_field(const RangeReport& rep, const FormatField& field, co
     return p;
 }
 
-/// The registers the base's interval pass proves that the proposal's does not, by name ("" when none).
+/// The registers the base's interval pass or the block sums' relations prove that neither proves
+/// at the proposal's widths, by name ("" when none).
 std::string lost_interval_proofs(const RangeReport& base, const RangeReport& prop, const std::vector<Reg>& regs) {
+    const ResponseRelation rel = response_relation(prop);
     std::string lost;
-    for (Reg r : regs)
-        if (base.at(r).decided_by == "interval" && !prop.at(r).bound_fits)
+    for (Reg r : regs) {
+        const std::string& by = base.at(r).decided_by;
+        if ((by == "interval" || by == "relation") && !prop.at(r).bound_fits && !relation_proves(rel, r))
             lost += fmt::format("{}{}", lost.empty() ? "" : ", ", kRegNames[idx(r)]);
+    }
     return lost;
 }
 
@@ -101,21 +142,22 @@ WidthProposal propose_widths(const RangeReport& rep) {
     if (static_cast<int>(rep.regs.size()) != kRegCount) throw std::invalid_argument("propose_widths: the report has no register table");
     WidthProposal out;
     out.base = out.formats = rep.formats;
+    const ResponseRelation rel = response_relation(rep);
     for (const FormatField& field : format_fields()) {
         const std::vector<Reg> regs = governed(rep, field);
         if (regs.empty()) continue;
-        out.widths.push_back(propose_field(rep, field, regs));
+        out.widths.push_back(propose_field(rep, rel, field, regs));
         out.formats.*(field.member) = out.widths.back().proposed;
     }
     // a narrowing inside a stage the register's range does not show (the M values resized to
-    // the block sum's width, ...): a width whose registers lose their interval proof stays
+    // the block sum's width, ...): a width whose registers lose their proof stays
     for (bool changed = true; changed;) {
         changed = false;
         const RangeReport prop = interval_ranges(out.formats, rep.pixel_max);
         for (ProposedWidth& w : out.widths) {
             const std::string lost = lost_interval_proofs(rep, prop, w.regs);
             if (lost.empty() || w.proposed == w.base) continue;
-            w.kept = fmt::format("{} bits no longer prove {} by the interval bound", w.proposed, lost);
+            w.kept = fmt::format("{} bits no longer prove {} by the interval bound or the block sums' relations", w.proposed, lost);
             w.proposed = w.base;
             for (const FormatField& field : format_fields())
                 if (w.field == field.name) out.formats.*(field.member) = w.base;

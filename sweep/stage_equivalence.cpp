@@ -3,6 +3,7 @@
 #include "sweep/stage_equivalence.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <type_traits>
@@ -359,7 +360,8 @@ void reachable_registers(EqStage s, const Spec& sp, const std::vector<SmtWord>& 
 
 /// numeric_std (truncate false) or GHDL's truncation of signed shrinks; `domain`: the inputs' assumed ranges.
 Miter miter(EqStage s, const Formats& f, const Geometry& g, const Spec& sp, const std::string& netlist,
-            const std::vector<std::string>& next, bool truncate, const std::map<std::string, Interval>& domain) {
+            const std::vector<std::string>& next, bool truncate, const std::map<std::string, Interval>& domain,
+            const std::string& assume = {}) {
     Miter m;
     m.text = "(set-logic ALL)\n" + netlist + "(declare-fun s () |stage_s|)\n(assert (|stage_h| s))\n";
     std::vector<SmtWord> in;
@@ -378,6 +380,7 @@ Miter miter(EqStage s, const Formats& f, const Geometry& g, const Spec& sp, cons
             m.text += fmt::format("(assert (and (bvsge {0} {1}) (bvsle {0} {2})))\n", x.name, literal(d->second.lo, x.w),
                                   literal(d->second.hi, x.w));
     }
+    m.text += assume;
     SmtQuery q;
     q.text = m.text;
     q.truncate_signed_shrink = truncate;
@@ -511,6 +514,30 @@ std::map<std::string, Interval> domain_of(const Spec& sp, const Formats& f) {
     return d;
 }
 
+/// harris_response's inputs within the block sums' relations (response_relation, where it
+/// applies at `f`): a, c >= 0 with a + c <= T and |b| <= the relation's bound, for the block sums
+/// of this write and of the write before. The domain `d` is narrowed to them (b, b_prev) and the
+/// sums' bound returned as assertions, with what is assumed in `text`; "" when the relation does
+/// not apply or the stage is another.
+std::string relation_assumption(const Spec& sp, const Formats& f, std::map<std::string, Interval>& d, std::string& text) {
+    if (sp.entity != "harris_response") return {};
+    const ResponseRelation rel = response_relation(interval_ranges(f));
+    if (!rel.applies) return {};
+    std::int64_t bmax = static_cast<std::int64_t>(std::sqrt(static_cast<double>(rel.bb.hi)));
+    while (bmax * bmax > rel.bb.hi) --bmax;
+    while ((bmax + 1) * (bmax + 1) <= rel.bb.hi) ++bmax;
+    std::string smt;
+    const std::int64_t w = sp.in[0].w + 1;   // a + c without overflow
+    for (const auto& [a, b, c] : {std::array<const char*, 3>{"a", "b", "c"}, std::array<const char*, 3>{"a_prev", "b_prev", "c_prev"}}) {
+        for (const char* x : {a, c}) d[x] = {0, std::min(d.count(x) ? d[x].hi : rel.trace, rel.trace)};
+        d[b] = {std::max(d.count(b) ? d[b].lo : -bmax, -bmax), std::min(d.count(b) ? d[b].hi : bmax, bmax)};
+        smt += fmt::format("(assert (bvsle (bvadd ((_ sign_extend 1) {0}) ((_ sign_extend 1) {1})) {2}))\n", a, c,
+                           literal(rel.trace, static_cast<int>(w)));
+    }
+    text = fmt::format("the block sums' relations: a + c <= {0}, |b| <= {1} (and of a_prev, b_prev, c_prev)", rel.trace, bmax);
+    return smt;
+}
+
 /// What the stage assumes beside its inputs' domain `d`: the current registers step 1 can hold (sp.prior).
 std::string domain_text(const Spec& sp, const std::map<std::string, Interval>& d) {
     std::string s;
@@ -565,6 +592,54 @@ void proven(StageProof& p, const Asked& a, const fs::path& dir, const StageOptio
     if (o.recheck) recheck(p, a.text, dir, o.recheck_seconds);
 }
 
+/// The stage under proof: what miter() needs besides the question.
+struct StageCase {
+    EqStage s;
+    const Formats& f;
+    const Geometry& g;
+    const Spec& sp;
+    const std::string& netlist;
+    const std::vector<std::string>& next;
+};
+
+/// The proof asked again on the inputs' domain `d` (query 3), after the signed `shrink`
+/// overflowed on the free inputs (`differ`: the values there); where it overflows on `d` too,
+/// for harris_response once more within the block sums' relations (query 4,
+/// relation_assumption). Sets p's verdict.
+void prove_on_domain(StageProof& p, const StageCase& c, std::map<std::string, Interval> d, const std::string& shrink,
+                     const std::string& differ, const fs::path& dir, const StageOptions& o) {
+    const Miter m2 = miter(c.s, c.f, c.g, c.sp, c.netlist, c.next, false, d);
+    Asked a = ask(p, m2, dir, 3, o.rlimit);
+    p.assumed = domain_text(c.sp, d);
+    std::string where = "the inputs' domain";
+    if (a.z.sat == Sat::sat) {
+        std::string text;
+        if (const std::string rel = relation_assumption(c.sp, c.f, d, text); !rel.empty()) {
+            const Miter m3 = miter(c.s, c.f, c.g, c.sp, c.netlist, c.next, false, d, rel);
+            if (Asked a3 = ask(p, m3, dir, 4, o.rlimit); a3.z.sat == Sat::unsat) {
+                a = std::move(a3);
+                p.assumed = domain_text(c.sp, d) + "; " + text;
+                where = "the block sums' relations";
+            }
+        }
+    }
+    if (a.z.sat == Sat::unsat) {
+        proven(p, a, dir, o);
+        p.detail = fmt::format("signed {} overflows only outside {} ({}): the proof holds for the VHDL because the shrink "
+                               "cannot overflow on {}", shrink, where, differ, where == "the inputs' domain" ? "the domain" : "them");
+        return;
+    }
+    p.verdict = a.z.sat == Sat::sat ? EqVerdict::netlist_differs : EqVerdict::open;
+    if (a.z.sat != Sat::sat) {
+        p.detail = "on the domain: " + a.z.why;
+        return;
+    }
+    p.counterexample = inputs_at(c.sp, a.z);
+    p.detail = fmt::format("signed {} overflows on the domain: {} at {}", overflowing(m2, c.sp, a.z),
+                           check_in_model(c.s, c.f, c.g, c.sp, a.z), values_text(p.counterexample));
+    p.command = a.command;
+}
+
 }  // namespace
 
 StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
@@ -602,25 +677,7 @@ StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o) {
                                                          o.rlimit))
                     p.stimulus = st->set.string();
         } else if (const auto d = domain_of(sp, f); !d.empty()) {
-            const Miter m2 = miter(s, f, g, sp, netlist, next, false, d);
-            const Asked a2 = ask(p, m2, dir, 3, o.rlimit);
-            p.assumed = domain_text(sp, d);
-            if (a2.z.sat == Sat::unsat) {
-                proven(p, a2, dir, o);
-                p.detail = fmt::format("signed {} overflows only outside the inputs' domain ({} at {}): the proof holds for the "
-                                       "VHDL because the shrink cannot overflow on the domain",
-                                       shrink, differ, values_text(p.counterexample));
-            } else {
-                p.verdict = a2.z.sat == Sat::sat ? EqVerdict::netlist_differs : EqVerdict::open;
-                if (a2.z.sat == Sat::sat) {
-                    p.counterexample = inputs_at(sp, a2.z);
-                    p.detail = fmt::format("signed {} overflows on the domain: {} at {}", overflowing(m2, sp, a2.z),
-                                           check_in_model(s, f, g, sp, a2.z), values_text(p.counterexample));
-                    p.command = a2.command;
-                } else {
-                    p.detail = "on the domain: " + a2.z.why;
-                }
-            }
+            prove_on_domain(p, {s, f, g, sp, netlist, next}, d, shrink, differ + " at " + values_text(p.counterexample), dir, o);
         } else {
             p.verdict = EqVerdict::netlist_differs;
             p.detail = fmt::format("signed {} overflows: {} at {}", shrink, differ, values_text(p.counterexample));

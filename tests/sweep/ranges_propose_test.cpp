@@ -56,6 +56,13 @@ Outputs model_outputs(const std::vector<Image>& frames, const Geometry& g, const
     return o;
 }
 
+/// det and the response proven at `f` by their interval bounds or by the block sums' relations.
+bool det_and_response_proven(const Formats& f) {
+    const RangeReport iv = interval_ranges(f);
+    const ResponseRelation rel = response_relation(iv);
+    return (iv.at(Reg::det).bound_fits || rel.det_fits) && (iv.at(Reg::response).bound_fits || rel.response_fits);
+}
+
 RangeReport model_route(const Formats& f) {
     RangeOptions o;
     o.netlist = false;
@@ -64,7 +71,7 @@ RangeReport model_route(const Formats& f) {
 
 }  // namespace
 
-TEST_CASE("propose_widths on the thesis: the width fields from the register table, resp_w 30 and ktr_w 27",
+TEST_CASE("propose_widths on the thesis: the width fields from the register table, resp_w 28 by the block sums' relations, ktr_w 27",
           "[model][sweep][ranges][propose]") {
     const WidthProposal p = propose_widths(interval_ranges(Formats{}));
     std::vector<std::string> fields;
@@ -75,30 +82,40 @@ TEST_CASE("propose_widths on the thesis: the width fields from the register tabl
     CHECK(width_of(p, "bf_sum_w").regs == std::vector<Reg>{Reg::block_a, Reg::block_b, Reg::block_c, Reg::trace});
     CHECK(width_of(p, "resp_w").regs == std::vector<Reg>{Reg::det, Reg::response, Reg::maximum, Reg::threshold});
     CHECK(width_of(p, "ktr_w").regs == std::vector<Reg>{Reg::k_term});
+    // det: a + c <= T = 22,860, g = 2; a*c <= 11,430^2, |b| < T/2 + 2g = 11,434, det >= -2gT - 4g^2
     const ProposedWidth& r = width_of(p, "resp_w");
-    CHECK(r.proposed == 30);
+    CHECK(r.proposed == 28);
     CHECK(r.setter == Reg::det);
-    CHECK(r.range == Interval{-334487521, 334450944});
-    CHECK(r.bits == 30);
+    CHECK(r.range == Interval{-2 * 2 * 22860 - 4 * 2 * 2, 11434L * 11434L});
+    CHECK(r.bits == 28);
+    CHECK(r.from == "the block sums' relations (a*c, b*b, det)");
     const ProposedWidth& k = width_of(p, "ktr_w");
     CHECK(k.proposed == 27);
     CHECK(k.range == Interval{0, 52257960});
+    CHECK(k.from == "interval bound");
     Formats want;
-    want.resp_w = 30;
+    want.resp_w = 28;
     want.ktr_w = 27;
     CHECK(p.formats == want);
     for (const auto& w : p.widths) CHECK(w.kept.empty());
-    // the narrowest: one bit fewer on either width and its register's bound no longer fits
-    Formats r29 = want, k26 = want;
-    r29.resp_w = 29;
+    // proven at the proposal: det and the response by the relations (their interval bounds need
+    // 30 bits), everything else by its interval bound
+    const RangeReport at = interval_ranges(want);
+    CHECK_FALSE(at.at(Reg::det).bound_fits);
+    const ResponseRelation rel = response_relation(at);
+    CHECK(rel.det_fits);
+    CHECK(rel.response_fits);
+    // the narrowest: one bit fewer on either width and nothing proves its register
+    Formats r27 = want, k26 = want;
+    r27.resp_w = 27;
     k26.ktr_w = 26;
-    CHECK_FALSE(interval_ranges(r29).at(Reg::det).bound_fits);
+    CHECK_FALSE(response_relation(interval_ranges(r27)).det_fits);
+    CHECK_FALSE(interval_ranges(r27).at(Reg::det).bound_fits);
     CHECK_FALSE(interval_ranges(k26).at(Reg::k_term).bound_fits);
-    CHECK(interval_ranges(want).overall() == Verdict::proven);
     const std::string md = proposal_markdown(p);
-    CHECK(md.find("| `resp_w` | 32 | 30 | det, response, maximum, threshold | `det` | [-334487521, 334450944] | 30 | interval bound |") !=
+    CHECK(md.find("| `resp_w` | 32 | 28 | det, response, maximum, threshold | `det` | [-91456, 130736356] | 28 | the block sums' relations (a*c, b*b, det) |") !=
           std::string::npos);
-    CHECK(md.find("Proposal: resp_w 32 -> 30, ktr_w 30 -> 27") != std::string::npos);
+    CHECK(md.find("Proposal: resp_w 32 -> 28, ktr_w 30 -> 27") != std::string::npos);
 }
 
 TEST_CASE("propose_widths on a hand-made report: the solver's closed extreme, an open register, a narrowing inside a stage",
@@ -127,27 +144,39 @@ TEST_CASE("propose_widths on a hand-made report: the solver's closed extreme, an
     kt.bound = {0, 1000};
     p = propose_widths(rep);
     CHECK(width_of(p, "ktr_w").proposed == 30);
-    CHECK(width_of(p, "ktr_w").kept == "11 bits no longer prove k_term by the interval bound");
+    CHECK(width_of(p, "ktr_w").kept == "11 bits no longer prove k_term by the interval bound or the block sums' relations");
     CHECK(p.formats.ktr_w == 30);
 }
 
-TEST_CASE("propose_widths: a width whose register wraps stays, and every tight-* point of bit-widths.json is its own proposal",
+TEST_CASE("propose_widths: a width whose register wraps stays, and every tight-* point of bit-widths.json is its own proposal "
+          "but for resp_w, which the block sums' relations narrow further",
           "[model][sweep][ranges][propose]") {
     Formats s10;
     s10.sobel_w = 10;
     const WidthProposal p = propose_widths(model_route(s10));
     CHECK(width_of(p, "sobel_w").proposed == 10);
     CHECK(width_of(p, "sobel_w").kept == "not proven: sobel_x wraps, sobel_y wraps");
-    // the tight family was made as the smallest widths the worst case of their inputs needs
+    // the tight family was made as the smallest widths the interval bounds of their inputs need
     // (docs/bit-widths.md): the proposal from the register table agrees with it point by point
-    int tight = 0;
+    // on every width but resp_w, where the relations prove fewer bits, and not one bit fewer
+    int tight = 0, narrower = 0;
     for (const auto& c : load_sweep_spec(std::string(HC_SOURCE_DIR) + "/sweep/configs/bit-widths.json").configs)
         if (c.name.rfind("tight-", 0) == 0) {
             ++tight;
             INFO(c.name);
-            CHECK(propose_widths(interval_ranges(c.formats)).formats == c.formats);
+            const Formats prop = propose_widths(interval_ranges(c.formats)).formats;
+            Formats same = prop;
+            same.resp_w = c.formats.resp_w;
+            CHECK(same == c.formats);
+            CHECK(prop.resp_w <= c.formats.resp_w);
+            narrower += prop.resp_w < c.formats.resp_w;
+            CHECK(det_and_response_proven(prop));
+            Formats less = prop;
+            --less.resp_w;
+            CHECK_FALSE(det_and_response_proven(less));
         }
     CHECK(tight == 25);
+    CHECK(narrower > 0);
 }
 
 TEST_CASE("sweep/configs/proposed-thesis.json is `ranges --propose` of the thesis configuration",
@@ -174,7 +203,7 @@ TEST_CASE("the thesis's proposal reads the same corners and maxima as the thesis
         CHECK_FALSE(a.reads.empty());
         // the one value that is not a datapath value: find-max's reset, the width's most negative
         CHECK(a.reset_max == -(1L << 31));
-        CHECK(b.reset_max == -(1L << 29));
+        CHECK(b.reset_max == -(1L << (prop.resp_w - 1)));
         ++streams;
     }
     CHECK(streams == 21);
