@@ -20,7 +20,13 @@ std::string read_file(const fs::path& p, const std::string& what) {
 
 void write_file_atomic(const fs::path& target, const std::string& bytes) {
     if (fs::is_directory(target)) throw InputError("output '" + target.string() + "' is a directory");
-    if (target.has_parent_path()) fs::create_directories(target.parent_path());
+    if (target.has_parent_path()) {
+        std::error_code ec;
+        fs::create_directories(target.parent_path(), ec);
+        if (ec || !fs::is_directory(target.parent_path()))
+            throw InputError("cannot write '" + target.string() + "': cannot make its folder '" + target.parent_path().string() +
+                             "'" + (ec ? " (" + ec.message() + ")" : ""));
+    }
     const fs::path tmp = target.string() + ".tmp." + std::to_string(::getpid());
     {
         std::ofstream f(tmp, std::ios::binary);
@@ -32,7 +38,12 @@ void write_file_atomic(const fs::path& target, const std::string& bytes) {
             throw InputError("cannot write '" + tmp.string() + "'");
         }
     }
-    fs::rename(tmp, target);
+    std::error_code ec;
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw InputError("cannot write '" + target.string() + "': cannot rename its temporary into place");
+    }
 }
 
 ScratchDir::ScratchDir(const std::string& prefix) {

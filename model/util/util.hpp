@@ -53,7 +53,9 @@ std::string read_file(const std::filesystem::path& p, const std::string& what = 
 
 /// Writes `bytes` to `target` atomically: a temporary beside it, then a rename, so that an
 /// interrupted run never leaves half a file and never destroys an existing one early.
-/// Creates the parent directory. Throws InputError when the target cannot be written.
+/// Creates the parent directory. Throws InputError naming the target when it cannot be written
+/// (also when its folder cannot be made, e.g. a component of the path is a file); no temporary
+/// is left behind.
 void write_file_atomic(const std::filesystem::path& target, const std::string& bytes);
 
 /// A scratch directory under the system's temporary directory, removed on destruction.

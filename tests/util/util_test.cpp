@@ -85,6 +85,20 @@ TEST_CASE("a file read back is the bytes written, and a missing one is bad input
     CHECK_THROWS_WITH(util::read_file(d.path() / "none"), Catch::Matchers::Contains("none'"));
 }
 
+TEST_CASE("an output whose folder cannot be made is bad input naming it, and leaves nothing", "[model][util]") {
+    const util::ScratchDir d;
+    util::write_file_atomic(d.path() / "file", "x");
+    const fs::path under_file = d.path() / "file" / "sub" / "out.json";
+    CHECK_THROWS_AS(util::write_file_atomic(under_file, "y"), InputError);
+    CHECK_THROWS_WITH(util::write_file_atomic(under_file, "y"),
+                      Catch::Matchers::Contains("cannot write '" + under_file.string() + "': cannot make its folder"));
+    CHECK(util::read_file(d.path() / "file") == "x");
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(d.path())) ++entries;
+    CHECK(entries == 1);
+    CHECK_THROWS_WITH(util::write_file_atomic(d.path(), "z"), Catch::Matchers::Contains("is a directory"));
+}
+
 TEST_CASE("a child process's exit status, working directory and log come back", "[model][util]") {
     const util::ScratchDir d;
     CHECK(util::run_process({"sh", "-c", "exit 3"}) == 3);
