@@ -16,34 +16,12 @@ namespace hc::mutation {
 
 namespace {
 
-std::string command_line(const MutateCommand& f, const cluster::RunnerSettings& s) {
-    std::string c = "harris-cosim mutate --generate";
-    if (!f.classes.empty()) {
-        c += " --class ";
-        for (size_t i = 0; i < f.classes.size(); ++i) c += (i ? "," : "") + f.classes[i];
-    }
-    if (!f.files.empty()) {
-        c += " --file ";
-        for (size_t i = 0; i < f.files.size(); ++i) c += (i ? "," : "") + f.files[i];
-    }
-    for (const auto& o : f.only) c += " --only '" + o + "'";
-    if (f.quick_only) c += " --quick-only";
-    if (f.no_prove) c += " --no-prove";
-    if (f.proof_timeout != 120) c += " --proof-timeout " + std::to_string(f.proof_timeout);
-    c += " --runner " + s.runner;
-    if (s.runner == "local") c += " --jobs " + std::to_string(s.jobs);
-    if (!f.report.empty()) c += " --report " + f.report;
-    if (f.render) c += " --run-dir RUN --render";
-    if (!f.reuse.empty()) c += " --reuse-verdicts " + f.reuse;
-    return c;
-}
-
 /// Writes (or prints) the report, its CSV and the proven mutants' scripts.
 void write_report(const MutateCommand& f, const cluster::RunnerSettings& s, const std::vector<Result>& rs,
                   const Stimulus& quick, const std::vector<Stimulus>& longer, int generated, std::size_t shards,
                   double wall, const std::string& reused = {}) {
     ReportInfo info;
-    info.command = command_line(f, s);
+    info.command = f.command_line;
     info.quick = quick;
     info.longer = longer;
     info.generated = generated;
@@ -152,7 +130,7 @@ void run_mutate_command(const MutateCommand& c, const cluster::JobRunner& runner
     } else {
         r = run_smoke_list(list, only, [](const std::string& s) { std::fprintf(stderr, "[mutate] %s\n", s.c_str()); });
     }
-    const std::string md = smoke_markdown(list, r, "mutation/mutations.json");
+    const std::string md = smoke_markdown(list, r, "mutation/mutations.json", c.command_line);
     if (!c.report.empty()) util::write_file_atomic(c.report, md);
     else std::printf("%s", md.c_str());
     std::printf("harris-cosim mutate: %d of %d mutants caught, %d problem(s)\n", r.caught, r.total, r.problems);

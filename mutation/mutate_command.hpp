@@ -29,6 +29,7 @@ struct MutateCommand {
     int per_shard = 8;
     bool render = false;          ///< only render the report from the run directory's finished shards
     std::string reuse;            ///< a verdict CSV whose killed, stillborn and proven verdicts stand
+    std::string command_line;     ///< the command as the user typed it (less the sharding flags), for the report
 };
 
 /// Runs the campaign the settings choose, prints or writes its report and a summary line.

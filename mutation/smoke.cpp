@@ -147,10 +147,10 @@ SmokeResult run_smoke_list(const SmokeList& c, const std::string& only,
     return tally_smoke(baseline, std::move(verdicts));
 }
 
-std::string smoke_markdown(const SmokeList& c, const SmokeResult& r, const std::string& list) {
+std::string smoke_markdown(const SmokeList& c, const SmokeResult& r, const std::string& list, const std::string& command) {
     std::ostringstream md;
     md << "# Mutation campaign: the hand-written smoke set\n\n"
-       << "Made by `harris-cosim mutate --report docs/mutation-smoke.md` (mutations: `" << list << "`).\n"
+       << "Made by `" << command << "` (mutations: `" << list << "`).\n"
        << "Each mutant is one edit of a scratch copy of `rtl/`, co-simulated with GHDL (mcode) against the\n"
        << "unmutated cycle model on the stream `" << stream_flags(c.stream)
        << "`. *Caught* means the run failed; *localised* means the first mismatching stage\n"

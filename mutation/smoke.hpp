@@ -73,7 +73,8 @@ SmokeResult tally_smoke(const SmokeOutcome& baseline, std::vector<SmokeVerdict> 
 SmokeResult run_smoke_list(const SmokeList& c, const std::string& only,
                             const std::function<void(const std::string&)>& progress);
 
-/// The Markdown report (docs/mutation-smoke.md); `list` names the list file in it.
-std::string smoke_markdown(const SmokeList& c, const SmokeResult& r, const std::string& list);
+/// The Markdown report (docs/mutation-smoke.md); `list` names the list file in it, `command`
+/// is quoted as the command that made it (the command line as typed).
+std::string smoke_markdown(const SmokeList& c, const SmokeResult& r, const std::string& list, const std::string& command);
 
 }  // namespace hc::mutation

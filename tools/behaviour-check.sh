@@ -7,7 +7,7 @@
 #   bash tools/behaviour-check.sh --digest OUT_DIR    (the digests of an earlier run again)
 # The commands (KITTI 01 and Middlebury from the data directory; about 15 minutes on an idle
 # 2-core machine): eval --source spec (with the ablation), cycle and rtl on KITTI 01;
-# landmarks --compare; slam --sequence 01 with stereo landmarks; a sweep of three
+# landmarks --compare; slam --sequences 01 with stereo landmarks; a sweep of three
 # configurations (tools/behaviour-sweep.json, RTL checks included); mutate (the hand-written
 # smoke list); golden --check. Each command's exit status is recorded beside the digests.
 set -uo pipefail
@@ -48,7 +48,7 @@ run eval-spec "$cli" eval --kitti "$kitti" --sequence 01 --source spec --out "$o
 run eval-cycle "$cli" eval --kitti "$kitti" --sequence 01 --source cycle --no-ablation --out "$out/eval-cycle"
 run eval-rtl "$cli" eval --kitti "$kitti" --sequence 01 --source rtl --no-ablation --out "$out/eval-rtl"
 run landmarks "$cli" landmarks --compare --data "$data" --out "$out/landmarks"
-run slam "$cli" slam --sequence 01 --data "$data" --landmarks-from stereo --out "$out/slam"
+run slam "$cli" slam --sequences 01 --data "$data" --landmarks-from stereo --out "$out/slam"
 run sweep "$cli" sweep --config tools/behaviour-sweep.json --data "$data" --cache "$out/sweep-cache" --quiet --out "$out/sweep"
 run mutate "$cli" mutate --report "$out/mutate/mutation-smoke.md"
 run golden "$cli" golden --check

@@ -74,13 +74,33 @@ void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o) {
         ->check(whole_number(1));
     cmd->add_option("--kitti", o.kitti, "KITTI odometry root (holds sequences/NN); default <data>/kitti");
     cmd->add_option("--sequence", o.sequence, "KITTI sequence")->capture_default_str();
-    cmd->add_option("--pairs", o.pairs, "a:b stereo pairs of the KITTI sequence (b excluded), streamed L R L R ...");
+    add_pair_range_option(cmd, o.pairs, "; streamed L R L R ...");
     cmd->add_option("--data", o.data, "data directory (default $HARRIS_COSIM_DATA, else ../shared/data)");
     cmd->add_option("--seed", o.seed, "seed of random patterns")->capture_default_str();
 }
 
-void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string& help) {
-    cmd->add_option("--pairs", range, help);
+void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string& more) {
+    const CLI::Validator range_check(
+        [](std::string& s) -> std::string {
+            try {
+                util::parse_range(s, "--pairs");
+            } catch (const InputError& e) {
+                return e.what();
+            }
+            return {};
+        },
+        "");
+    cmd->add_option("--pairs", range, "a:b stereo pairs of each sequence (b excluded; a: or :b open)" + more)
+        ->check(range_check)
+        ->type_name("A:B");
+}
+
+void add_commands(CLI::App& app) {
+    // in the order --help lists them
+    for (auto add : {add_rtl_command, add_model_command, add_golden_command, add_mutate_command, add_verilate_command,
+                     add_eval_command, add_sweep_command, add_ranges_command, add_calibrate_command, add_slam_command,
+                     add_landmarks_command, add_shard_command})
+        add(app);
 }
 
 void add_runner_flags(CLI::App* cmd, cluster::RunnerSettings& f) {

@@ -32,7 +32,7 @@ void add_landmarks_command(CLI::App& app) {
     cmd->add_flag("!--no-truth", o->source.need_truth, "accept Middlebury scenes without disp1.png (e.g. third/): no ground-truth scoring");
     cmd->add_option("--kitti", o->source.kitti, "KITTI odometry root holding sequences/ (default: <data>/kitti)");
     cmd->add_option("--sequence", o->source.sequence, "KITTI sequence")->capture_default_str();
-    add_pair_range_option(cmd, o->source.pairs, "KITTI stereo pair range a:b (b excluded; default " + o->source.pairs + ")");
+    add_pair_range_option(cmd, o->source.pairs, "; --dataset kitti, default " + o->source.pairs);
     cmd->add_option("--calib", o->source.calib,
                     "a rig's calibration (harris-cosim calibrate's calib.yml/.json, or a calib.txt of rectified images): "
                     "run on its unrectified pairs --left/--right, keypoints undistorted and rectified (cv::undistortPoints)");

@@ -113,9 +113,10 @@ void add_slam_command(CLI::App& app) {
     const auto [cmd, o] = add_command<Sharded<slam::SlamCommand>>(app,
         "slam", "2-D EKF-SLAM (thesis 2.5, 5.4): Monte-Carlo consistency in the simulator, or a trajectory of a KITTI sequence or a rig's stereo pairs");
     cmd->add_flag("--simulate", o->simulate, "Monte-Carlo runs in the simulator (NEES, RMSE, plots)");
-    cmd->add_option("--sequences,--sequence", o->sequences,
+    cmd->add_option("--sequences", o->sequences,
                     "KITTI sequences, comma-separated (e.g. 01 or 01,02): stereo pairs of sequences/NN, "
                     "ground truth poses/NN.txt when present (read only to score)");
+    add_pair_range_option(cmd, o->pairs, ", or of the rig's --left/--right; ground truth: the poses of these pairs");
     cmd->add_option("--calib", o->calib,
                     "a rig's calibration (calibrate's .yml/.json, or a KITTI-style calib.txt): run on --left/--right "
                     "pairs instead of a KITTI sequence, keypoints rectified as landmarks --calib does");
@@ -148,6 +149,7 @@ void add_slam_command(CLI::App& app) {
     add_runner_flags(cmd, o->runner);
     cmd->callback([o, cmd] {
         o->seed_given = cmd->count("--seed") > 0;
+        o->command_line = typed_command_line(cmd);
         slam::run_slam_command(*o, job_runner(cmd, o->runner));
     });
 }

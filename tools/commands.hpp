@@ -40,8 +40,10 @@ struct Sharded : Command {
 /// stream), --pairs a:b picks stereo pairs, in every command.
 void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o);
 
-/// `--pairs a:b`, a range of a stereo dataset's pairs (b excluded), bound to `range`.
-void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string& help);
+/// `--pairs a:b`, a range of a stereo dataset's pairs (b excluded; util::parse_range's syntax,
+/// checked when parsed), bound to `range`: the one help text of every command's --pairs, with
+/// `more` (a command's own default or use) appended.
+void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string& more = {});
 
 /// The sharding flags (in an option group "Sharding"), bound to `s`.
 void add_runner_flags(CLI::App* cmd, cluster::RunnerSettings& s);
@@ -75,5 +77,7 @@ void add_calibrate_command(CLI::App& app);  // stereo calibration of a rig (cmd_
 void add_slam_command(CLI::App& app);       // 2-D EKF-SLAM (cmd_slam.cpp)
 void add_landmarks_command(CLI::App& app);  // descriptors, stereo matches, landmarks (cmd_landmarks.cpp)
 void add_shard_command(CLI::App& app);      // worker and merge ends of sharded runs (cmd_shard.cpp)
+/// Every command above, added to `app` in the order --help lists them.
+void add_commands(CLI::App& app);
 
 }  // namespace hc::tools

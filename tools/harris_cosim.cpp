@@ -25,11 +25,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", "harris-cosim " HC_VERSION);
     namespace t = hc::tools;
-    // the commands, in the order --help lists them
-    for (auto add : {t::add_rtl_command, t::add_model_command, t::add_golden_command, t::add_mutate_command,
-                     t::add_verilate_command, t::add_eval_command, t::add_sweep_command, t::add_ranges_command,
-                     t::add_calibrate_command, t::add_slam_command, t::add_landmarks_command, t::add_shard_command})
-        add(app);
+    t::add_commands(app);
     t::set_program_path(argc > 0 ? argv[0] : nullptr);
     t::set_command_line(argc, argv);
     try {

@@ -1,5 +1,6 @@
 // frames.cpp: see frames.hpp.
 #include "io/frames/frames.hpp"
+#include "io/frames/pairs.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -95,16 +96,20 @@ KittiSequence open_kitti(const fs::path& kitti_dir, const std::string& sequence)
     return s;
 }
 
+util::Range pairs_within(util::Range r, int n, const std::string& what, const std::string& of, int open_end) {
+    if (r.last != open_end && r.last > n)
+        throw InputError(what + " reaches past the data: " + of + " has " + std::to_string(n) +
+                         " stereo pairs, the last is pair " + std::to_string(n - 1) + " (a range " +
+                         std::to_string(std::min(r.first, n - 1)) + ":" + std::to_string(n) + " ends there)");
+    if (r.first >= n)
+        throw InputError(what + " starts past the data: " + of + " has " + std::to_string(n) +
+                         " stereo pairs, the last is pair " + std::to_string(n - 1));
+    return {r.first, std::min(r.last, n)};
+}
+
 std::vector<fs::path> stereo_stream(const KittiSequence& s, util::Range r, const std::string& what, int open_end) {
     const int n = s.pairs();
-    if (r.last != open_end && r.last > n)
-        throw InputError(what + " reaches past the data: KITTI sequence '" + s.root.string() + "' has " +
-                         std::to_string(n) + " stereo pairs, the last is pair " + std::to_string(n - 1) +
-                         " (a range " + std::to_string(std::min(r.first, n - 1)) + ":" + std::to_string(n) +
-                         " ends there)");
-    if (r.first >= n)
-        throw InputError(what + " starts past the data: KITTI sequence '" + s.root.string() + "' has " +
-                         std::to_string(n) + " stereo pairs, the last is pair " + std::to_string(n - 1));
+    pairs_within(r, n, what, "KITTI sequence '" + s.root.string() + "'", open_end);
     std::vector<fs::path> out;
     for (int k = r.first; k < std::min(r.last, n); ++k) {
         out.push_back(s.left[k]);

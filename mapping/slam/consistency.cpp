@@ -165,7 +165,9 @@ MonteCarlo monte_carlo(const SimConfig& config, int runs, uint64_t first_seed, d
         if (r == 0) first = std::move(t);
         if (progress) progress(r + 1, runs);
     }
-    return fold_monte_carlo(errors, std::move(first), confidence);
+    MonteCarlo mc = fold_monte_carlo(errors, std::move(first), confidence);
+    mc.first_seed = first_seed;
+    return mc;
 }
 
 MonteCarlo fold_monte_carlo(const std::vector<RunErrors>& errors, RunTrace first, double confidence) {

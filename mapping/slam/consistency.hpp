@@ -4,6 +4,7 @@
 
 #include "mapping/slam/simulator.hpp"
 
+#include <cstdint>
 #include <functional>
 
 namespace hc::slam {
@@ -40,6 +41,7 @@ RunTrace run_simulation(const SimConfig& config, uint64_t seed, UpdateForm form 
 /// Monte-Carlo consistency over `runs` seeds first_seed, first_seed+1, ...
 struct MonteCarlo {
     int runs = 0;
+    std::uint64_t first_seed = 1;              ///< the runs' seeds: first_seed, first_seed + 1, ...
     double confidence = 0.95;
     std::vector<double> pose_nees;             ///< mean over runs, per step (NaN if undefined)
     double pose_lo = 0, pose_hi = 0;           ///< bounds of the mean: χ²(3·runs)/runs

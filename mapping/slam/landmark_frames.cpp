@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "io/frames/frames.hpp"
+#include "io/frames/pairs.hpp"
 
 namespace hc::slam {
 
@@ -91,15 +92,42 @@ void report_landmarks(const KittiRunOptions& o, int pairs, const std::string& of
                    " descriptor)");
 }
 
-/// The landmark pipeline on the sequence's first `pairs` stereo pairs (landmark_stream); `rig`,
-/// the first pair's calibration (the sequence's calib.txt).
-FrameSource stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, int pairs,
+/// The landmark pipeline on the sequence's stereo pairs `r` (landmark_stream); `rig`, the first
+/// pair's calibration (the sequence's calib.txt).
+FrameSource stereo_frames(const std::filesystem::path& kitti, const std::string& sequence, util::Range r,
                           const KittiRunOptions& o, landmarks::RectifiedRig& rig) {
-    report_landmarks(o, pairs, sequence);
-    rig = landmarks::kitti_dataset(kitti, sequence, {0, 1}).calib.front();
+    report_landmarks(o, r.last - r.first, sequence);
+    rig = landmarks::kitti_dataset(kitti, sequence, {r.first, r.first + 1}).calib.front();
     return landmark_stream(
-        pairs, [kitti, sequence](int k) { return landmarks::kitti_dataset(kitti, sequence, {k, k + 1}).pairs.front(); },
+        r.last - r.first,
+        [kitti, sequence, first = r.first](int k) {
+            return landmarks::kitti_dataset(kitti, sequence, {first + k, first + k + 1}).pairs.front();
+        },
         rig, o.pipeline);
+}
+
+/// The pairs o.pairs picks of `n` (all when empty), checked against them (frames::pairs_within).
+util::Range picked_pairs(const KittiRunOptions& o, int n, const std::string& of) {
+    const util::Range all{0, 1 << 30};
+    return frames::pairs_within(o.pairs.empty() ? all : util::parse_range(o.pairs, "--pairs"), n,
+                                "--pairs " + o.pairs, of);
+}
+
+/// The poses of the pairs `r`: truth[r.first, r.last), as many of them as `truth` holds, in the
+/// frame of the run's first camera as the run's estimate is (truth[r.first]⁻¹ · truth[k]; the
+/// truth is in pair 0's camera frame, so a range from pair 0 keeps it as it is).
+std::vector<Mat34> truth_of_pairs(const std::vector<Mat34>& truth, util::Range r) {
+    const auto end = std::min(truth.size(), static_cast<size_t>(r.last));
+    const auto first = std::min(end, static_cast<size_t>(r.first));
+    std::vector<Mat34> out(truth.begin() + static_cast<long>(first), truth.begin() + static_cast<long>(end));
+    if (first == 0 || out.empty()) return out;
+    const Mat3 to_first = out.front().leftCols<3>().transpose();
+    const Eigen::Vector3d origin = out.front().col(3);
+    for (Mat34& T : out) {
+        T.leftCols<3>() = (to_first * T.leftCols<3>()).eval();
+        T.col(3) = to_first * (T.col(3) - origin);
+    }
+    return out;
 }
 
 /// The ground truth a run scores with, for `frames` frames: `truth` itself when it has one
@@ -135,7 +163,10 @@ struct FrameTimes {
     std::vector<double> times;   // empty: index × period
     double period = 0.1;
     std::string from;
-    double at(size_t k) const { return times.empty() ? static_cast<double>(k) * period : times[k]; }
+    size_t first = 0;            // the run's first pair: frame k is pair first + k
+    double at(size_t k) const {
+        return times.empty() ? static_cast<double>(first + k) * period : times[first + k];
+    }
 };
 
 /// The first `n` timestamps of a times.txt; InputError when it has fewer.
@@ -148,12 +179,13 @@ std::vector<double> frame_times(const std::filesystem::path& times, size_t n) {
     return t;
 }
 
-/// The timestamps of `n` frames: from `times` when it exists, else frame index × o.frame_period.
-FrameTimes timestamps_of(const std::filesystem::path& times, size_t n, const KittiRunOptions& o) {
+/// The timestamps of the pairs `r`: from `times` when it exists, else pair index × o.frame_period.
+FrameTimes timestamps_of(const std::filesystem::path& times, util::Range r, const KittiRunOptions& o) {
     FrameTimes t;
     t.period = o.frame_period;
+    t.first = static_cast<size_t>(r.first);
     if (!times.empty() && std::filesystem::exists(times)) {
-        t.times = frame_times(times, n);
+        t.times = frame_times(times, static_cast<size_t>(r.last));
         t.from = "the sequence's times.txt";
         return t;
     }
@@ -209,10 +241,14 @@ KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::strin
     std::string pairing = "in file order";
     FrameSource frames;
     size_t count = 0;
+    util::Range r;
     const frames::KittiSequence seq = o.stereo_landmarks ? frames::open_kitti(kitti, sequence) : frames::KittiSequence{};
     if (o.stereo_landmarks) {
         const int pairs = seq.pairs();
-        if (pairs < 2) throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs");
+        r = picked_pairs(o, pairs, "KITTI sequence '" + seq.root.string() + "'");
+        if (r.last - r.first < 2)
+            throw InputError("KITTI sequence " + sequence + " has fewer than 2 stereo pairs" +
+                             (o.pairs.empty() ? "" : " in --pairs " + o.pairs));
         if (!truth_times.empty() && std::filesystem::exists(times_file)) {
             truth = truth_by_timestamp(truth, truth_times, frame_times(times_file, static_cast<size_t>(pairs)),
                                        o.truth_time_tolerance, truth_name, o.score_overlap);
@@ -220,13 +256,15 @@ KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::strin
             tol << o.truth_time_tolerance;
             pairing = "by timestamp (the nearest pose within " + tol.str() + " s of each frame's time in times.txt)";
         }
-        truth = reconcile_truth(std::move(truth), static_cast<size_t>(pairs), truth_name, o);
-        frames = stereo_frames(kitti, sequence, pairs, o, *vo.rig);
-        count = static_cast<size_t>(pairs);
+        truth = truth_of_pairs(reconcile_truth(std::move(truth), static_cast<size_t>(pairs), truth_name, o), r);
+        frames = stereo_frames(kitti, sequence, r, o, *vo.rig);
+        count = static_cast<size_t>(r.last - r.first);
     } else {
         if (truth.empty())
             throw InputError("--landmarks-from synthetic lays its points along the ground truth: sequence " + sequence +
                              " has no " + poses_file.string() + "; give --truth FILE");
+        r = picked_pairs(o, static_cast<int>(truth.size()), "the ground truth " + truth_name);
+        truth = truth_of_pairs(truth, r);
         if (truth.size() < 2) throw InputError("sequence " + sequence + " has fewer than 2 poses");
         if (o.flip_bits < 0) throw InputError("--flip-bits must not be negative");
         auto synthetic = std::make_shared<SyntheticFrames>(truth, *vo.rig, landmarks::PixelNoise{}, o.synthetic_count,
@@ -234,9 +272,9 @@ KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::strin
         frames = [synthetic](StereoFrame& f) { return synthetic->next(f); };
         count = truth.size();
     }
-    KittiRun r = run_frames(frames, count, truth, vo, o, timestamps_of(times_file, count, o));
-    if (!truth.empty()) r.run.truth_pairing = pairing;
-    return r;
+    KittiRun run = run_frames(frames, count, truth, vo, o, timestamps_of(times_file, r, o));
+    if (!truth.empty()) run.run.truth_pairing = pairing;
+    return run;
 }
 
 KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o) {
@@ -252,20 +290,23 @@ KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o) {
     if (left.size() != right.size())
         throw InputError("a rig's stereo pairs: " + std::to_string(left.size()) + " left images but " +
                          std::to_string(right.size()) + " right images");
-    if (left.size() < 2) throw InputError("the rig's --left/--right give fewer than 2 stereo pairs");
-    const int pairs = static_cast<int>(left.size());
-    truth = reconcile_truth(std::move(truth), left.size(), quoted(o.truth), o);
+    const util::Range r = picked_pairs(o, static_cast<int>(left.size()), "the rig's --left/--right");
+    const int pairs = r.last - r.first;
+    if (pairs < 2)
+        throw InputError("the rig's --left/--right give fewer than 2 stereo pairs" +
+                         (o.pairs.empty() ? std::string() : " in --pairs " + o.pairs));
+    truth = truth_of_pairs(reconcile_truth(std::move(truth), left.size(), quoted(o.truth), o), r);
     report_landmarks(o, pairs, "the rig");
     vo.rig = calibration->rectified;
     // each pair read (and checked against the calibration) when the corner stream reaches it
-    const auto pair_at = [left, right, calibration](int k) {
-        const auto i = static_cast<size_t>(k);
+    const auto pair_at = [left, right, calibration, first = r.first](int k) {
+        const auto i = static_cast<size_t>(first + k);
         return landmarks::rig_dataset({left[i]}, {right[i]}, *calibration).pairs.front();
     };
     const FrameSource frames = landmark_stream(pairs, pair_at, calibration->rectified, o.pipeline, calibration);
-    KittiRun r = run_frames(frames, left.size(), truth, vo, o, timestamps_of({}, left.size(), o));
-    if (!truth.empty()) r.run.truth_pairing = "in file order (a rig has no frame times)";
-    return r;
+    KittiRun run = run_frames(frames, static_cast<size_t>(pairs), truth, vo, o, timestamps_of({}, r, o));
+    if (!truth.empty()) run.run.truth_pairing = "in file order (a rig has no frame times)";
+    return run;
 }
 
 }  // namespace hc::slam

@@ -67,6 +67,10 @@ struct KittiRunOptions {
     /// timestamp (truth_by_timestamp): the nearest pose within this (s; TUM's associate.py's
     /// default difference). A KITTI ground truth, or none of the frames' times: file order.
     double truth_time_tolerance = 0.02;
+    /// The stereo pairs run, "a:b" (b excluded; util::parse_range's syntax, an open end runs to
+    /// the last pair; empty: all): of the sequence, of a rig's --left/--right, or of the true
+    /// poses of synthetic landmarks. The ground truth scored is the poses of these pairs.
+    std::string pairs;
     std::function<void(const std::string&)> progress;   ///< one line per step (may be empty)
     /// Each frame's record as it comes, with its TUM timestamp (may be empty), and whether the
     /// run keeps its per-frame vectors (RunRecord; the command keeps none and writes the sink's rows).
@@ -89,7 +93,8 @@ struct KittiRun {
 /// truth_pairing says which. InputError (slam's or landmarks') for fewer than 2 pairs, a ground truth
 /// with another number of poses than stereo pairs (both counts named) unless o.score_overlap,
 /// synthetic landmarks or odometry without a true pose per frame, a times.txt shorter than the
-/// frames, a descriptor that is not binary, or options out of range.
+/// frames, a descriptor that is not binary, options out of range, or o.pairs past the pairs there are
+/// (frames::pairs_within, naming --pairs and their count).
 KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::string& sequence, const KittiRunOptions& o);
 
 /// A user's rig: unrectified stereo pairs (files, glob patterns or folders, expanded by
@@ -106,6 +111,7 @@ struct RigPairs {
 /// index × o.frame_period. InputError as run_kitti_sequence's, for lists of images that are
 /// empty or differ in length (before the run), and rig_dataset's for a pair's image that is
 /// missing, unreadable or of another size than the calibration's (when the pair is reached).
+/// o.pairs picks pairs of the lists (and the poses of o.truth) as of a KITTI sequence.
 KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o);
 
 }  // namespace hc::slam

@@ -187,6 +187,7 @@ void save_simulation_summary(const fs::path& dir, const SimConfig& c, const Mont
                    {"max_range_m", c.sensor.max_range}, {"fov_rad", c.sensor.fov},
                    {"sigma_dx_m", c.odometry.sigma_dx}, {"sigma_dtheta_rad", c.odometry.sigma_dtheta}};
     j["runs"] = mc.runs;
+    j["first_seed"] = mc.first_seed;
     j["confidence"] = mc.confidence;
     j["pose_nees"] = {{"average", mc.pose_nees_average}, {"lo", mc.pose_lo}, {"hi", mc.pose_hi},
                       {"fraction_inside", mc.pose_inside}};
@@ -266,7 +267,7 @@ std::string simulation_markdown(const SimConfig& c, const MonteCarlo& mc, const 
        << "| sensor | σ range " << c.sensor.sigma_range << " m, σ bearing " << c.sensor.sigma_bearing * 180 / std::numbers::pi
        << "°, range ≤ " << c.sensor.max_range << " m, field of view " << c.sensor.fov * 180 / std::numbers::pi << "° |\n"
        << "| odometry | σ dx " << c.odometry.sigma_dx << " m, σ dθ " << c.odometry.sigma_dtheta * 180 / std::numbers::pi << "° per step |\n"
-       << "| runs | " << mc.runs << " seeds |\n\n"
+       << "| runs | " << mc.runs << " seeds from " << mc.first_seed << " |\n\n"
        << "## Consistency (" << 100 * mc.confidence << " % two-sided chi-square bounds of the mean over runs)\n\n"
        << "| quantity | average over steps | bounds | steps inside |\n|---|---|---|---|\n"
        << "| robot pose NEES (3 dof) | " << mc.pose_nees_average << " | [" << mc.pose_lo << ", " << mc.pose_hi << "] | "

@@ -44,13 +44,6 @@ SimConfig sim_config(const SlamCommand& o) {
 
 void run_simulate(const SlamCommand& o, const cluster::JobRunner& runner) {
     const SimConfig c = sim_config(o);
-    const std::string command =
-        "harris-cosim slam --simulate --world " + o.world + " --landmarks " + std::to_string(o.landmarks) +
-        " --half-size " + num(o.half_size) + " --radius " + num(o.radius) + " --step " + num(o.step) + " --steps " +
-        std::to_string(o.steps) + " --runs " + std::to_string(o.runs) + " --seed " + std::to_string(o.seed) +
-        " --sigma-range " + num(o.sigma_range) + " --sigma-bearing " + num(o.sigma_bearing_deg) + " --fov " +
-        num(o.fov_deg) + " --max-range " + num(o.max_range) + " --sigma-dx " + num(c.odometry.sigma_dx) +
-        " --sigma-dtheta " + num(c.odometry.sigma_dtheta / deg) + " --out " + o.out;
     MonteCarlo mc;
     if (runner.sharded()) {
         SlamJob p;
@@ -67,7 +60,7 @@ void run_simulate(const SlamCommand& o, const cluster::JobRunner& runner) {
             if (done % 10 == 0 || done == total) std::fprintf(stderr, "slam: run %d/%d\n", done, total);
         });
     }
-    write_simulation_report(o.out, c, mc, command);
+    write_simulation_report(o.out, c, mc, o.command_line);
     std::printf("pose NEES average %.3f, 95 %% bounds [%.3f, %.3f], %.1f %% of steps inside\n", mc.pose_nees_average,
                 mc.pose_lo, mc.pose_hi, 100 * mc.pose_inside);
     std::printf("map NEES per dof average %.3f, %.1f %% of steps inside their bounds\n", mc.map_nees_per_dof_average,
@@ -92,6 +85,7 @@ std::string source_flags(const SlamCommand& o, const std::string& sequence) {
         for (const auto& f : o.left) s += " --left '" + f + "'";
         for (const auto& f : o.right) s += " --right '" + f + "'";
     }
+    if (!o.pairs.empty()) s += " --pairs " + o.pairs;
     if (!o.truth.empty()) s += " --truth " + o.truth + " --truth-time-tolerance " + num(o.truth_time_tolerance);
     if (o.score_overlap) s += " --score-overlap";
     return s + " --frame-period " + num(o.frame_period);
@@ -249,6 +243,7 @@ KittiRunOptions kitti_options(const SlamCommand& o) {
     k.score_overlap = o.score_overlap;
     k.frame_period = o.frame_period;
     k.truth_time_tolerance = o.truth_time_tolerance;
+    k.pairs = o.pairs;
     k.synthetic_count = o.synthetic_count;
     k.flip_bits = o.flip_bits;
     if (k.stereo_landmarks) {
@@ -268,6 +263,8 @@ void run_slam_command(const SlamCommand& o, const cluster::JobRunner& runner) {
     const bool rig = !o.calib.empty() || !o.left.empty() || !o.right.empty();
     if (int(o.simulate) + int(!o.sequences.empty()) + int(rig) != 1)
         throw InputError("give exactly one of --simulate, --sequences NN[,NN...] and --calib FILE --left ... --right ...");
+    if (o.simulate && !o.pairs.empty())
+        throw InputError("--pairs " + o.pairs + " picks stereo pairs of --sequences or of a rig: --simulate has none");
     check_choice("--world", o.world, "cloister", "random");
     check_choice("--landmarks-from", o.landmarks_from, "stereo", "synthetic");
     o.simulate ? run_simulate(o, runner) : run_sequences(o);

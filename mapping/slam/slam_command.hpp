@@ -22,6 +22,8 @@ namespace hc::slam {
 /// KittiRunOptions); the angles are the command's, in degrees.
 struct SlamCommand {
     bool simulate = false;
+    std::string command_line;   ///< the command as the user typed it (less the sharding flags), for the reports
+    std::string pairs;          ///< --pairs a:b of each sequence or of the rig (KittiRunOptions::pairs)
     std::string sequences, kitti, data, out = "slam-report", world = "cloister", truth, calib,
         landmarks_from = KittiRunOptions{}.stereo_landmarks ? "stereo" : "synthetic", odometry = "visual",
         association = "jcbb", vo_residual = "pixels";

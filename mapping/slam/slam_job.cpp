@@ -27,7 +27,9 @@ MonteCarlo slam_result(const cluster::Manifest& m, const json& merged) {
     if (static_cast<int>(runs.size()) != m.common.at("runs").get<int>())
         throw hc::InputError("slam: the merged data holds " + std::to_string(runs.size()) + " runs, the manifest " +
                                          m.common.at("runs").dump());
-    return fold_monte_carlo(runs, merged.at("first").get<RunTrace>(), m.common.at("confidence"));
+    MonteCarlo mc = fold_monte_carlo(runs, merged.at("first").get<RunTrace>(), m.common.at("confidence"));
+    mc.first_seed = m.common.at("first_seed");
+    return mc;
 }
 
 void add_slam_job(cluster::JobRegistry& r) {

@@ -130,3 +130,24 @@ TEST_CASE("the project's RTL gives the same mutants every time, each a real edit
     CHECK(total >= 300);
     WARN("generated mutants of rtl/: " << total);
 }
+
+TEST_CASE("the campaign reports quote the command they are given", "[mutation]") {
+    hc::mutation::Result killed;
+    killed.name = "sobel_x.vhd:30:5:arith";
+    killed.file = "sobel_x.vhd";
+    killed.entity = "sobel_x";
+    killed.cls = "arith";
+    killed.fate = hc::mutation::Fate::killed;
+    killed.detail = "mismatch";
+    hc::mutation::ReportInfo info;
+    info.command = "harris-cosim mutate --generate --class arith --only 'sobel_x.vhd:30:'";
+    info.runner = "local runner, 2 jobs, 1 shards";
+    info.generated = 1;
+    const std::string md = hc::mutation::markdown({killed}, info);
+    CHECK(md.find("Made by `" + info.command + "` (local runner, 2 jobs, 1 shards)") != std::string::npos);
+    // the hand-written list's report too
+    const hc::mutation::SmokeList list = hc::mutation::load_smoke_list(HC_SOURCE_DIR "/mutation/mutations.json");
+    const std::string typed = "harris-cosim mutate --only sobel_x_sign --report 'out/smoke report.md'";
+    CHECK(hc::mutation::smoke_markdown(list, {}, "mutation/mutations.json", typed)
+              .find("Made by `" + typed + "` (mutations: `mutation/mutations.json`)") != std::string::npos);
+}

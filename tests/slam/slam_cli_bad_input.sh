@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # slam_cli_bad_input.sh: `harris-cosim slam` refuses bad input with a message naming it and
 # exit status 2: a non-positive noise, an empty world, a sequence without poses or pairs, a
-# ground truth that cannot be read, a ground-truth time tolerance that is not positive, and a run that is not exactly one of --simulate, --sequences
-# and a rig's --calib --left --right.
+# ground truth that cannot be read, a ground-truth time tolerance that is not positive, a pair
+# range that is not a:b or is given to --simulate, the flag --sequence (slam's is --sequences),
+# and a run that is not exactly one of --simulate, --sequences and a rig's --calib --left --right.
 # usage: slam_cli_bad_input.sh HARRIS_COSIM WORK_DIR
 set -u
 exe=$1
@@ -27,9 +28,9 @@ expect2() {
 expect2 "zero range noise" "--sigma-range" --simulate --sigma-range 0
 expect2 "negative odometry noise" "--sigma-dx" --simulate --sigma-dx -0.1
 expect2 "empty world" "world is empty" --simulate --landmarks 0
-expect2 "sequence without poses" "holds no pose" --sequence 07 --kitti "$work/kitti"
-expect2 "sequence without pairs or poses" "sequence directory" --sequence 99 --kitti "$work/kitti"
-expect2 "missing ground-truth file" "cannot read the ground-truth file" --sequence 07 --kitti "$work/kitti" --truth "$work/none.txt"
+expect2 "sequence without poses" "holds no pose" --sequences 07 --kitti "$work/kitti"
+expect2 "sequence without pairs or poses" "sequence directory" --sequences 99 --kitti "$work/kitti"
+expect2 "missing ground-truth file" "cannot read the ground-truth file" --sequences 07 --kitti "$work/kitti" --truth "$work/none.txt"
 expect2 "neither mode" "exactly one of" --runs 3
 expect2 "two modes" "exactly one of" --sequences 01 --calib "$work/rig.yml" --left "$work/l" --right "$work/r"
 expect2 "a rig's images without its calibration" "give its --calib" --left "$work/l" --right "$work/r"
@@ -41,6 +42,9 @@ expect2 "unknown odometry residual" "neither pixels nor top-view" --sequences 05
 expect2 "a seed for deterministic visual odometry" "deterministic" --sequences 05 --kitti "$work/kitti1" --landmarks-from stereo --seed 3
 expect2 "zero ground-truth time tolerance" "--truth-time-tolerance must be positive" --sequences 05 --kitti "$work/kitti1" --truth-time-tolerance 0
 expect2 "Hamming fraction above 1" "max-hamming-fraction" --sequences 05 --kitti "$work/kitti1" --max-hamming-fraction 2
+expect2 "a reversed pair range" "--pairs '5:2' is not FIRST:LAST" --sequences 05 --kitti "$work/kitti1" --pairs 5:2
+expect2 "a pair range with --simulate" "--simulate has none" --simulate --pairs 0:5
+expect2 "the old alias of --sequences" "--sequence" --sequence 05 --kitti "$work/kitti1"
 expect2 "unknown world" "neither cloister nor random" --simulate --world maze
 expect2 "negative runs" "--runs" --simulate --runs -1
 out_dir=/proc/slam-report expect2 "unwritable output" "cannot create the output directory" --simulate --runs 1 --steps 2

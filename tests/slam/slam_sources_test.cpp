@@ -2,8 +2,8 @@
 // six stereo pairs laid out in a temporary folder: a KITTI-layout sequence without poses (the
 // trajectory written, nothing scored), with a ground truth of another length (refused naming
 // both counts, or scored on the overlap with score_overlap), with a times.txt (the TUM
-// timestamps), and the same pairs as a rig's plain images with a rig file converted from
-// calib.txt (zero distortion). Exits 77 (CTest: skipped) with a message without KITTI 01.
+// timestamps), a range of its pairs (scored against their poses), and the same pairs as a
+// rig's plain images with a rig file converted from calib.txt (zero distortion). Exits 77 (CTest: skipped) with a message without KITTI 01.
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
@@ -144,6 +144,42 @@ TEST_CASE("with score_overlap a shorter ground truth scores the frames it covers
     CHECK(lines_of(out / "truth_kitti.txt") == 4);
     CHECK(lines_of(out / "estimate_kitti.txt") == kPairs);
     CHECK(text_of(out / "report.md").find("first 4 of the 6 frames") != std::string::npos);
+}
+
+TEST_CASE("pairs a:b run those stereo pairs, scored against their poses; past the sequence is refused", "[slam][kitti]") {
+    KittiRunOptions o = defaults();
+    o.pairs = "1:5";
+    const KittiRun r = run_kitti_sequence(kitti_layout("pairs", poses_text(kPairs), ""), "01", o);
+    const SequenceRun& full = scored_run().run;
+    REQUIRE(full.truth.size() == kPairs);
+    REQUIRE(r.run.estimate.size() == 4);
+    REQUIRE(r.run.truth.size() == 4);
+    // poses[1..5) in pair 1's camera frame, where the run's estimate starts (to 1e-6: the file's
+    // rotations are orthonormal to its 7 digits)
+    const auto poses = read_kitti_poses(g_kitti / "poses/01.txt");
+    const Mat3 R1 = poses[1].leftCols<3>();
+    REQUIRE(r.run.truth_3d.size() == 4);
+    for (int k = 0; k < 4; ++k) {
+        INFO("frame " << k);
+        const Mat34& T = r.run.truth_3d[k];
+        CHECK((R1 * T.leftCols<3>() - poses[k + 1].leftCols<3>()).norm() < 1e-6);
+        CHECK((R1 * T.col(3) + poses[1].col(3) - poses[k + 1].col(3)).norm() < 1e-6);
+        CHECK(r.run.truth[k] == planar_pose(T));
+    }
+    CHECK(r.run.truth_3d.front().col(3).norm() < 1e-12);
+    CHECK(r.run.estimate.front().norm() == 0);   // the run starts at its first camera, as the truth now does
+    CHECK(r.run.timestamps[0] == Approx(0.1));   // pair 1's time: its index times the period
+    CHECK(r.run.slam_metrics.ape > 0);
+    const fs::path root = g_work / "pairs";
+    o.pairs = "2:";
+    CHECK(run_kitti_sequence(root, "01", o).run.truth.size() == kPairs - 2);
+    o.pairs = "1:9";
+    CHECK_THROWS_WITH(run_kitti_sequence(root, "01", o),
+                      Catch::Contains("--pairs 1:9 reaches past the data") && Catch::Contains("has 6 stereo pairs"));
+    o.pairs = "5:6";
+    CHECK_THROWS_WITH(run_kitti_sequence(root, "01", o), Catch::Contains("fewer than 2 stereo pairs in --pairs 5:6"));
+    o.pairs = "4:2";
+    CHECK_THROWS_WITH(run_kitti_sequence(root, "01", o), Catch::Contains("--pairs '4:2' is not FIRST:LAST"));
 }
 
 TEST_CASE("the 3-D APE of the written KITTI files equals the report's, and differs from the 2-D one", "[slam][kitti]") {
@@ -315,6 +351,20 @@ TEST_CASE("a rig's plain images with a rig file from calib.txt give the KITTI-la
         CHECK(streamed.slam_metrics.ape == held.slam_metrics.ape);
         CHECK(streamed.odometry_metrics.ape == held.odometry_metrics.ape);
     }
+    // pairs a:b of the rig's lists, scored against the poses of those pairs
+    KittiRunOptions op = o;
+    op.pairs = "2:6";
+    const KittiRun part = run_rig_sequence({rig_file.string(), {left.string()}, {right.string()}}, op);
+    REQUIRE(part.run.truth_3d.size() == 4);
+    REQUIRE(rig.run.truth_3d.size() == kPairs);
+    const Mat34& P2 = rig.run.truth_3d[2];
+    for (int k = 0; k < 4; ++k) {   // poses[2..6) in pair 2's camera frame
+        const Mat34& T = part.run.truth_3d[k];
+        CHECK((P2.leftCols<3>() * T.col(3) + P2.col(3) - rig.run.truth_3d[k + 2].col(3)).norm() < 1e-6);
+    }
+    op.pairs = "0:7";
+    CHECK_THROWS_WITH(run_rig_sequence({rig_file.string(), {left.string()}, {right.string()}}, op),
+                      Catch::Contains("--pairs 0:7 reaches past the data: the rig's --left/--right has 6 stereo pairs"));
     // the rig without its calibration, and a left list of another length, are refused
     CHECK_THROWS_WITH(run_rig_sequence({"", {left.string()}, {right.string()}}, o), Catch::Contains("--calib"));
     CHECK_THROWS_WITH(run_rig_sequence({rig_file.string(), {left.string()}, {(right / "00000[0-2].png").string()}}, o),
