@@ -12,6 +12,7 @@
 #include <Eigen/Cholesky>
 
 #include "mapping/slam/association.hpp"
+#include "mapping/slam/consistency.hpp"
 
 namespace hc::slam {
 

@@ -4,7 +4,8 @@
 // compatibility test", IEEE Trans. Robotics and Automation 17(6), 2001).
 #pragma once
 
-#include "mapping/slam/slam.hpp"
+#include "mapping/slam/ekf.hpp"
+#include "mapping/slam/observations.hpp"
 
 #include <vector>
 

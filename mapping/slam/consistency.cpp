@@ -7,7 +7,7 @@
 
 #include <Eigen/Cholesky>
 
-#include "mapping/slam/slam.hpp"
+#include "mapping/slam/consistency.hpp"
 
 namespace hc::slam {
 

@@ -8,7 +8,7 @@
 
 #include <Eigen/Cholesky>
 
-#include "mapping/slam/slam.hpp"
+#include "mapping/slam/ekf.hpp"
 
 namespace hc::slam {
 

@@ -1,6 +1,7 @@
 // landmark_frames.cpp: landmarks::Landmark -> slam::StereoLandmarkObs, and a KITTI sequence
 // through the filter on the pipeline's or synthetic landmarks.
 #include "mapping/slam/landmark_frames.hpp"
+#include "mapping/slam/trajectory.hpp"
 
 #include <algorithm>
 #include <sstream>

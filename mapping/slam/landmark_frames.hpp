@@ -10,7 +10,11 @@
 #include <string>
 
 #include "mapping/landmarks/landmarks.hpp"
-#include "mapping/slam/slam.hpp"
+#include "mapping/slam/filter_run.hpp"
+#include "mapping/slam/landmark_slam.hpp"
+#include "mapping/slam/observations.hpp"
+#include "mapping/slam/odometry.hpp"
+#include "mapping/slam/synthetic.hpp"
 
 namespace hc::slam {
 

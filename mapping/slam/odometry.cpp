@@ -10,6 +10,8 @@
 #include <Eigen/Geometry>
 
 #include "mapping/slam/odometry.hpp"
+#include "mapping/slam/consistency.hpp"
+#include "mapping/slam/trajectory.hpp"
 
 namespace hc::slam {
 

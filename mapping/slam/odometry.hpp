@@ -20,7 +20,11 @@
 // Deterministic: RANSAC draws from a generator of fixed seed.
 #pragma once
 
-#include "mapping/slam/slam.hpp"
+#include "mapping/slam/ekf.hpp"
+#include "mapping/slam/filter_run.hpp"
+#include "mapping/slam/landmark_slam.hpp"
+#include "mapping/slam/observations.hpp"
+#include "mapping/landmarks/stereo.hpp"
 
 #include <optional>
 #include <utility>

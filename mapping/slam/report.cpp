@@ -15,7 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mapping/slam/slam.hpp"
+#include "mapping/slam/report.hpp"
+#include "mapping/slam/trajectory.hpp"
 #include "model/util/util.hpp"
 
 namespace fs = std::filesystem;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "mapping/slam/slam.hpp"
+#include "mapping/slam/simulator.hpp"
 
 namespace hc::slam {
 

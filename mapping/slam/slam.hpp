@@ -3,100 +3,33 @@
 // the extended Kalman filter", 2013/2014), with its simulator, its consistency measures
 // (NEES against chi-square bounds) and the stereo-landmark front end for KITTI sequences.
 //
-// One public header over the library's sections, each its own header:
-//   mapping/slam/ekf.hpp          the events of the filter and their Jacobians (Solà's names), Ekf
-//   mapping/slam/simulator.hpp    the simulator (world, sensor, odometry, one run)
-//   mapping/slam/consistency.hpp  NEES and chi-square bounds over Monte-Carlo runs
-//   mapping/slam/front_end.hpp    stereo landmarks, KITTI poses and trajectories, LandmarkSlam, runs
-//   mapping/slam/association.hpp  individual and joint compatibility (JCBB)
-//   mapping/slam/odometry.hpp     stereo visual odometry
-// and here the reports. Conventions: mapping/slam/ekf.hpp.
+// The library's one public header: it includes its parts, each its own header (with its own
+// .cpp), and declares nothing itself. No header of the library includes this one; each
+// includes the parts it uses.
+//   mapping/slam/ekf.hpp                 the events of the filter and their Jacobians (Solà's names), Ekf
+//   mapping/slam/simulator.hpp           the simulator (world, sensor, odometry, one run)
+//   mapping/slam/consistency.hpp         NEES and chi-square bounds over Monte-Carlo runs
+//   mapping/slam/observations.hpp        stereo landmarks as range-bearing observations
+//   mapping/slam/trajectory.hpp          KITTI poses, dead reckoning, trajectory files, timestamps
+//   mapping/slam/trajectory_metrics.hpp  APE (3-D, top view, SE(2)-aligned), RPE, NEES of a trajectory
+//   mapping/slam/association.hpp         individual and joint compatibility (JCBB)
+//   mapping/slam/landmark_slam.hpp       association settings, map management, LandmarkSlam
+//   mapping/slam/synthetic.hpp           synthetic odometry and synthetic stereo frames
+//   mapping/slam/filter_run.hpp          runs over a sequence (FilterRun, run_filter, run_sequence)
+//   mapping/slam/odometry.hpp            stereo visual odometry and its runs
+//   mapping/slam/report.hpp              the Monte-Carlo, sequence and timing reports
+// Conventions: mapping/slam/ekf.hpp.
 #pragma once
 
+#include "mapping/slam/association.hpp"
 #include "mapping/slam/consistency.hpp"
 #include "mapping/slam/ekf.hpp"
-#include "mapping/slam/front_end.hpp"
-#include "mapping/slam/simulator.hpp"
-
-#include <filesystem>
-#include <fstream>
-#include <string>
-#include <utility>
-#include <vector>
-
-namespace hc::slam {
-
-// ---- reports ------------------------------------------------------------------------------
-
-/// Writes the Monte-Carlo report into `dir`: report.md, nees.csv, states.csv (the first
-/// run), summary.json, trajectory.png (trajectory and map with 3σ ellipses), nees.png,
-/// rmse.png. `command` is quoted in report.md. PNGs need gnuplot; without it they are
-/// skipped with a note in the report. Files are written atomically.
-void write_simulation_report(const std::filesystem::path& dir, const SimConfig& config, const MonteCarlo& mc,
-                             const std::string& command);
-
-/// What a sequence report says besides the run's figures.
-struct SequenceReportText {
-    std::string title, command;
-    /// Names the odometry-alone trajectory ("visual odometry alone", "synthetic odometry alone").
-    std::string odometry_label;
-    /// How the ground truth entered the run, or that there is none: the report's first sentence.
-    std::string provenance;
-};
-/// A sequence report written as the run goes: states.csv and the trajectory files take one row
-/// per frame (add, or sink() given to the run) into temporaries beside them in `dir` (created
-/// when missing); commit() writes summary.json, report.md and the plots (gnuplot reading the
-/// temporary states.csv) and renames every file into place. Destroyed without commit (the run
-/// failed): the temporaries are removed, and `dir` when it was created and is empty; files
-/// already in `dir` are left as they were. InputError when a file cannot be written.
-class SequenceFiles {
-public:
-    explicit SequenceFiles(const std::filesystem::path& dir);
-    ~SequenceFiles();
-    SequenceFiles(const SequenceFiles&) = delete;
-    SequenceFiles& operator=(const SequenceFiles&) = delete;
-    void add(const FrameRecord& frame);
-    /// add() as a run's sink (this object must outlive the run).
-    FrameSink sink() {
-        return [this](const FrameRecord& f) { add(f); };
-    }
-    void commit(const SequenceRun& run, const SequenceReportText& text);
-
-private:
-    void discard();
-    enum { kStates, kEstimate, kPlanar, kOdometry, kTruth, kTum, kFiles };
-    std::filesystem::path dir_;
-    std::filesystem::path tmp_[kFiles];
-    std::ofstream out_[kFiles];
-    bool created_dir_ = false, committed_ = false, has_truth_ = false, extent_ = false;
-    Vec2 lo_ = Vec2::Zero(), hi_ = Vec2::Zero();   // the positions' extent (the plot's frame)
-};
-/// Writes the sequence report: report.md (with a ground truth: 2-D and 3-D APE and the other
-/// metrics of EKF-SLAM and of the odometry alone, wrong associations against truth; without,
-/// the statement that nothing is scored), states.csv (per frame, with the pose NEES),
-/// summary.json, estimate_kitti.txt and estimate_tum.txt (6-DoF, SequenceRun::estimate_3d,
-/// timestamps run.timestamps), estimate_planar_kitti.txt (the filter's top view),
-/// dead_reckoning_kitti.txt (the odometry alone, 6-DoF), truth_kitti.txt (with a ground truth),
-/// trajectory.png, map_size.png: SequenceFiles fed with the run's kept frames. std::invalid_argument
-/// unless the run kept its frames (RunRecord::keep) and has one timestamp per frame.
-void write_sequence_report(const std::filesystem::path& dir, const SequenceRun& run, const SequenceReportText& text);
-/// A Markdown table with one row per (sequence name, run).
-std::string sequences_markdown(const std::vector<std::pair<std::string, SequenceRun>>& runs,
-                               const std::string& odometry_label);
-
-/// One point of the update timing: landmarks, milliseconds per step, per form.
-struct TimingRow {
-    int landmarks = 0;
-    double structured_ms = 0, dense_kzk_ms = 0, dense_ms = 0;   ///< 0 = not measured
-    /// dense_ms is k times one measured (I − KH)P update, not a measured step.
-    bool dense_from_single_update = false;
-};
-/// Writes timing.csv and timing.png (log-log, with the thesis's Table 3 figures).
-void write_timing_report(const std::filesystem::path& dir, const std::vector<TimingRow>& rows);
-
-}  // namespace hc::slam
-
-// Stereo visual odometry and joint-compatibility association: their own headers, part of
-// this library's public interface.
-#include "mapping/slam/association.hpp"
+#include "mapping/slam/filter_run.hpp"
+#include "mapping/slam/landmark_slam.hpp"
+#include "mapping/slam/observations.hpp"
 #include "mapping/slam/odometry.hpp"
+#include "mapping/slam/report.hpp"
+#include "mapping/slam/simulator.hpp"
+#include "mapping/slam/synthetic.hpp"
+#include "mapping/slam/trajectory.hpp"
+#include "mapping/slam/trajectory_metrics.hpp"

@@ -8,6 +8,7 @@
 
 #include "io/frames/frames.hpp"
 #include "model/harris/formats_json.hpp"
+#include "mapping/slam/slam.hpp"
 #include "mapping/slam/slam_job.hpp"
 
 namespace fs = std::filesystem;

@@ -13,7 +13,10 @@
 #include "io/cluster/runner.hpp"
 #include "mapping/slam/landmark_frames.hpp"
 #include "mapping/landmarks/landmarks.hpp"
-#include "mapping/slam/slam.hpp"
+#include "mapping/slam/landmark_slam.hpp"
+#include "mapping/slam/odometry.hpp"
+#include "mapping/slam/simulator.hpp"
+#include "mapping/slam/synthetic.hpp"
 
 namespace hc::slam {
 

@@ -19,6 +19,7 @@
 
 #include "io/frames/frames.hpp"
 #include "mapping/slam/landmark_frames.hpp"
+#include "mapping/slam/trajectory.hpp"
 
 using namespace hc;
 

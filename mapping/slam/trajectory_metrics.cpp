@@ -1,14 +1,31 @@
-// metrics.cpp: trajectory scores as evo's APE and RPE compute them, on the top view: APE
-// without and with SE(2) alignment (a pass over the poses, or running sums), RPE per frame, path
-// length, pose NEES per frame.
+// trajectory_metrics.cpp: trajectory scores as evo's APE and RPE compute them: APE in 3-D and,
+// on the top view, without and with SE(2) alignment (a pass over the poses, or running sums),
+// RPE per frame, path length, pose NEES per frame.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "mapping/slam/slam.hpp"
+#include "mapping/slam/trajectory_metrics.hpp"
+#include "mapping/slam/consistency.hpp"
 
 namespace hc::slam {
+
+double absolute_trajectory_error_3d(const std::vector<Mat34>& estimate, const std::vector<Mat34>& truth) {
+    if (estimate.size() != truth.size() || truth.empty())
+        throw std::invalid_argument("absolute_trajectory_error_3d: trajectories of different or zero length");
+    double s = 0;
+    for (size_t k = 0; k < truth.size(); ++k) s += (estimate[k].col(3) - truth[k].col(3)).squaredNorm();
+    return std::sqrt(s / static_cast<double>(truth.size()));
+}
+
+double absolute_trajectory_error(const std::vector<Pose>& estimate, const std::vector<Pose>& truth) {
+    if (estimate.size() != truth.size() || truth.empty())
+        throw std::invalid_argument("absolute_trajectory_error: trajectories of different or zero length");
+    double s = 0;
+    for (size_t k = 0; k < truth.size(); ++k) s += (estimate[k] - truth[k]).head<2>().squaredNorm();
+    return std::sqrt(s / truth.size());
+}
 
 Pose se2_alignment(const std::vector<Pose>& estimate, const std::vector<Pose>& truth) {
     if (estimate.size() != truth.size() || truth.empty())
