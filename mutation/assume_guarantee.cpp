@@ -7,6 +7,7 @@
 
 #include "mutation/campaign.hpp"
 #include "cosim/cosim.hpp"
+#include "cosim/ghdl_verilog.hpp"
 #include "mutation/proof_steps.hpp"
 #include "model/util/util.hpp"
 
@@ -166,8 +167,8 @@ std::vector<std::pair<std::string, std::string>> guarantee_files(const StageRang
         const Guarantee& g = gs[k];
         std::string head = "# guarantee: " + g.name + "\n";
         for (const auto& a : g.assumes) head += "# assuming (a guarantee of its own): " + a + "\n";
-        head += fmt::format("# {0}.v:\n#   ghdl --synth --std=08 --workdir={0} --out=verilog{1} -e {0} > {0}.v\n", g.entity,
-                            sources);
+        head += fmt::format("# {0}.v:\n#   ghdl --synth --std=08 --workdir={0} --out=verilog{1} -e {0} | {2} > {0}.v\n", g.entity,
+                            sources, cosim::kSizedBitLiteralsFilter);
         out.emplace_back(fmt::format("guarantee_{}_{}.ys", k + 1, g.entity), head + guarantee_script(g));
     }
     return out;

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "cosim/cosim.hpp"
+#include "cosim/ghdl_verilog.hpp"
 #include "model/harris/harris_pkg.hpp"
 #include "mutation/mutated_run.hpp"
 #include "mutation/proof_steps.hpp"
@@ -288,9 +289,9 @@ bool synthesise(const std::string& entity, const fs::path& gate_rtl, const fs::p
         if (s.rfind("--workdir=", 0) == 0) s = "--workdir=" + side;
         shown += (shown.empty() ? "" : " ") + s;
     }
-    p.synth += shown + " > " + side + ".v\n";
+    p.synth += shown + " | " + cosim::kSizedBitLiteralsFilter + " > " + side + ".v\n";
     const fs::path log = work / (side + "-synth.log");
-    if (util::run_process(argv, {.log = log, .stdout_file = work / (side + ".v")}) != 0) {
+    if (cosim::synth_verilog(argv, work / (side + ".v"), {.log = log}) != 0) {
         p.output = "ghdl --synth of the " + side + " failed: " + util::log_tail(log, 1500);
         return false;
     }

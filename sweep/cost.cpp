@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cosim/ghdl_verilog.hpp"
 #include "model/util/util.hpp"
 #include "sweep/sweep_config.hpp"
 
@@ -89,6 +90,7 @@ CostContext::CostContext(const CostOptions& o) : opt(o) {
     opt.yosys = find_tool(opt.yosys);
     fs::create_directories(opt.cache_dir);
     fingerprint = kFlowVersion;
+    fingerprint += std::string("\n") + cosim::kVerilogReading;
     fingerprint += "\n" + tool_version(opt.ghdl, "--version", opt.cache_dir);
     fingerprint += "\n" + tool_version(opt.yosys, "-V", opt.cache_dir);
     for (const auto& p : opt.rtl_sources) fingerprint.append("\n").append(p.filename().string()).append("\n").append(util::read_file(p));
@@ -159,7 +161,7 @@ Cost synth_cost(const CostContext& ctx, const Formats& f, Variant v) {
     synth.insert(synth.end(), {"-gOBSERVE=false", "--out=verilog"});
     for (const auto& p : ctx.opt.rtl_sources) synth.push_back(p.string());
     synth.insert(synth.end(), {"-e", "harris_top"});
-    if (int rc = util::run_process(synth, {.log = dir / "ghdl.log", .stdout_file = dir / "harris_top.v"}); rc != 0)
+    if (int rc = cosim::synth_verilog(synth, dir / "harris_top.v", {.log = dir / "ghdl.log"}); rc != 0)
         throw SimulatorError(fmt::format("ghdl --synth failed (status {}) for {}: see {}", rc,
                                              describe_difference(f), (dir / "ghdl.log").string()));
     // 2. the signed-multiply variant

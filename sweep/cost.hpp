@@ -5,10 +5,12 @@
 // Flow (docs/bit-widths.md, "Cost"):
 //   ghdl --synth --std=08 -gIMG_WIDTH=.. -gSOBEL_W=.. ... -gOBSERVE=false --out=verilog
 //        rtl/harris_pkg.vhd ... rtl/harris_top.vhd -e harris_top        > harris_top.v
+//   [GHDL's bit-string constants wider than 32 bits as sized literals: cosim::synth_verilog]
 //   [variant "signed": rewrite GHDL's multiplications of sign-extended operands into
 //    $signed(a) * $signed(b) -- see rewrite_signed_multiplies]
 //   yosys -p "read_verilog harris_top.v; synth_xilinx -top harris_top; stat -json"
-// The cache key hashes the flow's version and variant, the generics, the contents of every
+// The cache key hashes the flow's version and variant, how GHDL's Verilog is read
+// (cosim::kVerilogReading), the generics, the contents of every
 // RTL file and the GHDL and yosys version lines: an edited RTL file or tool gets a fresh
 // synthesis, an unchanged configuration is read back from <cache>/<key>.json.
 #pragma once

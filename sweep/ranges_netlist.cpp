@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cosim/cosim.hpp"
+#include "cosim/ghdl_verilog.hpp"
 #include "sweep/ranges.hpp"
 #include "model/util/util.hpp"
 
@@ -578,9 +579,10 @@ StageNetlists stage_netlists(const Formats& f, const fs::path& where) {
         argv.insert(argv.end(), {"-e", e});
         std::string gens;
         for (const auto& x : g) gens += " " + x;
-        n.commands += fmt::format("ghdl --synth --std=08 --workdir=work-{0}{1} --out=verilog{2} -e {0} > {0}.v\n", e, gens, sources);
+        n.commands += fmt::format("ghdl --synth --std=08 --workdir=work-{0}{1} --out=verilog{2} -e {0} | {3} > {0}.v\n", e, gens,
+                                  sources, cosim::kSizedBitLiteralsFilter);
         const fs::path log = dir / (e + "-synth.log");
-        if (util::run_process(argv, {.log = log, .stdout_file = dir / (e + ".v")}) != 0)
+        if (cosim::synth_verilog(argv, dir / (e + ".v"), {.log = log}) != 0)
             throw SimulatorError("ghdl --synth of " + e + " failed: " + util::log_tail(log, 1500));
     }
     util::write_file_atomic(dir / "wrappers.v", wrappers(f));

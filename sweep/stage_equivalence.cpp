@@ -2,16 +2,20 @@
 // stage function (see stage_equivalence.hpp).
 #include "sweep/stage_equivalence.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <type_traits>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "cosim/cosim.hpp"
+#include "cosim/ghdl_verilog.hpp"
 #include "model/util/errors.hpp"
 #include "model/util/util.hpp"
 #include "model/fixed/word.hpp"
@@ -198,28 +202,9 @@ std::vector<T> model_outputs(EqStage s, const std::vector<T>& in, const Formats&
 
 // ---- the netlist -----------------------------------------------------------------------
 
-/// GHDL 2.0 writes a constant wider than 32 bits as a quoted string of its bits ("1000...0"),
-/// which Verilog reads as text, 8 bits per character: each such string as a sized binary
-/// literal (38'b1000...0), the constant GHDL's netlist holds.
-std::string sized_bit_literals(const std::string& verilog) {
-    std::string out;
-    size_t at = 0;
-    for (size_t q = verilog.find('"'); q != std::string::npos; q = verilog.find('"', at)) {
-        const size_t end = verilog.find('"', q + 1);
-        if (end == std::string::npos) break;
-        const std::string bits = verilog.substr(q + 1, end - q - 1);
-        const bool binary = !bits.empty() && bits.find_first_not_of("01") == std::string::npos;
-        out += verilog.substr(at, q - at) + (binary ? fmt::format("{}'b{}", bits.size(), bits) : verilog.substr(q, end - q + 1));
-        at = end + 1;
-    }
-    return out + verilog.substr(at);
-}
-/// The shell command that makes <entity>-sized.v as sized_bit_literals does.
-constexpr const char* kSizedCommand = R"(perl -pe "s/\"([01]+)\"/length(\$1).\"'b\$1\"/ge")";
-
 /// The yosys script: the wrapper over GHDL's module, registers everted into inputs (.q) and outputs (.d).
 std::string eq_script(const std::string& entity) {
-    return "read_verilog " + entity + "-sized.v stage.v\nhierarchy -top stage\nproc\nflatten\nopt -nosdff -nodffe\n"
+    return "read_verilog " + entity + ".v stage.v\nhierarchy -top stage\nproc\nflatten\nopt -nosdff -nodffe\n"
            // every register must have folded to a plain flop (enables and resets tied)
            "select -assert-none t:$*latch* t:$sr t:$mem* t:$*dff* t:$dff %d\n"
            "opt_clean -purge\nexpose -evert-dff\nopt_clean\nselect -assert-none t:$dff\n"
@@ -241,9 +226,8 @@ std::string synthesise(const Spec& sp, const Formats& f, const Geometry& geo, co
     argv.insert(argv.end(), {"-e", sp.entity});
     for (const auto& x : g) gens += " " + x;
     const fs::path log = dir / "synth.log";
-    if (util::run_process(argv, {.log = log, .stdout_file = dir / (sp.entity + ".v")}) != 0)
+    if (cosim::synth_verilog(argv, dir / (sp.entity + ".v"), {.log = log}) != 0)
         throw SimulatorError("ghdl --synth of " + sp.entity + " failed: " + util::log_tail(log, 1500));
-    util::write_file_atomic(dir / (sp.entity + "-sized.v"), sized_bit_literals(util::read_file(dir / (sp.entity + ".v"))));
     util::write_file_atomic(dir / "stage.v", sp.wrapper);
     util::write_file_atomic(dir / "stage.ys", eq_script(sp.entity));
     const fs::path ylog = dir / "yosys.log";
@@ -251,10 +235,9 @@ std::string synthesise(const Spec& sp, const Formats& f, const Geometry& geo, co
     if (util::run_process({"yosys", "-q", "-s", "stage.ys"}, {.cwd = dir, .log = ylog}) != 0)
         throw SimulatorError("yosys could not write " + sp.entity + "'s transition as SMT-LIB: " + util::log_tail(ylog, 1500));
     util::write_file_atomic(dir / "commands.txt",
-                            fmt::format("ghdl --synth --std=08 --workdir=work{0} --out=verilog{1} -e {2} > {2}.v\n"
-                                        "{3} {2}.v > {2}-sized.v    # bit strings as sized literals\n"
+                            fmt::format("ghdl --synth --std=08 --workdir=work{0} --out=verilog{1} -e {2} | {3} > {2}.v\n"
                                         "yosys -q -s stage.ys    # writes stage.smt2\n",
-                                        gens, sources, sp.entity, kSizedCommand));
+                                        gens, sources, sp.entity, cosim::kSizedBitLiteralsFilter));
     return util::read_file(dir / "stage.smt2");
 }
 
@@ -708,6 +691,53 @@ std::string StageEquivalence::summary() const {
         else rest += fmt::format(", {}: {}", kEqStageNames[static_cast<int>(p.stage)], eq_verdict_name(p.verdict));
     }
     return fmt::format("{} proven equal{}", equal, rest);
+}
+
+std::string StageEquivalence::column() const {
+    int equal = 0;
+    std::map<std::string, std::vector<std::string>> others;   // short verdict -> stages
+    for (const auto& p : stages) {
+        if (p.verdict == EqVerdict::equal) ++equal;
+        else others[p.verdict == EqVerdict::netlist_differs ? "netlist differs" : eq_verdict_name(p.verdict)].push_back(
+            kEqStageNames[static_cast<int>(p.stage)]);
+    }
+    if (others.empty()) return fmt::format("{}/{} proven", equal, stages.size());
+    std::string s = fmt::format("{} proven", equal);
+    for (const auto& [verdict, names] : others) s += fmt::format(", {} {} ({})", names.size(), verdict, fmt::join(names, ", "));
+    return s;
+}
+
+bool StageEquivalence::all_proven() const {
+    return stages.size() == static_cast<size_t>(kEqStageCount) &&
+           std::all_of(stages.begin(), stages.end(), [](const StageProof& p) { return p.verdict == EqVerdict::equal; });
+}
+
+StageEquivalence cached_stage_equivalence(const Formats& f, const std::string& key, const fs::path& cache_dir,
+                                          const StageOptions& o) {
+    const fs::path p = cache_dir / (key + ".json");
+    const std::string options = fmt::format("rlimit={} recheck={} recheck_seconds={} geometry={}x{} rtl={}", o.rlimit, o.recheck,
+                                            o.recheck_seconds, o.geometry.width, o.geometry.height, o.rtl_dir.string());
+    // an entry under other options, or one that does not read, is no verdict: prove again, overwrite it
+    std::optional<StageEquivalence> recorded;
+    try {
+        if (fs::exists(p))
+            if (const auto j = nlohmann::json::parse(util::read_file(p)); j.value("options", std::string()) == options)
+                recorded = stage_equivalence_from_json(j);
+    } catch (const std::exception&) {
+        recorded.reset();
+    }
+    if (recorded) {
+        recorded->formats = f;
+        recorded->cached = true;
+        return *recorded;
+    }
+    StageEquivalence r = stage_equivalence(f, o);
+    fs::create_directories(cache_dir);
+    nlohmann::json j = stage_equivalence_to_json(r);
+    j["options"] = options;
+    j["key"] = key;
+    util::write_file_atomic(p, j.dump(1) + "\n");
+    return r;
 }
 
 std::string stage_equivalence_markdown(const std::string& config, const StageEquivalence& r) {

@@ -101,11 +101,28 @@ struct StageEquivalence {
     Formats formats;
     std::vector<StageProof> stages;
     double seconds = 0;
+    bool cached = false;   ///< read from cached_stage_equivalence's cache, not proven by this call
     /// "8 proven equal" or "7 proven equal, harris_response: netlist differs from the VHDL"
     std::string summary() const;
+    /// The sweep's column: "8/8 proven", or the proven count and the others by verdict,
+    /// "7 proven, 1 netlist differs (harris_response)"
+    std::string column() const;
+    /// Every stage proven equal, each for every input of its domain (a signed shrink that
+    /// overflows only outside the domain included): the datapath stages of the netlist are
+    /// GHDL's synthesis of the VHDL the model agrees with, for every input. Not control,
+    /// load control or the shift registers, which no stage proof covers.
+    bool all_proven() const;
 };
 /// Every stage (in EqStage order) at formats `f`, each in o.dir/<stage> when o.dir is set.
 StageEquivalence stage_equivalence(const Formats& f, const StageOptions& o = {});
+/// stage_equivalence(f, o), remembered in cache_dir/<key>.json: `key` is the sweep's synthesis
+/// key (cost_key: the RTL's contents, the generics of formats and geometry, GHDL's and yosys's
+/// versions, how GHDL's Verilog is read), and the entry also records the options that can change
+/// a verdict (resource limit, second solver and its time, geometry, rtl_dir); an entry made
+/// under other options, or unreadable, is proven again and overwritten. The result's `cached`
+/// says which. Only a run that finished is recorded.
+StageEquivalence cached_stage_equivalence(const Formats& f, const std::string& key, const std::filesystem::path& cache_dir,
+                                          const StageOptions& o = {});
 
 /// One row per stage: verdict, solvers, seconds, assumptions, the command that reruns it.
 std::string stage_equivalence_markdown(const std::string& config, const StageEquivalence& r);

@@ -1,7 +1,8 @@
 // sweep.cpp: see sweep.hpp. Phases, each parallel over the cores:
 //   1. frames + OpenCV reference masks (once for all configurations)
 //   2. cost: synthesis of every configuration, `jobs` at a time (cache hits instant);
-//      derived ranges of every configuration (ranges.hpp), cached by the synthesis key
+//      derived ranges of every configuration (ranges.hpp), cached by the synthesis key;
+//      with o.stage_proofs the stage proofs (stage_equivalence.hpp), cached by the same key
 //   3. accuracy and overflow audit per configuration (frames in parallel, TBB); correct stereo
 //      matches of the landmark chain per configuration (configurations in parallel, TBB)
 //   4. Pareto front; RTL checks of its points, `jobs` simulator processes at a time
@@ -243,6 +244,25 @@ void ranges_phase(PointsRun& res, const SweepOptions& o) {
     }
 }
 
+// 2c. the stage proofs (o.stage_proofs), cached under the synthesis key; a configuration proven
+// now keeps its netlists, queries and rerun commands under o.out/stages/<name>/ (a shard, which
+// has no o.out, in a scratch directory).
+void stages_phase(PointsRun& res, const SweepSpec& spec, const SweepOptions& o) {
+    if (!o.stage_proofs) return;
+    const size_t n = res.points.size();
+    for (size_t i = 0; i < n; ++i) {
+        PointResult& p = res.points[i];
+        StageOptions so;
+        so.geometry = spec.cost_geometry;   // find_max's period: the synthesised design's, as in the key
+        so.config = p.config.name;
+        if (!o.out.empty()) so.dir = o.out / "stages" / p.config.name;
+        p.stages = cached_stage_equivalence(p.config.formats, p.cost.key, o.cache / "stages", so);
+        p.has_stages = true;
+        progress(o.progress, fmt::format("[stages {}/{}] {}: {} ({})", i + 1, n, p.config.name, p.stages.column(),
+                                         p.stages.cached ? "cached" : fmt::format("{:.1f} s", p.stages.seconds)));
+    }
+}
+
 // 3. accuracy against the OpenCV reference `ref` on the scored frames, and the overflow audit.
 void accuracy_phase(PointsRun& res, const eval::Stream& stream, const std::vector<std::vector<std::uint8_t>>& ref,
                     const SweepOptions& o) {
@@ -336,6 +356,7 @@ PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& whic
     }
     cost_phase(res, spec, o);
     ranges_phase(res, o);
+    stages_phase(res, spec, o);
     accuracy_phase(res, stream, ref, o);
     landmarks_phase(res, spec, o);
     trajectory_phase(res, spec, o);

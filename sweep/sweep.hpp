@@ -19,6 +19,7 @@
 #include "sweep/cost.hpp"
 #include "sweep/overflow.hpp"
 #include "sweep/ranges.hpp"
+#include "sweep/stage_equivalence.hpp"
 #include "sweep/sweep_config.hpp"
 #include "model/util/util.hpp"
 
@@ -64,6 +65,10 @@ struct PointResult {
     bool wraps = false;                ///< overflow.total_wrapped() > 0
     RangeReport ranges;                ///< derived ranges for every input (ranges.hpp)
     bool has_ranges = false;
+    /// the stage proofs (stage_equivalence.hpp), cached under the synthesis key; only when
+    /// SweepOptions::stage_proofs (has_stages false: not run)
+    StageEquivalence stages;
+    bool has_stages = false;
     bool pareto = false;
     bool verify = false;               ///< RTL-checked: Pareto point, thesis, or a finding (sweep_report.hpp)
     double eval_seconds = 0, overflow_seconds = 0;
@@ -89,6 +94,9 @@ struct SweepOptions {
     int threads = 0;                   ///< accuracy / overflow threads (0: all cores)
     int jobs = 2;                      ///< synthesis and GHDL processes at once (Verilator runs one at a time)
     bool trust = true;                 ///< run the RTL checks of the Pareto points
+    /// prove every configuration's datapath stages equal to the model (stage_equivalence.hpp;
+    /// about 25 to 50 s of z3 and cvc5 per configuration, once: cached under the synthesis key)
+    bool stage_proofs = false;
     bool progress = true;
 };
 
@@ -149,7 +157,7 @@ struct PointsRun {
     std::string trajectory_run;          ///< as SweepResult::trajectory_run
     double seconds_trajectory = 0;
 };
-/// Synthesis cost, derived ranges (cached under the synthesis key), overflow audit, accuracy and the landmark column of the configurations `which` (indices into
+/// Synthesis cost, derived ranges and (o.stage_proofs) the stage proofs (both cached under the synthesis key), overflow audit, accuracy and the landmark column of the configurations `which` (indices into
 /// spec.configs; InputError for one out of range). Each point depends on its configuration
 /// only, so any split of the indices gives the same points.
 PointsRun evaluate_points(const SweepSpec& spec, const std::vector<size_t>& which, const SweepOptions& o);

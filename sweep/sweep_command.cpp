@@ -47,6 +47,7 @@ SweepOptions sweep_options(const SweepCommand& c, int jobs) {
     o.threads = c.threads;
     o.jobs = jobs;
     o.trust = !c.no_rtl;
+    o.stage_proofs = c.stage_proofs;
     o.progress = !c.quiet;
     return o;
 }
@@ -63,6 +64,7 @@ std::optional<SweepResult> run_sharded(const SweepCommand& c, const SweepOptions
     p.cache = o.cache;
     p.threads = c.threads;
     p.jobs = 1;
+    p.stage_proofs = o.stage_proofs;
     p.shards = runner.settings().shards;
     const cluster::Manifest m = sweep_manifest(p);
     const fs::path dir = runner.run_dir(o.out);

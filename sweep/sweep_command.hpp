@@ -14,6 +14,7 @@ struct SweepCommand {
     std::string config, out = "sweep-report", cache, kitti, data, backend, middlebury, regression_set;
     int threads = 0;
     bool no_rtl = false, quiet = false;
+    bool stage_proofs = false;   ///< --stage-proofs: every configuration's stage proofs (SweepOptions::stage_proofs)
     std::string command_line;   ///< the command as typed, less its sharding flags: the reports quote it
 };
 

@@ -38,6 +38,10 @@ json point_json(const PointResult& p) {
               {"overflow_seconds", p.overflow_seconds}};
     if (p.has_cost_ghdl) j["cost_ghdl"] = json(p.cost_ghdl);
     if (p.has_ranges) j["ranges"] = range_report_to_json(p.ranges);
+    if (p.has_stages) {
+        j["stages"] = stage_equivalence_to_json(p.stages);
+        j["stages"]["cached"] = p.stages.cached;
+    }
     if (p.has_landmarks) j["landmarks"] = p.landmarks;
     if (p.has_trajectory) j["trajectory"] = json(p.trajectory);
     return j;
@@ -68,6 +72,12 @@ PointResult point_from(const json& j) {
         p.ranges = range_report_from_json(j.at("ranges"));
         p.ranges.formats = p.config.formats;
         p.has_ranges = true;
+    }
+    if (j.contains("stages")) {
+        p.stages = stage_equivalence_from_json(j.at("stages"));
+        p.stages.formats = p.config.formats;
+        p.stages.cached = j.at("stages").value("cached", false);
+        p.has_stages = true;
     }
     if (j.contains("landmarks")) {
         p.landmarks = j.at("landmarks").get<landmarks::Totals>();
@@ -101,6 +111,7 @@ SweepOptions shard_options(const json& common) {
     o.kitti = common.at("kitti").get<std::string>();
     o.cache = common.at("cache").get<std::string>();
     o.threads = common.at("threads");
+    o.stage_proofs = common.value("stage_proofs", false);
     return o;
 }
 
@@ -179,7 +190,8 @@ cluster::Manifest sweep_manifest(const SweepJob& p) {
                 {"middlebury", p.middlebury.empty() ? std::string() : fs::absolute(p.middlebury).string()},
                 {"cache", fs::absolute(p.cache).string()},
                 {"threads", p.threads},
-                {"jobs", p.jobs}};
+                {"jobs", p.jobs},
+                {"stage_proofs", p.stage_proofs}};
     for (auto [a, b] : cluster::split_items(static_cast<long>(spec.configs.size()), p.shards))
         m.shards.push_back({{"first", a}, {"last", b}});
     return m;

@@ -22,6 +22,7 @@ struct SweepJob {
     std::filesystem::path middlebury;     ///< as SweepOptions ("": no landmark column)
     int threads = 1;              ///< accuracy threads per shard
     int jobs = 1;                 ///< synthesis processes per shard
+    bool stage_proofs = false;    ///< as SweepOptions
     int shards = 0;               ///< 0: one per configuration
 };
 /// InputError (sweep's) for a bad spec.

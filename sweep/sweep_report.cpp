@@ -31,6 +31,11 @@ std::string gate_cell(const TrustResult& t) {
 
 double pct(double a, double b) { return b ? 100.0 * (a - b) / b : 0.0; }
 
+std::string stages_cell(const PointResult& p) {
+    if (!p.has_stages) return "not run";
+    return p.stages.column() + (p.stages.cached ? " (cached)" : "");
+}
+
 std::string ranges_cell(const PointResult& p) {
     if (!p.has_ranges) return "-";
     const std::string routes = " (" + p.ranges.routes() + ")";
@@ -46,6 +51,22 @@ std::string ranges_cell(const PointResult& p) {
 }
 
 }  // namespace
+
+VerilatorTrust verilator_trust(const PointResult& p) {
+    if (!p.gate.ran && !p.verilator.ran) return VerilatorTrust::not_run;
+    if ((p.gate.ran && p.gate.failed) || (p.verilator.ran && p.verilator.failed)) return VerilatorTrust::failed;
+    return p.has_stages && p.stages.all_proven() ? VerilatorTrust::stages_proven : VerilatorTrust::samples;
+}
+
+const char* verilator_trust_name(VerilatorTrust t) {
+    switch (t) {
+        case VerilatorTrust::not_run: return "-";
+        case VerilatorTrust::failed: return "failed";
+        case VerilatorTrust::samples: return "samples only";
+        case VerilatorTrust::stages_proven: return "stages proven";
+    }
+    return "?";
+}
 
 Findings findings(const SweepResult& r) {
     Findings f;
@@ -81,7 +102,8 @@ std::string to_csv(const SweepResult& r) {
         "rtl_runs,rtl_failed,rtl_mismatches,verilator_runs,verilator_failed,verilator_mismatches,synth_seconds,"
         "landmark_keypoints,landmark_matches,landmark_correct,landmark_truth_known,landmark_truth_correct,"
         "gate_passed,gate_seconds,ranges,ranges_first_wrap,"
-        "trajectory_ape_slam,trajectory_ape_odometry,trajectory_path_length,trajectory_odometry_failures\n";
+        "trajectory_ape_slam,trajectory_ape_odometry,trajectory_path_length,trajectory_odometry_failures,"
+        "stages_proven,stages_not_proven,verilator_trust\n";
     for (const auto& p : r.points) {
         const Formats& f = p.config.formats;
         s += p.config.name + ",";
@@ -103,9 +125,20 @@ std::string to_csv(const SweepResult& r) {
         s += fmt::format("{},{},", p.has_ranges ? verdict_name(p.ranges.overall()) : "",
                          fw ? kRegNames[static_cast<int>(fw->reg)] : "");
         const Trajectory& t = p.trajectory;
-        s += p.has_trajectory ? fmt::format("{:.6f},{:.6f},{:.6f},{}\n", t.ape_slam, t.ape_odometry, t.path_length,
+        s += p.has_trajectory ? fmt::format("{:.6f},{:.6f},{:.6f},{},", t.ape_slam, t.ape_odometry, t.path_length,
                                             t.odometry_failures)
-                              : std::string(",,,\n");
+                              : std::string(",,,,");
+        std::string proven, not_proven;   // empty: not run; the stages not proven as name:verdict, ';'-separated
+        if (p.has_stages) {
+            int n = 0;
+            for (const StageProof& sp : p.stages.stages) {
+                if (sp.verdict == EqVerdict::equal) ++n;
+                else not_proven += fmt::format("{}{}:{}", not_proven.empty() ? "" : ";", kEqStageNames[static_cast<int>(sp.stage)],
+                                               eq_verdict_name(sp.verdict));
+            }
+            proven = std::to_string(n);
+        }
+        s += fmt::format("{},{},{}\n", proven, not_proven, verilator_trust_name(verilator_trust(p)));
     }
     return s;
 }
@@ -121,6 +154,25 @@ void from_json(const json& j, Trajectory& t) {
     t.path_length = j.at("path_length_m");
     t.frames = j.at("frames");
     t.odometry_failures = j.at("odometry_failures");
+}
+
+/// What the stage proofs and Verilator trust columns mean.
+std::string stages_markdown(const SweepResult& r) {
+    const bool any = std::any_of(r.points.begin(), r.points.end(), [](const PointResult& p) { return p.has_stages; });
+    std::string s = "Stage proofs (docs/stage-equivalence.md): each datapath entity's netlist (sobel_x, sobel_y, m_products, "
+                    "block_filter, harris_response, threshold, find_max, local_maximum), synthesised by GHDL at the "
+                    "configuration's generics, proven equal to the model's stage function for every input of its domain "
+                    "(z3, then cvc5), or the verdicts that are not *proven*; \"cached\": proven by an earlier run for the same "
+                    "synthesis key. ";
+    s += any ? "Run with `--stage-proofs`; a configuration without them says *not run*.\n\n"
+             : "Not run (`--stage-proofs` runs them): no configuration is stage-proven.\n\n";
+    s += "Verilator trust: *stages proven* when the gate and the Verilator runs passed and every stage is proven, so the "
+         "netlist's datapath stages are faithful for every input; the control (control_shift_register's stage enables), "
+         "load_control, the input converters that form the windows, corner_shift_register and harris_top's wiring of the "
+         "stages are not stage-proven and are checked on the streams run only; *samples only* when they passed without every stage "
+         "proven (the gate's lock step against GHDL and the model, and the KITTI pairs, are samples); *failed* when the gate "
+         "or a run failed; *-* when neither ran. No configuration is claimed equivalent as a whole design.\n\n";
+    return s;
 }
 
 /// The trajectory column's table (a line saying why it is absent when no point has one).
@@ -141,8 +193,7 @@ std::string trajectory_markdown(const SweepResult& r) {
 }
 
 std::string to_markdown(const SweepResult& r) {
-    std::string s = fmt::format("# Bit-width sweep \"{}\"\n\n", r.spec.name);
-    s += fmt::format("Command: `{}`\n\n", r.command);
+    std::string s = fmt::format("# Bit-width sweep \"{}\"\n\nCommand: `{}`\n\n", r.spec.name, r.command);
     s += fmt::format("Accuracy: spec model against OpenCV's cornerHarris (docs/metrics.md) on {}; {} frames scored "
                      "(the first stereo pair only seeds the threshold).\n\n", r.stream, r.scored_frames);
     s += fmt::format("Cost: yosys `synth_xilinx` of harris_top (OBSERVE=false, IMG {}x{}), GHDL's Verilog with signed "
@@ -168,16 +219,18 @@ std::string to_markdown(const SweepResult& r) {
          "reached. In brackets, how many registers each route decided (interval bound, witness search, z3 on the "
          "model's arithmetic, z3 on GHDL's netlist) and the netlist route's verdicts. The P column says whether a "
          "Pareto point is proven.\n\n";
-    s += "| configuration | recall | precision | F1 | stereo correct | GT-correct | LUT | FF | DSP | CARRY4 | reg. bits | wraps | ranges | P | GHDL | Gate | Verilator |\n";
-    s += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|:-:|---|---|---|\n";
+    s += stages_markdown(r);
+    s += "| configuration | recall | precision | F1 | stereo correct | GT-correct | LUT | FF | DSP | CARRY4 | reg. bits | wraps | ranges | P | GHDL | Gate | Verilator | stage proofs | Verilator trust |\n"
+         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|:-:|---|---|---|---|---|\n";
     for (const auto& p : r.points) {
         const std::string lc = p.has_landmarks ? std::to_string(p.landmarks.correct) : "-";
         const std::string lt = p.has_landmarks ? std::to_string(p.landmarks.truth_correct) : "-";
         const std::string pc = !p.pareto ? "" : p.has_ranges && p.ranges.overall() == Verdict::proven ? "**P** proven" : "**P** not proven";
-        s += fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", p.config.name,
-                         p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(), lc, lt, p.cost.luts, p.cost.ffs, p.cost.dsps,
-                         p.cost.carry4, p.register_bits, p.wraps ? "**" + p.overflow.summary() + "**" : std::string("none"),
-                         ranges_cell(p), pc, trust_cell(p.rtl), gate_cell(p.gate), trust_cell(p.verilator));
+        s += fmt::format("| {} | {:.4f} | {:.4f} | {:.4f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                         p.config.name, p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(), lc, lt, p.cost.luts, p.cost.ffs,
+                         p.cost.dsps, p.cost.carry4, p.register_bits, p.wraps ? "**" + p.overflow.summary() + "**" : std::string("none"),
+                         ranges_cell(p), pc, trust_cell(p.rtl), gate_cell(p.gate), trust_cell(p.verilator), stages_cell(p),
+                         verilator_trust_name(verilator_trust(p)));
     }
     s += trajectory_markdown(r);
     const Findings f = findings(r);
@@ -245,6 +298,9 @@ std::string to_json(const SweepResult& r) {
                   {"pareto", p.pareto}, {"rtl", trust(p.rtl)}, {"gate", trust(p.gate)}, {"verilator", trust(p.verilator)},
                   {"eval_seconds", p.eval_seconds}, {"overflow_seconds", p.overflow_seconds}};
         j["ranges"] = p.has_ranges ? range_report_to_json(p.ranges) : json(nullptr);
+        j["stages"] = p.has_stages ? stage_equivalence_to_json(p.stages) : json(nullptr);
+        if (p.has_stages) j["stages"]["cached"] = p.stages.cached;
+        j["verilator_trust"] = verilator_trust_name(verilator_trust(p));
         if (p.has_cost_ghdl) j["cost_ghdl_verilog"] = cost(p.cost_ghdl);
         const landmarks::Totals& l = p.landmarks;
         j["landmarks"] = p.has_landmarks ? json{{"keypoints", l.keypoints}, {"matches", l.all}, {"correct", l.correct},

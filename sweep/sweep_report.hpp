@@ -27,4 +27,15 @@ struct Findings {
 };
 Findings findings(const SweepResult& r);
 
+/// How far a point's Verilator results stand for its VHDL (the Verilator trust column).
+enum class VerilatorTrust {
+    not_run,        ///< no gate and no Verilator run
+    failed,         ///< the gate or a Verilator run failed
+    samples,        ///< passed on the streams it ran (the gate's lock step against GHDL and the model); no stage proof
+    stages_proven,  ///< passed, and every datapath stage of the netlist proven equal to the model for every input
+};
+VerilatorTrust verilator_trust(const PointResult& p);
+/// "-", "failed", "samples only", "stages proven" (the CSV's and JSON's value)
+const char* verilator_trust_name(VerilatorTrust t);
+
 }  // namespace hc::sweep

@@ -28,6 +28,9 @@ void add_sweep_command(CLI::App& app) {
     s->add_option("--regression-set", c->regression_set,
                   "the GHDL checks' streams, one per line as golden/regression-set.txt (the default)");
     s->add_flag("--no-rtl", c->no_rtl, "skip the RTL checks of the Pareto points");
+    s->add_flag("--stage-proofs", c->stage_proofs,
+                "prove every configuration's datapath stages equal to the model (z3, cvc5; about 25-50 s per configuration, "
+                "cached under the synthesis key)");
     s->add_flag("--quiet", c->quiet, "no progress lines");
     c->runner.jobs = 2;
     add_runner_flags(s, c->runner);

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "cosim/cosim.hpp"
+#include "cosim/ghdl_verilog.hpp"
 #include "cosim/verilator/hcvl_abi.h"
 #include "model/util/util.hpp"
 
@@ -87,7 +88,7 @@ std::string config_key(const NetlistConfig& c) {
     std::ostringstream k;
     k << c.g.width << 'x' << c.g.height << "_f" << util::hex64(formats_hash(c.f)).substr(0, 10)
       << (c.observe ? "_obs" : "_noobs") << (c.optimise ? "" : "_O0");
-    std::uint64_t h = util::fnv1a(HCVL_TOOL_VERSIONS);
+    std::uint64_t h = util::fnv1a(std::string(HCVL_TOOL_VERSIONS) + cosim::kVerilogReading);
     for (const auto& p : vhdl_sources(c)) h = util::fnv1a(p.filename().string() + util::read_file(p), h);
     for (const char* p : {"hcvl_design.cpp", "hcvl_abi.h"}) h = util::fnv1a(util::read_file(fs::path(HCVL_SRC_DIR) / p), h);
     k << '_' << util::hex64(h).substr(0, 10);
@@ -125,7 +126,8 @@ fs::path build_netlist(const NetlistConfig& c, const fs::path& cache_dir, std::o
     const fs::path lg = tmp / "build.log";
     log << "verilator: building netlist " << key << " in " << cache_dir.string() << '\n' << std::flush;
 
-    // 1. GHDL synthesis of the VHDL with this configuration's generics, to Verilog.
+    // 1. GHDL synthesis of the VHDL with this configuration's generics, to Verilog (its bit
+    //    strings as sized literals, cosim/ghdl_verilog.hpp).
     std::vector<std::string> synth = {HCVL_GHDL, "--synth", "--std=08"};
     for (const auto& [name, value] : generics(c.g, c.f)) synth.push_back("-g" + name + "=" + std::to_string(value));
     synth.push_back(std::string("-gOBSERVE=") + (c.observe ? "true" : "false"));
@@ -133,6 +135,7 @@ fs::path build_netlist(const NetlistConfig& c, const fs::path& cache_dir, std::o
     for (const auto& p : vhdl_sources(c)) synth.push_back(p.string());
     synth.insert(synth.end(), {"-e", "harris_top"});
     step(synth, tmp, lg, "GHDL synthesis", tmp / "harris_top.v");
+    util::write_file_atomic(tmp / "harris_top.v", cosim::sized_bit_literals(util::read_file(tmp / "harris_top.v")));
     const int obs_bits = obs_bits_of(tmp / "harris_top.v");
 
     // 2. Verilator: C++ model of the netlist as class Vhc, plus the hcvl_ harness.

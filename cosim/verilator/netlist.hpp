@@ -4,6 +4,7 @@
 // Purpose: generics change the netlist (counter limits, widths), so every (geometry,
 // formats, OBSERVE, VHDL variant) is its own build. build_netlist() runs
 //   ghdl --synth --std=08 -gIMG_WIDTH=.. ... --out=verilog <rtl> -e harris_top
+//     (bit strings as sized literals: cosim/ghdl_verilog.hpp)
 //   verilator --cc (class Vhc) + make (Verilator's makefile, -j2) + c++ -shared
 // in <cache>/<key>/, where key names the configuration and a hash of every input file,
 // so an edited RTL file or harness gets a fresh build and an unchanged one is reused.
@@ -41,7 +42,7 @@ std::vector<fs::path> vhdl_sources(const NetlistConfig& c);
 
 /// Cache key: "<W>x<H>_f<formats_hash>_<obs|noobs>[_O0]_<hash>": the formats hash covers every
 /// field of format_fields(); the last hash covers the sources' contents,
-/// the harness and the tool versions compiled in.
+/// the harness, the tool versions compiled in and how GHDL's Verilog is read (cosim::kVerilogReading).
 std::string config_key(const NetlistConfig& c);
 
 /// Where builds go: $HARRIS_COSIM_VL_CACHE, else the build tree's verilator-cache.

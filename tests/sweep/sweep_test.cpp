@@ -206,11 +206,77 @@ TEST_CASE("the sweep report shows each checked point's three-way gate in its Gat
     CHECK(csv.rfind(fields + ",recall,", 0) == 0);
     CHECK_THAT(csv, Catch::Contains("\n" + values + ","));
     CHECK_THAT(csv, Catch::Contains("gate_passed,gate_seconds,ranges,ranges_first_wrap,trajectory_ape_slam,"
-                                    "trajectory_ape_odometry,trajectory_path_length,trajectory_odometry_failures\n"));
-    // the four trajectory columns stay empty: no trajectory was scored
-    CHECK_THAT(csv, Catch::Contains(",1,81.0,proven,,,,,\n"));
-    CHECK_THAT(csv, Catch::Contains(",0,0.0,,,,,,\n"));
-    CHECK_THAT(csv, Catch::Contains(",,,wraps,sobel_x,,,,\n"));
+                                    "trajectory_ape_odometry,trajectory_path_length,trajectory_odometry_failures,"
+                                    "stages_proven,stages_not_proven,verilator_trust\n"));
+    // the four trajectory columns stay empty (no trajectory was scored), as do the stage proofs' (not run)
+    CHECK_THAT(csv, Catch::Contains(",1,81.0,proven,,,,,,,,samples only\n"));
+    CHECK_THAT(csv, Catch::Contains(",0,0.0,,,,,,,,,failed\n"));
+    CHECK_THAT(csv, Catch::Contains(",,,wraps,sobel_x,,,,,,,-\n"));
+}
+
+TEST_CASE("the sweep report's stage proofs and Verilator trust: proven only where every stage proof ran and proved", "[model][sweep]") {
+    auto proofs = [](std::vector<EqVerdict> v) {
+        StageEquivalence e;
+        for (size_t k = 0; k < v.size(); ++k) {
+            StageProof p;
+            p.stage = static_cast<EqStage>(k);
+            p.verdict = v[k];
+            e.stages.push_back(p);
+        }
+        return e;
+    };
+    const TrustResult passed{.ran = true, .runs = 1, .seconds = 12, .detail = "pass"};
+    sweep::SweepResult r;
+    r.spec.name = "stage-column";
+    sweep::PointResult all, differs, none, unchecked;
+    all.config.name = "all-proven";
+    all.gate = all.verilator = passed;
+    all.stages = proofs(std::vector<EqVerdict>(kEqStageCount, EqVerdict::equal));
+    all.stages.cached = true;
+    all.has_stages = true;
+    differs.config.name = "response-differs";
+    differs.config.formats.resp_w = 27;
+    differs.gate = differs.verilator = passed;
+    std::vector<EqVerdict> v(kEqStageCount, EqVerdict::equal);
+    v[static_cast<int>(EqStage::harris_response)] = EqVerdict::netlist_differs;
+    v[static_cast<int>(EqStage::block_filter)] = EqVerdict::open;
+    differs.stages = proofs(v);
+    differs.has_stages = true;
+    none.config.name = "not-proven";   // the gate passed, the proofs did not run
+    none.config.formats.resp_w = 31;
+    none.gate = passed;
+    unchecked.config.name = "unchecked";   // proven, but no Verilator run to trust
+    unchecked.config.formats.resp_w = 33;
+    unchecked.stages = all.stages;
+    unchecked.stages.cached = false;
+    unchecked.has_stages = true;
+    r.points = {all, differs, none, unchecked};
+
+    CHECK(all.stages.column() == "8/8 proven");
+    CHECK(differs.stages.column() == "6 proven, 1 netlist differs (harris_response), 1 open (block_filter)");
+    CHECK(verilator_trust(all) == VerilatorTrust::stages_proven);
+    CHECK(verilator_trust(differs) == VerilatorTrust::samples);
+    CHECK(verilator_trust(none) == VerilatorTrust::samples);
+    CHECK(verilator_trust(unchecked) == VerilatorTrust::not_run);
+    sweep::PointResult failed = all;
+    failed.verilator.failed = 1;
+    CHECK(verilator_trust(failed) == VerilatorTrust::failed);
+
+    const std::string md = to_markdown(r);
+    CHECK_THAT(md, Catch::Contains("| stage proofs | Verilator trust |"));
+    CHECK_THAT(md, Catch::Contains("| 8/8 proven (cached) | stages proven |"));
+    CHECK_THAT(md, Catch::Contains("| 6 proven, 1 netlist differs (harris_response), 1 open (block_filter) | samples only |"));
+    CHECK_THAT(md, Catch::Contains("| not run | samples only |"));
+    CHECK_THAT(md, Catch::Contains("| 8/8 proven | - |"));
+    CHECK_THAT(md, Catch::Contains("not stage-proven"));
+    const std::string csv = to_csv(r);
+    CHECK_THAT(csv, Catch::Contains(",8,,stages proven\n"));
+    CHECK_THAT(csv, Catch::Contains(",6,block_filter:open;harris_response:netlist differs from the VHDL,samples only\n"));
+    CHECK_THAT(csv, Catch::Contains(",,,samples only\n"));
+    const nlohmann::json j = nlohmann::json::parse(sweep::to_json(r));
+    CHECK(j.at("points").at(0).at("verilator_trust") == "stages proven");
+    CHECK(j.at("points").at(0).at("stages").at("cached") == true);
+    CHECK(j.at("points").at(2).at("stages").is_null());
 }
 
 TEST_CASE("the trajectory column's spec: off unless asked for, a sequence and a descriptor, bad keys refused", "[sweep]") {
