@@ -53,19 +53,8 @@ std::string ranges_cell(const PointResult& p) {
 }  // namespace
 
 VerilatorTrust verilator_trust(const PointResult& p) {
-    if (!p.gate.ran && !p.verilator.ran) return VerilatorTrust::not_run;
-    if ((p.gate.ran && p.gate.failed) || (p.verilator.ran && p.verilator.failed)) return VerilatorTrust::failed;
-    return p.has_stages && p.stages.all_proven() ? VerilatorTrust::stages_proven : VerilatorTrust::samples;
-}
-
-const char* verilator_trust_name(VerilatorTrust t) {
-    switch (t) {
-        case VerilatorTrust::not_run: return "-";
-        case VerilatorTrust::failed: return "failed";
-        case VerilatorTrust::samples: return "samples only";
-        case VerilatorTrust::stages_proven: return "stages proven";
-    }
-    return "?";
+    return vl::netlist_trust(p.gate.ran || p.verilator.ran, (p.gate.ran && p.gate.failed) || (p.verilator.ran && p.verilator.failed),
+                             p.has_stages && p.stages.all_proven());
 }
 
 Findings findings(const SweepResult& r) {
@@ -138,7 +127,7 @@ std::string to_csv(const SweepResult& r) {
             }
             proven = std::to_string(n);
         }
-        s += fmt::format("{},{},{}\n", proven, not_proven, verilator_trust_name(verilator_trust(p)));
+        s += fmt::format("{},{},{}\n", proven, not_proven, vl::netlist_trust_name(verilator_trust(p)));
     }
     return s;
 }
@@ -230,7 +219,7 @@ std::string to_markdown(const SweepResult& r) {
                          p.config.name, p.accuracy.recall(), p.accuracy.precision(), p.accuracy.f1(), lc, lt, p.cost.luts, p.cost.ffs,
                          p.cost.dsps, p.cost.carry4, p.register_bits, p.wraps ? "**" + p.overflow.summary() + "**" : std::string("none"),
                          ranges_cell(p), pc, trust_cell(p.rtl), gate_cell(p.gate), trust_cell(p.verilator), stages_cell(p),
-                         verilator_trust_name(verilator_trust(p)));
+                         vl::netlist_trust_name(verilator_trust(p)));
     }
     s += trajectory_markdown(r);
     const Findings f = findings(r);
@@ -300,7 +289,7 @@ std::string to_json(const SweepResult& r) {
         j["ranges"] = p.has_ranges ? range_report_to_json(p.ranges) : json(nullptr);
         j["stages"] = p.has_stages ? stage_equivalence_to_json(p.stages) : json(nullptr);
         if (p.has_stages) j["stages"]["cached"] = p.stages.cached;
-        j["verilator_trust"] = verilator_trust_name(verilator_trust(p));
+        j["verilator_trust"] = vl::netlist_trust_name(verilator_trust(p));
         if (p.has_cost_ghdl) j["cost_ghdl_verilog"] = cost(p.cost_ghdl);
         const landmarks::Totals& l = p.landmarks;
         j["landmarks"] = p.has_landmarks ? json{{"keypoints", l.keypoints}, {"matches", l.all}, {"correct", l.correct},

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cosim/verilator/verilate.hpp"
 #include "sweep/sweep.hpp"
 
 namespace hc::sweep {
@@ -27,15 +28,9 @@ struct Findings {
 };
 Findings findings(const SweepResult& r);
 
-/// How far a point's Verilator results stand for its VHDL (the Verilator trust column).
-enum class VerilatorTrust {
-    not_run,        ///< no gate and no Verilator run
-    failed,         ///< the gate or a Verilator run failed
-    samples,        ///< passed on the streams it ran (the gate's lock step against GHDL and the model); no stage proof
-    stages_proven,  ///< passed, and every datapath stage of the netlist proven equal to the model for every input
-};
+/// How far a point's Verilator results stand for its VHDL (the Verilator trust column): the
+/// gate's and Verilator runs' verdicts with the point's stage proofs (vl::netlist_trust).
+using VerilatorTrust = vl::NetlistTrust;
 VerilatorTrust verilator_trust(const PointResult& p);
-/// "-", "failed", "samples only", "stages proven" (the CSV's and JSON's value)
-const char* verilator_trust_name(VerilatorTrust t);
 
 }  // namespace hc::sweep

@@ -18,6 +18,27 @@ std::string VerilateResult::status() const {
     return netlist_key.empty() ? "pass" : "built";
 }
 
+NetlistTrust netlist_trust(bool ran, bool failed, bool stages_proven) {
+    if (!ran) return NetlistTrust::not_run;
+    if (failed) return NetlistTrust::failed;
+    return stages_proven ? NetlistTrust::stages_proven : NetlistTrust::samples;
+}
+
+const char* netlist_trust_name(NetlistTrust t) {
+    switch (t) {
+        case NetlistTrust::not_run: return "-";
+        case NetlistTrust::failed: return "failed";
+        case NetlistTrust::samples: return "samples only";
+        case NetlistTrust::stages_proven: return "stages proven";
+    }
+    return "?";
+}
+
+NetlistTrust netlist_trust(const VerilateResult& res) {
+    const std::string st = res.status();
+    return netlist_trust(res.gate.has_value() || res.run.has_value(), st != "pass" && st != "built", false);
+}
+
 VerilateResult run_verilate(const VerilateRun& r, std::ostream& log) {
     std::vector<fs::path> variants;
     for (const auto& v : r.variants) {
@@ -120,6 +141,7 @@ json summary_json(const VerilateRun& run, const VerilateResult& res, double wall
     if (res.run) add_run_json(out, *res.run, res, run);
     out["wall_seconds_including_build"] = wall_seconds_including_build;
     out["status"] = res.status();
+    out["trust"] = netlist_trust_name(netlist_trust(res));
     return out;
 }
 

@@ -54,6 +54,23 @@ inline constexpr long kUnoptimisedWrites = 100000;
 /// The flow; progress lines go to `log`.
 VerilateResult run_verilate(const VerilateRun& r, std::ostream& log);
 
+/// How far a netlist's Verilator results stand for its VHDL: what `verilate` reports of its own
+/// run, and the sweep's Verilator trust column of each configuration.
+enum class NetlistTrust {
+    not_run,        ///< no gate and no Verilator run
+    failed,         ///< the gate or a Verilator run failed
+    samples,        ///< passed on the streams it ran (the gate's lock step against GHDL and the model); no stage proof
+    stages_proven,  ///< passed, and every datapath stage of the netlist proven equal to the model for every input
+};
+/// The trust of results whose gate and runs did or did not run and fail; `stages_proven`:
+/// every stage of the configuration's netlist is proven (sweep/stage_equivalence.hpp).
+NetlistTrust netlist_trust(bool ran, bool failed, bool stages_proven);
+/// "-", "failed", "samples only", "stages proven" (the value in CSV and JSON)
+const char* netlist_trust_name(NetlistTrust t);
+/// A run's own trust: `verilate` proves no stage, so at best "samples only" (the gate, or a
+/// lock-step run with --no-gate, passed); "-" when neither ran (--build-only).
+NetlistTrust netlist_trust(const VerilateResult& res);
+
 /// The counts of a lock-step run both verilate summaries give: complete, writes, reads,
 /// corners, read_mismatches.
 nlohmann::json run_counts_json(const RunResult& r);

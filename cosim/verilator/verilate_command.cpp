@@ -117,6 +117,10 @@ void run_verilate_command(const VerilateCommand& a, const cluster::JobRunner& ru
 
     print_gate(res);
     if (res.run) print_run(*res.run, a, read_rows, nframes);
+    std::fprintf(stderr,
+                 "verilate: trust: %s (this command proves no stage; `harris-cosim ranges%s --stages` proves "
+                 "each stage of the netlist for every input, and sweep --stage-proofs reports it per configuration)\n",
+                 netlist_trust_name(netlist_trust(res)), a.config.empty() ? "" : (" --config " + a.config).c_str());
     const json out = summary_json(run, res, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     if (!a.json_path.empty()) util::write_file_atomic(a.json_path, out.dump(2) + "\n");
     raise(res.status(), res.gate ? ": " + res.gate->first : "", res.run ? res.run->mismatches : 0);

@@ -1,5 +1,6 @@
 // netlist_key_test.cpp: the netlist cache key (and so the gate's pass marker, keyed on the
 // gate's netlist keys) covers every field of the formats: no two configurations share one.
+// And the trust a verilate run states of itself.
 #include <catch2/catch.hpp>
 
 #include <set>
@@ -7,6 +8,7 @@
 #include "cosim/cosim.hpp"
 #include "cosim/verilator/gate.hpp"
 #include "cosim/verilator/netlist.hpp"
+#include "cosim/verilator/verilate.hpp"
 #include "model/util/util.hpp"
 
 namespace fs = std::filesystem;
@@ -56,4 +58,26 @@ TEST_CASE("the gate's netlists are built unoptimised and keyed apart from the op
     c.optimise = false;
     CHECK(vl::config_key(c).find("_obs_O0_") != std::string::npos);
     CHECK(optimised.find("_O0") == std::string::npos);
+}
+
+TEST_CASE("verilate states its own trust: samples only at best, failed on any fault, - when nothing ran",
+          "[model][verilator]") {
+    vl::VerilateResult built;
+    built.netlist_key = "k";
+    CHECK(std::string(vl::netlist_trust_name(vl::netlist_trust(built))) == "-");
+    vl::VerilateResult passed = built;
+    passed.gate = vl::GateResult{};
+    passed.run = vl::RunResult{};
+    CHECK(vl::netlist_trust(passed) == vl::NetlistTrust::samples);
+    CHECK(std::string(vl::netlist_trust_name(vl::netlist_trust(passed))) == "samples only");
+    vl::VerilateResult ungated = built;   // --no-gate: the lock step alone
+    ungated.run = vl::RunResult{};
+    CHECK(vl::netlist_trust(ungated) == vl::NetlistTrust::samples);
+    vl::VerilateResult mismatched = passed;
+    mismatched.run->mismatches = 1;
+    CHECK(vl::netlist_trust(mismatched) == vl::NetlistTrust::failed);
+    vl::VerilateResult faulted = built;
+    faulted.gate = vl::GateResult{vl::GateVerdict::translation_fault};
+    CHECK(vl::netlist_trust(faulted) == vl::NetlistTrust::failed);
+    CHECK(vl::netlist_trust(true, false, true) == vl::NetlistTrust::stages_proven);
 }
