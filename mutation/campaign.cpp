@@ -423,6 +423,7 @@ Result run_mutant_in(const Mutant& m, const Options& o, const fs::path& work) {
             r.proof = prove_assuming(m, work / "proof-assuming", o.proof_timeout_s);
             if (r.proof.equivalent) r.fate = Fate::equivalent_assuming;
         }
+        if (r.proof.equivalent) r.proof.reading = verilog_reading();
     }
     r.seconds = since(t0);
     return r;
@@ -467,6 +468,17 @@ void check_unmutated(const Options& o) {
     say(o, "control: the unmutated rtl/ passes " + o.quick.name);
 }
 
+namespace {
+Result& find_result(std::vector<Result>& rs, const Mutant& m) {
+    return *std::find_if(rs.begin(), rs.end(), [&](const Result& x) { return x.name == m.name(); });
+}
+}  // namespace
+
+bool stands_as_read(const Result& r) {
+    return r.fate == Fate::killed || r.fate == Fate::stillborn ||
+           (r.fate == Fate::equivalent && r.proof.reading == verilog_reading());
+}
+
 Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<Mutant>& sel, int jobs, int timeout_s,
                      const std::function<void(const std::string&)>& progress) {
     Reuse u;
@@ -484,11 +496,14 @@ Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<Mutant>& 
         if (it == old.end()) throw InputError("the reused verdicts have none for '" + m.name() + "'");
         u.results.push_back(*it);
         u.results.back().name = m.name();
-        if (it->fate == Fate::surviving || it->fate == Fate::equivalent_assuming) again.push_back(&m);
+        if (!stands_as_read(*it)) again.push_back(&m);
+        u.reread += it->fate == Fate::equivalent && !stands_as_read(*it);
     }
     u.reused = static_cast<int>(sel.size() - again.size());
     if (progress)
-        progress(fmt::format("{} verdicts reused, {} proven again under proven assumptions", u.reused, again.size()));
+        progress(fmt::format("{} verdicts reused, {} proven again under proven assumptions, {} unconditional proofs made "
+                             "again under this reading of GHDL's Verilog",
+                             u.reused, again.size() - u.reread, u.reread));
     const auto t0 = Clock::now();
     std::atomic<std::size_t> next{0};
     std::mutex lock;
@@ -499,12 +514,19 @@ Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<Mutant>& 
                 const Mutant& m = *again[k];
                 const auto t = Clock::now();
                 util::ScratchDir scratch("harris-mutant-ag");
-                Proof p = prove_assuming(m, scratch.path(), timeout_s);
+                const bool unconditional = [&] {
+                    const std::lock_guard<std::mutex> g(lock);
+                    return find_result(u.results, m).fate == Fate::equivalent;
+                }();
+                Proof p = unconditional ? prove(m, scratch.path() / "unconditional", timeout_s) : Proof{};
+                const bool plain = p.equivalent;
+                if (!plain) p = prove_assuming(m, scratch.path(), timeout_s);
+                if (p.equivalent) p.reading = verilog_reading();
                 p.output = replace_path(p.output, scratch.path().string(), "<scratch>");
                 const std::lock_guard<std::mutex> g(lock);
-                Result& r = *std::find_if(u.results.begin(), u.results.end(), [&](const Result& x) { return x.name == m.name(); });
+                Result& r = find_result(u.results, m);
                 r.proof = p;
-                r.fate = p.equivalent ? Fate::equivalent_assuming : Fate::surviving;
+                r.fate = plain ? Fate::equivalent : p.equivalent ? Fate::equivalent_assuming : Fate::surviving;
                 r.seconds = since(t);
                 if (progress) progress(fmt::format("{}: {} ({:.1f} s)", m.name(), fate_name(r.fate), r.seconds));
             }
@@ -741,6 +763,8 @@ std::string markdown(const std::vector<Result>& rs, const ReportInfo& info) {
     return md.str();
 }
 
+std::string verilog_reading() { return util::hex64(util::fnv1a(cosim::kVerilogReading)); }
+
 std::string rtl_hash() {
     std::uint64_t h = util::fnv1a("");
     for (const auto& p : cosim::rtl_sources()) h = util::fnv1a(p.filename().string() + "\n" + util::read_file(p), h);
@@ -750,7 +774,9 @@ std::string rtl_hash() {
 namespace {
 constexpr const char* csv_header =
     "name,file,line,column,class,entity,fate,detail,killed_by,stage,signal,write,runs,seconds,proof_method,assumptions,"
-    "rtl_hash";
+    "rtl_hash,verilog_reading";
+/// The header of a list written before the column verilog_reading.
+const std::string csv_header_unread = std::string(csv_header).substr(0, std::string(csv_header).rfind(','));
 
 /// The fields of one CSV line (quoted fields with "" for a quote; no line breaks inside).
 std::vector<std::string> csv_fields(const std::string& line) {
@@ -791,7 +817,7 @@ std::string csv(const std::vector<Result>& rs, const std::string& rtl) {
         out << q(r.name) << ',' << r.file << ',' << r.line << ',' << r.column << ',' << r.cls << ',' << r.entity << ','
             << fate_name(r.fate) << ',' << q(r.detail) << ',' << r.killed_by << ',' << r.stage << ',' << q(r.signal) << ','
             << r.write << ',' << r.runs << ',' << fmt::format("{:.2f}", r.seconds) << ',' << r.proof.method << ','
-            << q(a) << ',' << rtl << '\n';
+            << q(a) << ',' << rtl << ',' << r.proof.reading << '\n';
     }
     return out.str();
 }
@@ -799,13 +825,14 @@ std::string csv(const std::vector<Result>& rs, const std::string& rtl) {
 std::vector<Result> results_from_csv(const std::string& text, const std::string& source, const std::string& rtl) {
     std::istringstream in(text);
     std::string line;
-    if (!std::getline(in, line) || line != csv_header)
+    if (!std::getline(in, line) || (line != csv_header && line != csv_header_unread))
         throw InputError(source + ": not a verdict list of `mutate --generate` (its first line must be: " + csv_header + ")");
+    const std::size_t fields = line == csv_header ? 18 : 17;
     std::vector<Result> rs;
     for (int n = 2; std::getline(in, line); ++n) {
         const auto f = csv_fields(line);
         const std::string at = fmt::format("{} line {}", source, n);
-        if (f.size() != 17) throw InputError(at + fmt::format(": {} fields, not 17", f.size()));
+        if (f.size() != fields) throw InputError(at + fmt::format(": {} fields, not {}", f.size(), fields));
         if (f[16] != rtl)
             throw InputError(at + ": a verdict about RTL of hash " + f[16] + ", not about rtl/ as it is (" + rtl +
                              "): verdicts about other RTL are not reused");
@@ -821,6 +848,7 @@ std::vector<Result> results_from_csv(const std::string& text, const std::string&
         if (!fate) throw InputError(at + ": unknown verdict '" + f[6] + "'");
         r.fate = *fate;
         r.proof.method = f[14];
+        if (fields == 18) r.proof.reading = f[17];
         r.proof.equivalent = r.fate == Fate::equivalent || r.fate == Fate::equivalent_assuming;
         if (!r.proof.method.empty()) r.proof.entity = proof_entity(r.file);
         for (std::size_t a = 0, b; a < f[15].size(); a = b + 1) {
@@ -872,13 +900,15 @@ void write_report_files(const std::filesystem::path& md, const std::vector<Resul
 std::string reuse_note(const Reuse& u, const std::string& csv_file, int jobs) {
     const auto& rs = u.results;
     return fmt::format(
-        "**Verdicts reused.** {} of these {} verdicts (every killed, stillborn and unconditionally proven one) are read "
-        "from `{}`, the verdict list of an earlier complete run of this campaign, reused because its rtl_hash equals "
-        "that of rtl/ as it is (a hash over every rtl/ file's name and text): the same mutants of the same RTL, "
-        "co-simulated against the same cycle model. The other {} (surviving or proven under assumptions there: they "
-        "passed every stimulus and their unconditional proofs failed on this RTL) were proven again under proven "
-        "assumptions by this command, {} at a time, in {:.0f} s of wall time.",
-        u.reused, rs.size(), csv_file, rs.size() - u.reused, jobs, u.wall_seconds);
+        "**Verdicts reused.** {} of these {} verdicts (every killed and stillborn one, and every unconditionally proven "
+        "one made under this reading of GHDL's Verilog) are read from `{}`, the verdict list of an earlier complete run "
+        "of this campaign, reused because its rtl_hash equals that of rtl/ as it is (a hash over every rtl/ file's name "
+        "and text): the same mutants of the same RTL, co-simulated against the same cycle model. {} unconditionally "
+        "proven there under another (or an unrecorded) reading of GHDL's Verilog were proven again by this command, "
+        "unconditionally where that holds, else under proven assumptions. The other {} (surviving or proven under "
+        "assumptions there: they passed every stimulus and their unconditional proofs failed on this RTL) were proven "
+        "again under proven assumptions. {} at a time, in {:.0f} s of wall time.",
+        u.reused, rs.size(), csv_file, u.reread, rs.size() - u.reused - u.reread, jobs, u.wall_seconds);
 }
 
 }  // namespace hc::mutation

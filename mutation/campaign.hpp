@@ -88,9 +88,12 @@ struct Proof {
     std::string output;      ///< the tail of the last attempt's yosys (or GHDL) output
     std::vector<std::string> assumptions;   ///< method "assume-guarantee": the proven guarantees it assumes
     double seconds = 0;
+    /// the verilog_reading() an equivalence was proven under; "" where none was, or where it was
+    /// read from a verdict list written before its CSV had the column
+    std::string reading;
 };
 /// Its JSON (inside a Result's): one key a field, by the field's name.
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Proof, equivalent, method, entity, script, synth, output, assumptions, seconds)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Proof, equivalent, method, entity, script, synth, output, assumptions, seconds, reading)
 
 /// A mutant's verdict (the header comment says what each means).
 enum class Fate { stillborn, killed, equivalent, equivalent_assuming, surviving };
@@ -212,13 +215,19 @@ std::vector<CexValue> counterexample(const Proof& p, const fs::path& work, int t
 /// Verdicts of the mutants `sel` from `old` (results_from_csv of an earlier run on this rtl/):
 /// killed, stillborn and unconditionally proven ones stand; a surviving one, or one proven
 /// under assumptions, is proven again by prove_assuming (`jobs` at a time, `timeout_s` per
-/// yosys run) and is "equivalent-assuming" or "surviving" by that proof alone. InputError when
-/// `old` has no verdict for a mutant of `sel`.
+/// yosys run) and is "equivalent-assuming" or "surviving" by that proof alone. An
+/// unconditionally proven one made under another reading of GHDL's Verilog than
+/// verilog_reading() (or under an unrecorded one) is proven again by prove, then, where that
+/// fails, by prove_assuming. InputError when `old` has no verdict for a mutant of `sel`.
 struct Reuse {
     std::vector<Result> results;   ///< in the order of `sel`
     int reused = 0;                ///< verdicts taken as they were
+    int reread = 0;                ///< unconditional proofs made again under this reading
     double wall_seconds = 0;       ///< of the proofs run again
 };
+/// Whether reuse_verdicts takes a verdict as it was read: killed, stillborn, or proven
+/// unconditionally under this verilog_reading().
+bool stands_as_read(const Result& r);
 Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<Mutant>& sel, int jobs, int timeout_s,
                      const std::function<void(const std::string&)>& progress);
 
@@ -248,12 +257,17 @@ struct ReportInfo {
 std::string markdown(const std::vector<Result>& rs, const ReportInfo& info);
 /// A hash over the names and texts of the RTL files (cosim::rtl_sources()): the RTL a verdict is about.
 std::string rtl_hash();
+/// A hash of how the proofs read GHDL's Verilog (cosim::kVerilogReading): a proof made under
+/// another reading is made again before it is reused.
+std::string verilog_reading();
 /// One line per mutant: name,file,line,column,class,entity,fate,detail,killed_by,stage,signal,write,runs,
-/// seconds,proof_method,assumptions (';'-separated),rtl_hash (`rtl`: the RTL the verdicts are about).
+/// seconds,proof_method,assumptions (';'-separated),rtl_hash (`rtl`: the RTL the verdicts are about),
+/// verilog_reading (Proof::reading).
 std::string csv(const std::vector<Result>& rs, const std::string& rtl);
 /// The verdicts of a CSV that csv() wrote (`source` names it in errors): every field csv()
-/// keeps; a proof's script and output are not in it. InputError for a malformed line or a
-/// line whose rtl_hash is not `rtl` (verdicts about other RTL are not reused).
+/// keeps; a proof's script and output are not in it. A list written before the column
+/// verilog_reading (17 fields a line) is read with every reading empty. InputError for a
+/// malformed line or a line whose rtl_hash is not `rtl` (verdicts about other RTL are not reused).
 std::vector<Result> results_from_csv(const std::string& text, const std::string& source, const std::string& rtl);
 /// The file name of a proven mutant's script in ReportInfo::proofs_dir.
 std::string proof_file_name(const Result& r);

@@ -174,3 +174,39 @@ TEST_CASE("a verdict list is reused only for the RTL it is about", "[assume-guar
     CHECK_THROWS_WITH(mutation::results_from_csv(text, "t.csv", "abd"), Catch::Contains("not about rtl/ as it is"));
     CHECK_THROWS_AS(mutation::results_from_csv("name,file\n", "t.csv", "abc"), InputError);
 }
+
+TEST_CASE("an unconditional proof is reused only under the reading of GHDL's Verilog it was made under",
+          "[assume-guarantee]") {
+    mutation::Result e;
+    e.name = "x.vhd:1:2 literal `0` -> `1`";
+    e.file = "threshold.vhd";
+    e.fate = mutation::Fate::equivalent;
+    e.proof.method = "equiv";
+    e.proof.reading = mutation::verilog_reading();
+    const std::string text = mutation::csv({e}, "abc");
+    CHECK(text.substr(0, text.find('\n')).ends_with(",rtl_hash,verilog_reading"));
+    const auto back = mutation::results_from_csv(text, "t.csv", "abc");
+    REQUIRE(back.size() == 1);
+    CHECK(back[0].proof.reading == mutation::verilog_reading());
+    CHECK(mutation::stands_as_read(back[0]));
+    // a list written before the column: its proofs' reading is unknown, so they are made again
+    const std::string header = text.substr(0, text.find('\n'));
+    std::string line = text.substr(text.find('\n') + 1);
+    line = line.substr(0, line.rfind(','));
+    const auto old = mutation::results_from_csv(header.substr(0, header.rfind(',')) + "\n" + line + "\n", "old.csv", "abc");
+    REQUIRE(old.size() == 1);
+    CHECK(old[0].proof.reading.empty());
+    CHECK_FALSE(mutation::stands_as_read(old[0]));
+    mutation::Result other = back[0];
+    other.proof.reading = "0123456789abcdef";
+    CHECK_FALSE(mutation::stands_as_read(other));
+    mutation::Result killed = back[0];
+    killed.fate = mutation::Fate::killed;
+    killed.proof = {};
+    CHECK(mutation::stands_as_read(killed));
+    mutation::Result assuming = back[0];
+    assuming.fate = mutation::Fate::equivalent_assuming;
+    CHECK_FALSE(mutation::stands_as_read(assuming));
+    // a line of the other width than its header is refused
+    CHECK_THROWS_WITH(mutation::results_from_csv(header + "\n" + line + "\n", "t.csv", "abc"), Catch::Contains("17 fields, not 18"));
+}

@@ -126,8 +126,8 @@ TEST_CASE("a verdict's proof has one key a field, only its assumptions may be ab
     nlohmann::json j = mutation::to_json(r);
     std::vector<std::string> keys;
     for (auto it = j.at("proof").begin(); it != j.at("proof").end(); ++it) keys.push_back(it.key());
-    CHECK(keys == std::vector<std::string>{"assumptions", "entity", "equivalent", "method", "output", "script", "seconds",
-                                           "synth"});
+    CHECK(keys == std::vector<std::string>{"assumptions", "entity", "equivalent", "method", "output", "reading", "script",
+                                           "seconds", "synth"});
     CHECK(mutation::result_from_json(j).proof.assumptions == r.proof.assumptions);
     j["proof"].erase("assumptions");
     CHECK(mutation::result_from_json(j).proof.assumptions.empty());
