@@ -5,8 +5,9 @@
 // 512 MB and the resident set after 2N frames within kFlatMb of the one after N. The run keeps
 // no per-frame record (RunRecord::keep false, as the command runs): its metrics and counts are
 // running sums.
-//  - real pairs: KITTI 01's 51 stereo pairs cycled (pair k is pair k mod 51, loaded as reached),
-//    the spec corner source (its threshold carried across frames), the command's defaults;
+//  - real pairs: KITTI 01's stereo pairs cycled (pair k is pair k mod the sequence's pair count,
+//    loaded as reached), the command's defaults with the spec corner source (1,600 pairs) and
+//    the cycle model's (200 pairs: one host-driver stream, its threshold carried across frames);
 //  - synthetic: sequence 00's 4,541 poses with synthetic landmarks (N = 2,270).
 // Each case runs alone in its own ctest process (the peak is the process's). Exits 77 (skipped)
 // without the data.
@@ -79,23 +80,39 @@ slam::VisualOdometryConfig odometry(const landmarks::RectifiedRig& rig) {
     return vc;
 }
 
-}  // namespace
 
-TEST_CASE("spec corners on KITTI 01's pairs cycled: peak under 512 MB, flat from N to 2N frames", "[memory][real]") {
+/// KITTI 01's stereo pairs cycled to 2n pairs (pair k is pair k mod the sequence's pair count,
+/// loaded as reached) through corner source `d` and the command's defaults otherwise.
+void check_cycled_kitti(landmarks::Detector d, size_t n) {
     const auto kitti = kitti_root();
-    constexpr size_t n = 800;
+    const int pairs = frames::open_kitti(kitti, "01").pairs();
+    REQUIRE(pairs > 1);
     const landmarks::RectifiedRig rig = landmarks::kitti_dataset(kitti, "01", {0, 1}).calib.front();
     landmarks::PipelineOptions po = slam::kitti_pipeline_defaults();
-    po.detector = landmarks::Detector::spec;
-    slam::FrameSource pairs = slam::landmark_stream(
+    po.detector = d;
+    slam::FrameSource source = slam::landmark_stream(
         static_cast<int>(2 * n),
-        [kitti](int k) { return landmarks::kitti_dataset(kitti, "01", {k % 51, k % 51 + 1}).pairs.front(); }, rig, po);
+        [kitti, pairs](int k) { return landmarks::kitti_dataset(kitti, "01", {k % pairs, k % pairs + 1}).pairs.front(); },
+        rig, po);
     Sampled s;
-    const slam::SequenceRun run = slam::run_visual_stream(sampled(std::move(pairs), n, s), {}, odometry(rig),
+    const slam::SequenceRun run = slam::run_visual_stream(sampled(std::move(source), n, s), {}, odometry(rig),
                                                           slam::AssociationConfig{}, nullptr, {{}, false, {}});
     CHECK(run.frame_count == 2 * n);
     CHECK(run.estimate.empty());
-    check_flat(s, n, "spec source, KITTI 01 cycled");
+    const std::string what = landmarks::detector_name(d) + " source, KITTI 01 cycled";
+    check_flat(s, n, what.c_str());
+}
+
+}  // namespace
+
+TEST_CASE("spec corners on KITTI 01's pairs cycled: peak under 512 MB, flat from N to 2N frames", "[memory][real]") {
+    check_cycled_kitti(landmarks::Detector::spec, 800);
+}
+
+TEST_CASE("cycle-model corners on KITTI 01's pairs cycled: peak under 512 MB, flat from N to 2N frames",
+          "[memory][cycle]") {
+    // the cycle model streams about 5 pairs a second: 200 pairs, N = 100
+    check_cycled_kitti(landmarks::Detector::cycle, 100);
 }
 
 TEST_CASE("synthetic landmarks on sequence 00's 4,541 poses: peak under 512 MB, flat from N to 2N frames",
