@@ -31,7 +31,7 @@ void set_command_line(int argc, char** argv) {
 std::string typed_command_line(const CLI::App* cmd) {
     std::set<std::string> valued, bare;   // the sharding flags of `cmd` (add_runner_flags' group)
     for (const CLI::Option* o : cmd->get_options([](const CLI::Option* o) { return o->get_group() == "Sharding"; }))
-        for (const std::string& n : o->get_lnames()) (o->get_type_size() == 0 ? bare : valued).insert("--" + n);
+        for (const std::string& n : o->get_lnames()) (o->get_expected_max() == 0 ? bare : valued).insert("--" + n);
     std::vector<std::string> kept;
     const std::vector<std::string>& a = typed_arguments();
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -44,6 +44,24 @@ std::string typed_command_line(const CLI::App* cmd) {
         kept.push_back(a[i]);
     }
     return util::shell_command_line("harris-cosim", kept);
+}
+
+std::string effective_settings(const CLI::App* cmd) {
+    std::string out;
+    for (const CLI::Option* o : cmd->get_options([](const CLI::Option* o) {
+             return o->get_group() != "Sharding" && !o->get_lnames().empty() && o->get_lnames().front() != "help";
+         })) {
+        std::string v;
+        if (o->get_expected_max() == 0) {   // a flag without a value
+            v = o->count() > 0 ? "true" : "false";
+        } else if (o->count() > 0) {
+            for (const std::string& r : o->results()) v += (v.empty() ? "" : " ") + r;
+        } else {
+            v = o->get_default_str();
+        }
+        out += o->get_lnames().front() + "=" + v + "\n";
+    }
+    return out;
 }
 
 CLI::Validator whole_number(long min) {

@@ -150,6 +150,7 @@ void add_slam_command(CLI::App& app) {
     cmd->callback([o, cmd] {
         o->seed_given = cmd->count("--seed") > 0;
         o->command_line = typed_command_line(cmd);
+        o->settings = effective_settings(cmd);
         slam::run_slam_command(*o, job_runner(cmd, o->runner));
     });
 }

@@ -22,10 +22,14 @@ namespace hc::tools {
 CLI::Validator whole_number(long min);
 
 /// A subcommand `name` of `app` with its help, and the settings its flags fill, which its
-/// callback shares.
+/// callback shares. The subcommand owns them (its pre-parse callback, which does nothing, holds
+/// them), so they live as long as the flags that write into them, whatever its callback becomes.
 template <class Settings>
 std::pair<CLI::App*, std::shared_ptr<Settings>> add_command(CLI::App& app, const std::string& name, const std::string& help) {
-    return {app.add_subcommand(name, help), std::make_shared<Settings>()};
+    auto settings = std::make_shared<Settings>();
+    CLI::App* cmd = app.add_subcommand(name, help);
+    cmd->preparse_callback([settings](std::size_t) {});
+    return {cmd, settings};
 }
 
 /// A command's settings with the sharding flags' values beside them.
@@ -64,6 +68,10 @@ void set_program_path(const char* argv0);
 /// computes, so a report made in shards equals the one made in one process byte for byte).
 void set_command_line(int argc, char** argv);
 std::string typed_command_line(const CLI::App* cmd);
+/// Every flag of `cmd` but the sharding flags and --help, one `name=value` a line in the order
+/// of its options: the value given (several joined by spaces), else its default ("" where it has
+/// none; a flag without a value: true or false). What a report records of its settings.
+std::string effective_settings(const CLI::App* cmd);
 
 void add_rtl_command(CLI::App& app);        // GHDL co-simulation (cmd_rtl.cpp)
 void add_model_command(CLI::App& app);      // cycle model alone (cmd_rtl.cpp)

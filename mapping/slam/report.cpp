@@ -330,12 +330,24 @@ std::string states_row(const FrameRecord& r) {
     return st.str();
 }
 
-void save_sequence_summary(const fs::path& file, const SequenceRun& r, const std::string& command,
-                           const std::string& odometry_label) {
+/// A command's settings (`name=value` lines) as a JSON object of their texts.
+nlohmann::json settings_json(const std::string& settings) {
+    nlohmann::json j = nlohmann::json::object();
+    std::istringstream in(settings);
+    for (std::string line; std::getline(in, line);) {
+        const std::size_t eq = line.find('=');
+        if (eq != std::string::npos) j[line.substr(0, eq)] = line.substr(eq + 1);
+    }
+    return j;
+}
+
+void save_sequence_summary(const fs::path& file, const SequenceRun& r, const SequenceReportText& text) {
     const RunTotals& t = r.totals;
     const bool scored = r.scored_frames > 0;
+    const std::string& odometry_label = text.odometry_label;
     nlohmann::json j;
-    j["command"] = command;
+    j["command"] = text.command;
+    if (!text.settings.empty()) j["settings"] = settings_json(text.settings);
     j["frames"] = r.frame_count;
     j["scored_frames"] = r.scored_frames;
     j["ground_truth"] = scored;
@@ -482,6 +494,9 @@ std::string sequence_markdown(const SequenceRun& r, const SequenceReportText& te
           "height 0), `dead_reckoning_kitti.txt` (" << text.odometry_label << ", 6-DoF as the estimate)"
        << (!truth_file ? "" : ", `truth_kitti.txt` (the ground truth's poses of the frames scored, paired with "
                                       "the frames " + r.truth_pairing + ")") << ".\n";
+    if (!text.settings.empty())
+        md << "\nSettings, every flag given or at its default (also `settings` in `summary.json`):\n\n```\n"
+           << text.settings << (text.settings.ends_with('\n') ? "" : "\n") << "```\n";
     return md.str();
 }
 
@@ -545,7 +560,7 @@ void SequenceFiles::commit(const SequenceRun& run, const SequenceReportText& tex
     const std::vector<Vec2> extent = extent_ ? std::vector<Vec2>{lo_, hi_} : std::vector<Vec2>{};
     const bool traj_png = plot_sequence_trajectory(dir_, tmp_[kStates], run, extent, text.title, text.odometry_label);
     const bool map_png = plot_map_size(dir_, tmp_[kStates], text.title);
-    save_sequence_summary(dir_ / "summary.json", run, text.command, text.odometry_label);
+    save_sequence_summary(dir_ / "summary.json", run, text);
     save(dir_ / "report.md", sequence_markdown(run, text, traj_png, map_png, has_truth_));
     for (int i = 0; i < kFiles; ++i) {
         if (i == kTruth && !has_truth_) continue;

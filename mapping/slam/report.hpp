@@ -26,6 +26,9 @@ void write_simulation_report(const std::filesystem::path& dir, const SimConfig& 
 /// What a sequence report says besides the run's figures.
 struct SequenceReportText {
     std::string title, command;
+    /// Every flag's value, given or default, one `name=value` a line (the command's settings as
+    /// the command line parser writes them); "" when the run did not come from the command line.
+    std::string settings;
     /// Names the odometry-alone trajectory ("visual odometry alone", "synthetic odometry alone").
     std::string odometry_label;
     /// How the ground truth entered the run, or that there is none: the report's first sentence.

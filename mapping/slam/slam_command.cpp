@@ -19,12 +19,6 @@ namespace {
 
 constexpr double deg = std::numbers::pi / 180;
 
-std::string num(double v) {
-    std::ostringstream o;
-    o << v;
-    return o.str();
-}
-
 SimConfig sim_config(const SlamCommand& o) {
     SimConfig c;
     c.layout = o.world == "random" ? Layout::Random : Layout::Cloister;
@@ -76,45 +70,11 @@ std::string odometry_label(const SlamCommand& o) {
 }
 
 
-/// The flags that choose the source of the pairs, the ground truth and the timestamps.
-std::string source_flags(const SlamCommand& o, const std::string& sequence) {
-    std::string s;
-    if (!sequence.empty()) {
-        s = " --sequences " + sequence;
-    } else {
-        s = " --calib " + o.calib;
-        for (const auto& f : o.left) s += " --left '" + f + "'";
-        for (const auto& f : o.right) s += " --right '" + f + "'";
-    }
-    if (!o.pairs.empty()) s += " --pairs " + o.pairs;
-    if (!o.truth.empty()) s += " --truth " + o.truth + " --truth-time-tolerance " + num(o.truth_time_tolerance);
-    if (o.score_overlap) s += " --score-overlap";
-    return s + " --frame-period " + num(o.frame_period);
-}
-
-/// The command line that reproduces one sequence's run, for its report.
-std::string sequence_command(const SlamCommand& o, const KittiRunOptions& k, const std::string& sequence,
-                             const fs::path& out) {
-    const std::string source_args = k.stereo_landmarks
-        ? " --corners " + o.corners + " --descriptor " + o.descriptor_name + " --g " + std::to_string(o.g) + " --h " +
-              std::to_string(o.h) + (o.config.empty() ? "" : " --config " + o.config)
-        : " --synthetic-count " + std::to_string(o.synthetic_count) + " --flip-bits " + std::to_string(o.flip_bits);
-    const VisualOdometryConfig& vc = k.vo;
-    const SyntheticOdometry& so = k.synthetic;
-    const std::string odo_args = k.visual_odometry
-        ? " --vo-hamming-fraction " + num(vc.max_hamming_fraction) + " --vo-min-inliers " + std::to_string(vc.min_inliers) +
-              " --vo-max-range " + num(vc.max_range) + " --vo-residual " + o.vo_residual +
-              (o.vo_disparity_offset ? "" : " --no-vo-disparity-offset") + (o.vo_level ? "" : " --no-vo-level") +
-              (o.vo_two_view ? " --vo-two-view" : "") + (o.vo_measured_noise ? " --vo-measured-noise" : "")
-        : " --sigma-dx " + num(so.sigma_dx) + " --sigma-dy " + num(so.sigma_dy) + " --sigma-dtheta " +
-              num(so.sigma_dtheta / deg);
-    const bool seeded = o.odometry == "synthetic" || o.landmarks_from == "synthetic";
-    return "harris-cosim slam" + source_flags(o, sequence) + " --landmarks-from " + o.landmarks_from + source_args +
-           " --odometry " + o.odometry + odo_args + " --association " + o.association + " --gate " + num(o.gate) +
-           " --joint-gate " + num(o.joint_gate) + " --max-hamming-fraction " + num(o.max_hamming_fraction) +
-           (o.descriptor ? "" : " --no-descriptor") + (o.noise_at_prediction ? "" : " --noise-at-measurement") + " --forget-after " + std::to_string(o.forget_after) +
-           " --max-observations " + std::to_string(o.max_observations) +
-           (seeded ? " --seed " + std::to_string(o.seed) : std::string()) + " --out " + out.string();
+/// The command line quoted in one run's report: the command as the user typed it, with the
+/// sequence the report is of when it named several.
+std::string report_command(const SlamCommand& o, const std::string& sequence) {
+    const bool several = !sequence.empty() && util::split_csv(o.sequences).size() > 1;
+    return o.command_line + (several ? " (this report: sequence " + sequence + ")" : "");
 }
 
 /// How the ground truth entered a run of these settings (the report's first sentence).
@@ -154,7 +114,7 @@ SequenceRun run_one_sequence(const SlamCommand& o, const fs::path& kitti, const 
                                          : run_kitti_sequence(kitti, sequence, k);
     const SequenceRun& run = kr.run;
     const std::string name = sequence.empty() ? "rig" : sequence;
-    files.commit(run, {run_title(o, k, sequence), sequence_command(o, k, sequence, out), odometry_label(o),
+    files.commit(run, {run_title(o, k, sequence), report_command(o, sequence), o.settings, odometry_label(o),
                        provenance(o, run.scored_frames > 0)});
     if (run.scored_frames == 0) {
         std::printf("%s: %zu frames, no ground truth (not scored)", name.c_str(), run.frame_count);

@@ -26,6 +26,8 @@ namespace hc::slam {
 struct SlamCommand {
     bool simulate = false;
     std::string command_line;   ///< the command as the user typed it (less the sharding flags), for the reports
+    /// every flag's value, given or default, one `name=value` a line, for the reports
+    std::string settings;
     std::string pairs;          ///< --pairs a:b of each sequence or of the rig (KittiRunOptions::pairs)
     std::string sequences, kitti, data, out = "slam-report", world = "cloister", truth, calib,
         landmarks_from = KittiRunOptions{}.stereo_landmarks ? "stereo" : "synthetic", odometry = "visual",

@@ -153,3 +153,26 @@ TEST_CASE("each frame-source flag takes the values of its meaning in every comma
         }
     }
 }
+
+TEST_CASE("a report's command line is the one typed, less the sharding flags, and its settings name every other flag",
+          "[cli]") {
+    auto app = quiet_app();
+    const std::vector<std::string> typed{"harris-cosim", "slam", "--resume", "--sequences", "01", "--jobs", "2",
+                                         "--no-vo-level", "--run-dir=r", "--out", "a b"};
+    std::vector<char*> argv;
+    for (const std::string& a : typed) argv.push_back(const_cast<char*>(a.c_str()));
+    hc::tools::set_command_line(static_cast<int>(argv.size()), argv.data());
+    app->parse(static_cast<int>(argv.size()), argv.data());
+    const CLI::App* slam = command(*app, "slam");
+    // --resume is a flag without a value: the argument after it stays
+    CHECK(hc::tools::typed_command_line(slam) == "harris-cosim slam --sequences 01 --no-vo-level --out 'a b'");
+    const std::string s = hc::tools::effective_settings(slam);
+    CHECK(s.find("sequences=01\n") != std::string::npos);
+    CHECK(s.find("no-vo-level=true\n") != std::string::npos);     // given
+    CHECK(s.find("vo-two-view=false\n") != std::string::npos);    // not given
+    CHECK(s.find("vo-max-range=60\n") != std::string::npos);      // its default
+    CHECK(s.find("out=a b\n") != std::string::npos);
+    CHECK(s.find("jobs=") == std::string::npos);                  // sharding flags are not settings
+    CHECK(s.find("resume=") == std::string::npos);
+    CHECK(s.find("help=") == std::string::npos);
+}
