@@ -20,8 +20,7 @@ void add_eval_command(CLI::App& app) {
     add_runner_flags(cmd, o->runner);
     cmd->callback([o, cmd] {
         o->threads_given = cmd->count("--threads") > 0;
-        o->command_line = typed_command_line(cmd);
-        eval::run_eval_command(*o, job_runner(cmd, o->runner));
+        run_quoting_command_line(cmd, *o, eval::run_eval_command);
     });
 }
 

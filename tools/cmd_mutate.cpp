@@ -51,10 +51,7 @@ void add_mutate_command(CLI::App& app) {
     add_generated_flags(cmd, *o);
     add_runner_flags(cmd, o->runner);
     // the generated campaign always runs in shards, --jobs of them at once
-    cmd->callback([o, cmd] {
-        o->command_line = typed_command_line(cmd);
-        mutation::run_mutate_command(*o, job_runner(cmd, o->runner, o->generate));
-    });
+    cmd->callback([o, cmd] { run_quoting_command_line(cmd, *o, mutation::run_mutate_command, o->generate); });
 }
 
 }  // namespace hc::tools

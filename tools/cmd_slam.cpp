@@ -149,9 +149,8 @@ void add_slam_command(CLI::App& app) {
     add_runner_flags(cmd, o->runner);
     cmd->callback([o, cmd] {
         o->seed_given = cmd->count("--seed") > 0;
-        o->command_line = typed_command_line(cmd);
         o->settings = effective_settings(cmd);
-        slam::run_slam_command(*o, job_runner(cmd, o->runner));
+        run_quoting_command_line(cmd, *o, slam::run_slam_command);
     });
 }
 

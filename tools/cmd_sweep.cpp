@@ -34,10 +34,7 @@ void add_sweep_command(CLI::App& app) {
     s->add_flag("--quiet", c->quiet, "no progress lines");
     c->runner.jobs = 2;
     add_runner_flags(s, c->runner);
-    s->callback([c, s] {
-        c->command_line = typed_command_line(s);
-        sweep::run_sweep_command(*c, job_runner(s, c->runner, /*single_jobs=*/true));
-    });
+    s->callback([c, s] { run_quoting_command_line(s, *c, sweep::run_sweep_command, /*single_jobs=*/true); });
 }
 
 }  // namespace hc::tools

@@ -73,6 +73,14 @@ std::string typed_command_line(const CLI::App* cmd);
 /// none; a flag without a value: true or false). What a report records of its settings.
 std::string effective_settings(const CLI::App* cmd);
 
+/// The run of a command whose reports quote its command line: `o.command_line` =
+/// typed_command_line(cmd), then `run(o, job_runner(cmd, o.runner, single_jobs))`.
+template <class Settings, class Run>
+void run_quoting_command_line(const CLI::App* cmd, Settings& o, Run run, bool single_jobs = false) {
+    o.command_line = typed_command_line(cmd);
+    run(o, job_runner(cmd, o.runner, single_jobs));
+}
+
 void add_rtl_command(CLI::App& app);        // GHDL co-simulation (cmd_rtl.cpp)
 void add_model_command(CLI::App& app);      // cycle model alone (cmd_rtl.cpp)
 void add_golden_command(CLI::App& app);     // golden reference files (cmd_golden.cpp)

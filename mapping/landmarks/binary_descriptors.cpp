@@ -242,8 +242,6 @@ void BriefDescriptor::detectAndCompute(cv::InputArray image, cv::InputArray,
 }
 
 int BriefDescriptor::descriptorSize() const { return brief_bits / 8; }
-int BriefDescriptor::descriptorType() const { return CV_8U; }
-int BriefDescriptor::defaultNorm() const { return cv::NORM_HAMMING; }
 cv::String BriefDescriptor::getDefaultName() const { return "hc.features.BriefDescriptor"; }
 
 // ---- FreakDescriptor ----------------------------------------------------------------------
@@ -330,8 +328,6 @@ void FreakDescriptor::detectAndCompute(cv::InputArray image, cv::InputArray,
 }
 
 int FreakDescriptor::descriptorSize() const { return freak_pairs / 8; }
-int FreakDescriptor::descriptorType() const { return CV_8U; }
-int FreakDescriptor::defaultNorm() const { return cv::NORM_HAMMING; }
 cv::String FreakDescriptor::getDefaultName() const { return "hc.features.FreakDescriptor"; }
 
 }  // namespace hc::landmarks

@@ -93,11 +93,19 @@ struct GridQuirkStats {
 };
 GridQuirkStats grid_quirk_stats(const std::vector<cv::KeyPoint>& keypoints, int g, int h);
 
+/// A binary descriptor of this library as a cv::Feature2D (the grid, BRIEF and FREAK below):
+/// bytes (CV_8U) compared by cv::NORM_HAMMING.
+class BinaryDescriptor : public cv::Feature2D {
+public:
+    int descriptorType() const override { return CV_8U; }
+    int defaultNorm() const override { return cv::NORM_HAMMING; }
+};
+
 /// The grid descriptor as a cv::Feature2D. Descriptor only: call compute() (or
 /// detectAndCompute with useProvidedKeypoints = true). The image is not read (the descriptor
 /// depends on keypoint positions only), but OpenCV's compute() returns an empty result for
 /// an empty image, so pass the image the keypoints come from. Keypoints are never removed.
-class GridDescriptor : public cv::Feature2D {
+class GridDescriptor : public BinaryDescriptor {
 public:
     /// Throws InputError when g or h is out of range.
     static cv::Ptr<GridDescriptor> create(int g = 16, int h = 2,
@@ -108,8 +116,6 @@ public:
                           std::vector<cv::KeyPoint>& keypoints, cv::OutputArray descriptors,
                           bool useProvidedKeypoints = false) override;
     int descriptorSize() const override;  ///< grid_descriptor_bytes(g, variant)
-    int descriptorType() const override;  ///< CV_8U
-    int defaultNorm() const override;     ///< cv::NORM_HAMMING
     cv::String getDefaultName() const override;  ///< "hc.features.GridDescriptor"
 
     int g() const { return g_; }
@@ -142,7 +148,7 @@ enum class BriefSmoothing { box, gaussian };
 /// (x_k, y_k) drawn once from the paper's isotropic Gaussian G II (sigma^2 = S^2 / 25, S = 48),
 /// clamped to the patch, by a fixed-seed generator of this library (platform independent).
 /// 32 bytes, NORM_HAMMING, bit k is bit k & 7 of byte k >> 3. No orientation, one scale.
-class BriefDescriptor : public cv::Feature2D {
+class BriefDescriptor : public BinaryDescriptor {
 public:
     static cv::Ptr<BriefDescriptor> create(BorderPolicy border = BorderPolicy::drop,
                                            BriefSmoothing smoothing = BriefSmoothing::box);
@@ -152,8 +158,6 @@ public:
                           std::vector<cv::KeyPoint>& keypoints, cv::OutputArray descriptors,
                           bool useProvidedKeypoints = false) override;
     int descriptorSize() const override;  ///< 32
-    int descriptorType() const override;  ///< CV_8U
-    int defaultNorm() const override;     ///< cv::NORM_HAMMING
     cv::String getDefaultName() const override;  ///< "hc.features.BriefDescriptor"
 
     /// Patch side (48), smoothing kernel side (9) and the test offsets (x1, y1, x2, y2)
@@ -175,7 +179,7 @@ private:
 /// pattern's reach in pixels (outer ring radius + its field's sigma), one scale for all
 /// keypoints. With `orientation`, the pattern is rotated by the angle of the mean local
 /// gradient measured on pairs of fields of the same ring and keypoint.angle is set.
-class FreakDescriptor : public cv::Feature2D {
+class FreakDescriptor : public BinaryDescriptor {
 public:
     static cv::Ptr<FreakDescriptor> create(bool orientation = false, float pattern_scale = 22.f,
                                            BorderPolicy border = BorderPolicy::drop);
@@ -185,8 +189,6 @@ public:
                           std::vector<cv::KeyPoint>& keypoints, cv::OutputArray descriptors,
                           bool useProvidedKeypoints = false) override;
     int descriptorSize() const override;  ///< 64
-    int descriptorType() const override;  ///< CV_8U
-    int defaultNorm() const override;     ///< cv::NORM_HAMMING
     cv::String getDefaultName() const override;  ///< "hc.features.FreakDescriptor"
 
     /// Field centres (x, y) in units of pattern_scale, and field sigmas in the same units.

@@ -364,8 +364,6 @@ void GridDescriptor::detectAndCompute(cv::InputArray, cv::InputArray,
 }
 
 int GridDescriptor::descriptorSize() const { return grid_descriptor_bytes(g_, variant_); }
-int GridDescriptor::descriptorType() const { return CV_8U; }
-int GridDescriptor::defaultNorm() const { return cv::NORM_HAMMING; }
 cv::String GridDescriptor::getDefaultName() const { return "hc.features.GridDescriptor"; }
 
 }  // namespace hc::landmarks

@@ -1,6 +1,6 @@
 // report.cpp: the Markdown/CSV/JSON/PNG reports of the simulation, the sequence runs and
 // the update timing. Plots are drawn by gnuplot from inline data blocks; every file is
-// written to a temporary beside its target, then renamed.
+// written to a temporary beside its target, then renamed (util::write_file_atomic).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -39,25 +39,6 @@ void make_dir(const fs::path& dir) {
     if (ec) throw InputError("cannot create the output directory '" + dir.string() + "': " + ec.message());
 }
 
-void save(const fs::path& target, const std::string& text) {
-    const fs::path tmp = temp_beside(target);
-    {
-        std::ofstream f(tmp, std::ios::binary);
-        f << text;
-        if (!f) {
-            f.close();
-            fs::remove(tmp);
-            throw InputError("cannot write '" + target.string() + "'");
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw InputError("cannot write '" + target.string() + "'");
-    }
-}
-
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 // Runs gnuplot on `script` (which draws to the file named by the variable `out`), writing
@@ -68,7 +49,7 @@ bool plot(const fs::path& png, const std::string& script, int width = 1000, int 
         return false;
     }
     const fs::path tmp_png = temp_beside(png), gp = temp_beside(png.string() + ".gp");
-    save(gp, "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) +
+    util::write_file_atomic(gp, "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) +
                  " font ',11'\nset output '" + tmp_png.string() + "'\n" + script);
     const int rc = std::system(("gnuplot '" + gp.string() + "' 2>/dev/null").c_str());
     fs::remove(gp);
@@ -163,7 +144,7 @@ void save_nees_csv(const fs::path& dir, const MonteCarlo& mc) {
         csv << k << ',' << num(mc.pose_nees[k]) << ',' << num(mc.pose_lo) << ',' << num(mc.pose_hi) << ','
             << num(mc.map_nees_per_dof[k]) << ',' << num(mc.map_lo[k]) << ',' << num(mc.map_hi[k]) << ','
             << num(mc.position_rmse[k]) << ',' << num(mc.heading_rmse[k]) << ',' << num(mc.map_rmse[k]) << '\n';
-    save(dir / "nees.csv", csv.str());
+    util::write_file_atomic(dir / "nees.csv", csv.str());
 }
 
 void save_simulation_states(const fs::path& dir, const RunTrace& t) {
@@ -176,7 +157,7 @@ void save_simulation_states(const fs::path& dir, const RunTrace& t) {
         for (int i = 0; i < 3; ++i) st << ',' << num(std::sqrt(t.pose_cov[k](i, i)));
         st << ',' << num(t.pose_nees[k]) << ',' << t.map_dof[k] / 2 << '\n';
     }
-    save(dir / "states.csv", st.str());
+    util::write_file_atomic(dir / "states.csv", st.str());
 }
 
 void save_simulation_summary(const fs::path& dir, const SimConfig& c, const MonteCarlo& mc, const std::string& command) {
@@ -196,7 +177,7 @@ void save_simulation_summary(const fs::path& dir, const SimConfig& c, const Mont
                              {"hi_final", mc.map_hi.back()}, {"fraction_inside", mc.map_inside}};
     j["final_rmse"] = {{"position_m", mc.position_rmse.back()}, {"heading_rad", mc.heading_rmse.back()},
                        {"map_m", mc.map_rmse.back()}};
-    save(dir / "summary.json", j.dump(2) + "\n");
+    util::write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
 }
 
 // The first run's trajectory and map: true landmarks, the map's and the robot's 3-sigma ellipses.
@@ -296,7 +277,7 @@ void write_simulation_report(const fs::path& dir, const SimConfig& c, const Mont
     const bool traj_png = plot_simulation_trajectory(dir, mc.first);
     const bool nees_png = plot_nees(dir, mc);
     const bool rmse_png = plot_rmse(dir, mc);
-    save(dir / "report.md", simulation_markdown(c, mc, command, traj_png, nees_png, rmse_png));
+    util::write_file_atomic(dir / "report.md", simulation_markdown(c, mc, command, traj_png, nees_png, rmse_png));
 }
 
 namespace {
@@ -371,7 +352,7 @@ void save_sequence_summary(const fs::path& file, const SequenceRun& r, const Seq
     if (r.disparity_estimated)
         j["disparity_correction_px"] = {{"final", r.disparity_final}, {"min", r.disparity_min}, {"max", r.disparity_max}};
     j["pixel_noise_variance_factor"] = r.noise_scale;
-    save(file, j.dump(2) + "\n");
+    util::write_file_atomic(file, j.dump(2) + "\n");
 }
 
 // A file name in gnuplot's single quotes (appended: GCC 12's -Wrestrict misfires on "'" + ...).
@@ -561,7 +542,7 @@ void SequenceFiles::commit(const SequenceRun& run, const SequenceReportText& tex
     const bool traj_png = plot_sequence_trajectory(dir_, tmp_[kStates], run, extent, text.title, text.odometry_label);
     const bool map_png = plot_map_size(dir_, tmp_[kStates], text.title);
     save_sequence_summary(dir_ / "summary.json", run, text);
-    save(dir_ / "report.md", sequence_markdown(run, text, traj_png, map_png, has_truth_));
+    util::write_file_atomic(dir_ / "report.md", sequence_markdown(run, text, traj_png, map_png, has_truth_));
     for (int i = 0; i < kFiles; ++i) {
         if (i == kTruth && !has_truth_) continue;
         std::error_code ec;
@@ -635,7 +616,7 @@ void write_timing_report(const fs::path& dir, const std::vector<TimingRow>& rows
              << (r.dense_from_single_update ? "NaN" : v(r.dense_ms)) << ' '
              << (r.dense_from_single_update ? v(r.dense_ms) : "NaN") << '\n';
     }
-    save(dir / "timing.csv", csv.str());
+    util::write_file_atomic(dir / "timing.csv", csv.str());
     // O(k n²) through the structured point nearest 200 landmarks
     double ref = 0;
     int ref_k = 0;

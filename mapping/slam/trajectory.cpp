@@ -11,27 +11,38 @@
 
 namespace hc::slam {
 
-std::vector<Mat34> read_kitti_poses(const std::filesystem::path& file) {
+namespace {
+/// Calls `fn(line, where)` on each line of `file` that holds more than white space (with
+/// `skip_comments`, nor starts with '#'), `where` naming the file and line for an error
+/// message; `what` names the file when it cannot be read.
+template <class Fn>
+void for_each_line(const std::filesystem::path& file, const std::string& what, bool skip_comments, Fn&& fn) {
     std::ifstream f(file);
-    if (!f) throw InputError("cannot read the poses file '" + file.string() + "'");
-    std::vector<Mat34> poses;
+    if (!f) throw InputError("cannot read the " + what + " '" + file.string() + "'");
     std::string line;
     int lineno = 0;
     while (std::getline(f, line)) {
         ++lineno;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        const size_t first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || (skip_comments && line[first] == '#')) continue;
+        fn(line, "'" + file.string() + "' line " + std::to_string(lineno));
+    }
+}
+}  // namespace
+
+std::vector<Mat34> read_kitti_poses(const std::filesystem::path& file) {
+    std::vector<Mat34> poses;
+    for_each_line(file, "poses file", false, [&](const std::string& line, const std::string& where) {
         std::istringstream ss(line);
         Mat34 T;
         for (int i = 0; i < 12; ++i) {
             if (!(ss >> T(i / 4, i % 4)) || !std::isfinite(T(i / 4, i % 4)))
-                throw InputError("'" + file.string() + "' line " + std::to_string(lineno) +
-                                 ": expected 12 numbers (a 3x4 pose)");
+                throw InputError(where + ": expected 12 numbers (a 3x4 pose)");
         }
         std::string extra;
-        if (ss >> extra)
-            throw InputError("'" + file.string() + "' line " + std::to_string(lineno) + ": more than 12 numbers");
+        if (ss >> extra) throw InputError(where + ": more than 12 numbers");
         poses.push_back(T);
-    }
+    });
     if (poses.empty()) throw InputError("the poses file '" + file.string() + "' holds no pose");
     return poses;
 }
@@ -110,18 +121,10 @@ std::optional<std::vector<double>> numbers_of(const std::string& line) {
 
 std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file, std::vector<double>* times) {
     if (times) times->clear();
-    std::ifstream f(file);
-    if (!f) throw InputError("cannot read the ground-truth file '" + file.string() + "'");
     std::vector<Mat34> poses;
-    std::string line;
-    int lineno = 0;
     size_t width = 0;   // 12: KITTI, 8: TUM
-    while (std::getline(f, line)) {
-        ++lineno;
-        const size_t first = line.find_first_not_of(" \t\r");
-        if (first == std::string::npos || line[first] == '#') continue;
+    for_each_line(file, "ground-truth file", true, [&](const std::string& line, const std::string& where) {
         const auto v = numbers_of(line);
-        const std::string where = "'" + file.string() + "' line " + std::to_string(lineno);
         if (!v) throw InputError(where + ": not a number");
         if (width == 0) {
             if (v->size() != 12 && v->size() != 8)
@@ -142,7 +145,7 @@ std::vector<Mat34> read_trajectory_file(const std::filesystem::path& file, std::
             if (times) times->push_back((*v)[0]);
         }
         poses.push_back(T);
-    }
+    });
     if (poses.empty()) throw InputError("the ground-truth file '" + file.string() + "' holds no pose");
     return poses;
 }
@@ -176,19 +179,12 @@ std::vector<Mat34> truth_by_timestamp(const std::vector<Mat34>& poses, const std
 }
 
 std::vector<double> read_timestamps(const std::filesystem::path& file) {
-    std::ifstream f(file);
-    if (!f) throw InputError("cannot read the timestamps file '" + file.string() + "'");
     std::vector<double> t;
-    std::string line;
-    int lineno = 0;
-    while (std::getline(f, line)) {
-        ++lineno;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    for_each_line(file, "timestamps file", false, [&](const std::string& line, const std::string& where) {
         const auto v = numbers_of(line);
-        if (!v || v->size() != 1)
-            throw InputError("'" + file.string() + "' line " + std::to_string(lineno) + ": expected one number (s)");
+        if (!v || v->size() != 1) throw InputError(where + ": expected one number (s)");
         t.push_back(v->front());
-    }
+    });
     if (t.empty()) throw InputError("the timestamps file '" + file.string() + "' holds no timestamp");
     return t;
 }

@@ -97,18 +97,40 @@ cv::Ptr<cv::Feature2D> brief_gaussian() {
 }
 cv::Ptr<cv::Feature2D> freak() { return FreakDescriptor::create(); }
 
-void BM_grid_thesis_describe_and_match(benchmark::State& st) { run_describe_and_match(st, grid_thesis()); }
-void BM_grid_corrected_describe_and_match(benchmark::State& st) { run_describe_and_match(st, grid_corrected()); }
-void BM_brief_describe_and_match(benchmark::State& st) { run_describe_and_match(st, brief()); }
-void BM_brief_gaussian_describe_and_match(benchmark::State& st) { run_describe_and_match(st, brief_gaussian()); }
-void BM_freak_describe_and_match(benchmark::State& st) { run_describe_and_match(st, freak()); }
-void BM_grid_thesis_describe(benchmark::State& st) { run_describe(st, grid_thesis()); }
-void BM_grid_corrected_describe(benchmark::State& st) { run_describe(st, grid_corrected()); }
-void BM_brief_describe(benchmark::State& st) { run_describe(st, brief()); }
-void BM_brief_gaussian_describe(benchmark::State& st) { run_describe(st, brief_gaussian()); }
-void BM_grid_thesis_match(benchmark::State& st) { run_match(st, grid_thesis()); }
-void BM_grid_corrected_match(benchmark::State& st) { run_match(st, grid_corrected()); }
-void BM_brief_match(benchmark::State& st) { run_match(st, brief()); }
+/// The descriptors benchmarked chain by chain: BM_<name>_describe_and_match for each, and
+/// BM_<name>_describe, BM_<name>_match for those marked.
+struct Chain {
+    const char* name;
+    cv::Ptr<cv::Feature2D> (*make)();
+    bool describe;
+    bool match;
+};
+const Chain kChains[] = {{"grid_thesis", grid_thesis, true, true},
+                         {"grid_corrected", grid_corrected, true, true},
+                         {"brief", brief, true, true},
+                         {"brief_gaussian", brief_gaussian, true, false},
+                         {"freak", freak, false, false}};
+
+/// Registers the chains' benchmarks (kChains): describe and match, then describe alone, then
+/// match alone, in kChains' order, after those the BENCHMARK macros register.
+void register_chain_benchmarks() {
+    using Run = void (*)(benchmark::State&, const cv::Ptr<cv::Feature2D>&);
+    const struct {
+        const char* stage;
+        Run run;
+        bool Chain::*has;   ///< null: every chain
+    } stages[] = {{"describe_and_match", run_describe_and_match, nullptr},
+                  {"describe", run_describe, &Chain::describe},
+                  {"match", run_match, &Chain::match}};
+    for (const auto& k : stages)
+        for (const Chain& c : kChains) {
+            if (k.has && !(c.*k.has)) continue;
+            const std::string name = std::string("BM_") + c.name + "_" + k.stage;
+            benchmark::RegisterBenchmark(name.c_str(), [run = k.run, make = c.make](benchmark::State& st) { run(st, make()); })
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime();
+        }
+}
 
 /// Grid (thesis) + matching, BRIEF (box) + matching and BRIEF (Gaussian) + matching one after
 /// the other in every iteration, each timed (real and thread CPU time), so that a changing
@@ -184,19 +206,6 @@ void BM_brief_integral_only(benchmark::State& st) {
 BENCHMARK(BM_brief_integral_only)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_brief_smoothing_only)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-BENCHMARK(BM_grid_thesis_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_grid_corrected_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_brief_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_brief_gaussian_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_freak_describe_and_match)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_grid_thesis_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_grid_corrected_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_brief_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_brief_gaussian_describe)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_grid_thesis_match)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_grid_corrected_match)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_brief_match)->Unit(benchmark::kMillisecond)->UseRealTime();
-
 /// Keeps every benchmark's real time per iteration (the median over repetitions when
 /// --benchmark_repetitions is given) to print the ratios after the run.
 class RatioReporter : public benchmark::ConsoleReporter {
@@ -256,6 +265,7 @@ int main(int argc, char** argv) {
     }
     std::printf("pair: %s (%dx%d), keypoints %zu left, %zu right\n", g_pair.name.c_str(), g_pair.left.cols,
                 g_pair.left.rows, g_pair.kp_l.size(), g_pair.kp_r.size());
+    register_chain_benchmarks();
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     RatioReporter rep;

@@ -14,7 +14,9 @@
 // benchmarks report an error and skip.
 #include <benchmark/benchmark.h>
 
+#include <initializer_list>
 #include <optional>
+#include <string>
 
 #include <opencv2/core/utility.hpp>
 
@@ -180,26 +182,48 @@ void BM_stream_spec_01_cycled(benchmark::State& state) {
     report_per_frame(state, frames);
 }
 
+/// A peer of the benchmarks after corners: its name after the benchmark's and a slash, its
+/// descriptor, association and odometry residual.
+struct Peer {
+    const char* name;
+    landmarks::Descriptor descriptor;
+    slam::AssociationMethod method;
+    slam::OdometryResidual residual;
+};
+using AfterCorners = void (*)(benchmark::State&, landmarks::Descriptor, slam::AssociationMethod,
+                              slam::OdometryResidual);
+
+/// Registers `bench` once per peer as `<name>/<peer>`, `iterations` iterations each, in ms.
+void register_peers(const char* name, AfterCorners bench, std::initializer_list<Peer> peers, int iterations) {
+    for (const Peer& p : peers)
+        benchmark::RegisterBenchmark((std::string(name) + "/" + p.name).c_str(),
+                                     [bench, p](benchmark::State& st) { bench(st, p.descriptor, p.method, p.residual); })
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(iterations);
+}
+
 }  // namespace
 
 BENCHMARK(BM_synthetic_00)->Args({4541, 0})->Args({4541, 1})->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_stream_spec_01_cycled)->Arg(51)->Arg(510)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(BM_frame_after_corners, orb_jcbb, landmarks::Descriptor::orb, slam::AssociationMethod::Jcbb,
-                  slam::OdometryResidual::pixels)
-    ->Unit(benchmark::kMillisecond)->Iterations(2);
-BENCHMARK_CAPTURE(BM_frame_after_corners, grid_jcbb, landmarks::Descriptor::grid, slam::AssociationMethod::Jcbb,
-                  slam::OdometryResidual::pixels)
-    ->Unit(benchmark::kMillisecond)->Iterations(2);
-BENCHMARK_CAPTURE(BM_vo_and_filter, brief_jcbb, landmarks::Descriptor::brief, slam::AssociationMethod::Jcbb, slam::OdometryResidual::pixels)
-    ->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(BM_vo_and_filter, orb_jcbb, landmarks::Descriptor::orb, slam::AssociationMethod::Jcbb, slam::OdometryResidual::pixels)
-    ->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(BM_vo_and_filter, orb_jcbb_top_view, landmarks::Descriptor::orb, slam::AssociationMethod::Jcbb, slam::OdometryResidual::top_view)
-    ->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(BM_vo_and_filter, orb_nearest, landmarks::Descriptor::orb, slam::AssociationMethod::Nearest,
-                  slam::OdometryResidual::pixels)
-    ->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK_CAPTURE(BM_vo_and_filter, grid_jcbb, landmarks::Descriptor::grid, slam::AssociationMethod::Jcbb, slam::OdometryResidual::pixels)
-    ->Unit(benchmark::kMillisecond)->Iterations(3);
 
-BENCHMARK_MAIN();
+// The descriptor, association and residual peers, after the two streams above.
+int main(int argc, char** argv) {
+    using D = landmarks::Descriptor;
+    using A = slam::AssociationMethod;
+    using R = slam::OdometryResidual;
+    register_peers("BM_frame_after_corners", BM_frame_after_corners,
+                   {{"orb_jcbb", D::orb, A::Jcbb, R::pixels}, {"grid_jcbb", D::grid, A::Jcbb, R::pixels}}, 2);
+    register_peers("BM_vo_and_filter", BM_vo_and_filter,
+                   {{"brief_jcbb", D::brief, A::Jcbb, R::pixels},
+                    {"orb_jcbb", D::orb, A::Jcbb, R::pixels},
+                    {"orb_jcbb_top_view", D::orb, A::Jcbb, R::top_view},
+                    {"orb_nearest", D::orb, A::Nearest, R::pixels},
+                    {"grid_jcbb", D::grid, A::Jcbb, R::pixels}},
+                   3);
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

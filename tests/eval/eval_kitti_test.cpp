@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/frames/data_dir_holding.hpp"
 #include "eval/eval.hpp"
 #include "eval/evaluate.hpp"
 #include "io/frames/frames.hpp"
@@ -118,12 +119,8 @@ int main(int argc, char** argv) {
         for (const auto& [file, digest] : report_digests(argv[2])) std::printf("%s %s\n", file.c_str(), digest.c_str());
         return 0;
     }
-    const auto d = frames::data_dir("");
-    if (!d || !std::filesystem::is_directory(*d / "kitti/sequences/01/image_0")) {
-        std::printf("SKIPPED: no KITTI sequence 01 (set HARRIS_COSIM_DATA to a directory holding "
-                    "kitti/sequences/01; see the data README.md (../shared/data beside the repository))\n");
-        return 77;
-    }
+    const auto d = frames::test::data_dir_holding("kitti/sequences/01/image_0");
+    if (!d) return 77;
     g_kitti = *d / "kitti";
     return Catch::Session().run(argc, argv);
 }

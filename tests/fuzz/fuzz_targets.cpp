@@ -9,6 +9,7 @@
 #include "io/cluster/cluster.hpp"
 #include "io/frames/frames.hpp"
 #include "mapping/landmarks/landmarks.hpp"
+#include "tests/landmarks/kitti_calib_text.hpp"
 #include "model/harris/formats_json.hpp"
 #include "mutation/mutation.hpp"
 #include "mapping/slam/slam.hpp"
@@ -67,13 +68,7 @@ std::vector<Target> targets(const fs::path& src) {
                  }});
 
     // --- KITTI calib.txt (landmarks --dataset kitti, slam --landmarks-from stereo) --------
-    const std::string calib =
-        "P0: 7.188560000000e+02 0.000000000000e+00 6.071928000000e+02 0.000000000000e+00 0.000000000000e+00 "
-        "7.188560000000e+02 1.852157000000e+02 0.000000000000e+00 0.000000000000e+00 0.000000000000e+00 "
-        "1.000000000000e+00 0.000000000000e+00\n"
-        "P1: 7.188560000000e+02 0.000000000000e+00 6.071928000000e+02 -3.861448000000e+02 0.000000000000e+00 "
-        "7.188560000000e+02 1.852157000000e+02 0.000000000000e+00 0.000000000000e+00 0.000000000000e+00 "
-        "1.000000000000e+00 0.000000000000e+00\n"
+    const std::string calib = std::string(landmarks::test::kKitti00P0P1) +
         "P2: 1 0 0 0 0 1 0 0 0 0 1 0\nTr: 1 0 0 0 0 1 0 0 0 0 1 0\n";
     t.push_back({"kitti-calib", "KITTI sequences/NN/calib.txt", "calib.txt", {calib, "P0: 1 2 3\n"},
                  with(kTextTokens, {"P0:", "P1:", "P2:", "Tr:", "e+02", "e-300"}),

@@ -3,12 +3,10 @@
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
-#include <cstdio>
 #include <filesystem>
-#include <optional>
 
+#include "tests/frames/data_dir_holding.hpp"
 #include "mapping/landmarks/calib.hpp"
-#include "io/frames/frames.hpp"
 
 using namespace hc::landmarks;
 
@@ -30,18 +28,8 @@ TEST_CASE("KITTI 01's calib.txt gives fx 718.856 px and a 0.537 m baseline", "[c
 }
 
 int main(int argc, char** argv) {
-    std::optional<std::filesystem::path> d;
-    try {
-        d = hc::frames::data_dir("");
-    } catch (const hc::InputError& e) {
-        std::printf("SKIPPED: %s\n", e.what());
-        return 77;
-    }
-    if (!d || !std::filesystem::is_regular_file(*d / "kitti/sequences/01/calib.txt")) {
-        std::printf("SKIPPED: no kitti/sequences/01/calib.txt in the data directory (set HARRIS_COSIM_DATA; "
-                    "see the data README)\n");
-        return 77;
-    }
+    const auto d = hc::frames::test::data_dir_holding("kitti/sequences/01/calib.txt");
+    if (!d) return 77;
     g_calib = *d / "kitti/sequences/01/calib.txt";
     return Catch::Session().run(argc, argv);
 }

@@ -115,12 +115,23 @@ protected:
     bool hold_due() const { return cycle_ == 0 || cycle_ % kHoldEvery == kHoldEvery - 1; }
     int hold_kind() const { return static_cast<int>((cycle_ / kHoldEvery) % 2); }
 
+    /// A vector between its two writes, in a bench of a one-write-delay entity
+    /// (harris_response, threshold): its index and inputs.
+    struct Pending {
+        long index;
+        Vec inputs;
+    };
+
     Formats f_;
     long n_random_;
     Rng rng_;
     std::vector<Vec> extremes_;
     long taken_ = 0;
     long cycle_ = 0;
+    /// The values at and beside the ends of an input's range (signed_edges) that a bench's
+    /// extreme and random vectors pick from, for the benches that use them.
+    std::vector<std::int64_t> edges_;
+    std::optional<Pending> pending_;   ///< one-write-delay benches: the vector awaiting its second write
 };
 
 // ---- single-register stages: sobel_x, sobel_y, m_products, block_filter -----------------
@@ -238,7 +249,6 @@ private:
         const MProducts m = m_products(v[0], v[1], f_);
         return {m.a, m.b, m.c};
     }
-    std::vector<std::int64_t> edges_;
 };
 
 /// block_filter: nine IN_W coefficients -> one box sum with BF_DROP LSBs dropped.
@@ -269,7 +279,6 @@ private:
         return v;
     }
     Vec model(const Vec& v) const override { return {block_filter(matrix3(v), f_)}; }
-    std::vector<std::int64_t> edges_;
 };
 
 // ---- harris_response: two register steps ------------------------------------------------
@@ -320,11 +329,12 @@ public:
             en1 = pending_ ? 1 : 0;
             kind_ = pending_ ? "vector check: step 2, with the next vector's step 1" : "first step 1, en1 = '0'";
             if (pending_) {   // step 2 of the previous vector
-                expected_ = {{harris_response(pending_->terms, f_)}, pending_->index, pending_->inputs};
+                const Vec& p = pending_->inputs;
+                expected_ = {{harris_response(harris_response_terms(p[0], p[1], p[2], f_), f_)}, pending_->index, p};
                 completes_ = true;
             }
             if (got)          // step 1 of this one
-                pending_ = Pending{harris_response_terms(v[0], v[1], v[2], f_), index, v};
+                pending_ = Pending{index, v};
             else {
                 pending_.reset();
                 v = Vec(3, Word::sgn(0, f_.bf_w()));   // ignored: en0 = '0'
@@ -350,13 +360,6 @@ private:
         }
         return v;
     }
-    struct Pending {
-        ResponseTerms terms;
-        long index;
-        Vec inputs;
-    };
-    std::optional<Pending> pending_;
-    std::vector<std::int64_t> edges_;
 };
 
 // ---- threshold: one-write delay of r0 ---------------------------------------------------
@@ -442,12 +445,6 @@ private:
         }
         return {Word::sgn(rng_.pick(edges_), w), Word::sgn(rng_.pick(edges_), w)};
     }
-    struct Pending {
-        long index;
-        Vec inputs;
-    };
-    std::optional<Pending> pending_;
-    std::vector<std::int64_t> edges_;
 };
 
 // ---- local_maximum: combinational -------------------------------------------------------

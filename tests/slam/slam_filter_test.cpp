@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 
 #include <Eigen/Eigenvalues>
@@ -22,6 +23,25 @@ constexpr double tol = 1e-6;
 // A few poses and points in every quadrant, angles near ±π included.
 const std::vector<Pose> poses = {Pose(0, 0, 0), Pose(1.5, -2, 0.7), Pose(-3, 1, -2.9), Pose(2, 2, 3.1)};
 const std::vector<Vec2> points = {Vec2(3, 1), Vec2(-2, 4), Vec2(0.5, -3), Vec2(-4, -0.2)};
+
+/// A point function of a pose and its inverse (to_frame and from_frame, observe and
+/// inv_observe), each with its Jacobians by the pose and by the point: at every pose and
+/// point above, g(r, f(r, p)) = p and the four Jacobians equal finite differences; `angles`
+/// lists f's output components that are angles.
+using PosePointFn = Vec2 (*)(const Pose&, const Vec2&, Mat23*, Mat2*);
+void check_inverse_pair(PosePointFn f, PosePointFn g, std::initializer_list<int> angles) {
+    for (const auto& r : poses)
+        for (const auto& p : points) {
+            Mat23 Q_r, P_r;
+            Mat2 Q_p, P_q;
+            const Vec2 q = f(r, p, &Q_r, &Q_p);
+            CHECK((g(r, q, &P_r, &P_q) - p).norm() < 1e-12);
+            CHECK((Q_r - numeric_jacobian<2, 3>([&](const Pose& x) { return f(x, p, nullptr, nullptr); }, r, angles)).norm() < tol);
+            CHECK((Q_p - numeric_jacobian<2, 2>([&](const Vec2& x) { return f(r, x, nullptr, nullptr); }, p, angles)).norm() < tol);
+            CHECK((P_r - numeric_jacobian<2, 3>([&](const Pose& x) { return g(x, q, nullptr, nullptr); }, r)).norm() < tol);
+            CHECK((P_q - numeric_jacobian<2, 2>([&](const Vec2& x) { return g(r, x, nullptr, nullptr); }, q)).norm() < tol);
+        }
+}
 }  // namespace
 
 TEST_CASE("angles are wrapped into the interval from -pi excluded to pi included", "[slam]") {
@@ -35,17 +55,7 @@ TEST_CASE("angles are wrapped into the interval from -pi excluded to pi included
 }
 
 TEST_CASE("to_frame and from_frame Jacobians equal finite differences", "[slam]") {
-    for (const auto& F : poses)
-        for (const auto& p : points) {
-            Mat23 PF_f, PW_f;
-            Mat2 PF_p, PW_pf;
-            const Vec2 pf = to_frame(F, p, &PF_f, &PF_p);
-            CHECK((from_frame(F, pf, &PW_f, &PW_pf) - p).norm() < 1e-12);
-            CHECK((PF_f - numeric_jacobian<2, 3>([&](const Pose& x) { return to_frame(x, p); }, F)).norm() < tol);
-            CHECK((PF_p - numeric_jacobian<2, 2>([&](const Vec2& x) { return to_frame(F, x); }, p)).norm() < tol);
-            CHECK((PW_f - numeric_jacobian<2, 3>([&](const Pose& x) { return from_frame(x, pf); }, F)).norm() < tol);
-            CHECK((PW_pf - numeric_jacobian<2, 2>([&](const Vec2& x) { return from_frame(F, x); }, pf)).norm() < tol);
-        }
+    check_inverse_pair(to_frame, from_frame, {});
 }
 
 TEST_CASE("scan and inv_scan Jacobians equal finite differences and invert each other", "[slam]") {
@@ -85,17 +95,7 @@ TEST_CASE("move along an arc ends where the arc ends", "[slam]") {
 }
 
 TEST_CASE("observe and inv_observe Jacobians equal finite differences and invert each other", "[slam]") {
-    for (const auto& r : poses)
-        for (const auto& p : points) {
-            Mat23 Y_r, P_r;
-            Mat2 Y_p, P_y;
-            const Vec2 y = observe(r, p, &Y_r, &Y_p);
-            CHECK((inv_observe(r, y, &P_r, &P_y) - p).norm() < 1e-12);
-            CHECK((Y_r - numeric_jacobian<2, 3>([&](const Pose& x) { return observe(x, p); }, r, {1})).norm() < tol);
-            CHECK((Y_p - numeric_jacobian<2, 2>([&](const Vec2& x) { return observe(r, x); }, p, {1})).norm() < tol);
-            CHECK((P_r - numeric_jacobian<2, 3>([&](const Pose& x) { return inv_observe(x, y); }, r)).norm() < tol);
-            CHECK((P_y - numeric_jacobian<2, 2>([&](const Vec2& x) { return inv_observe(r, x); }, y)).norm() < tol);
-        }
+    check_inverse_pair(observe, inv_observe, {1});
 }
 
 TEST_CASE("the camera-to-range-bearing Jacobian equals finite differences and propagates the covariance", "[slam]") {

@@ -13,18 +13,15 @@
 #include <unistd.h>
 
 #include "tests/slam/numeric_jacobian.hpp"
+#include "tests/slam/temp_file.hpp"
 #include "mapping/slam/slam.hpp"
 
 using namespace hc::slam;
 using hc::slam::test::numeric_jacobian;
+using hc::slam::test::temp_file;
 namespace fs = std::filesystem;
 
 namespace {
-fs::path temp_file(const std::string& name, const std::string& text) {
-    const fs::path p = fs::temp_directory_path() / ("slam_test_" + std::to_string(::getpid()) + "_" + name);
-    std::ofstream(p) << text;
-    return p;
-}
 
 const Mat3 Q0 = Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal();   // a small motion covariance
 

@@ -6,21 +6,15 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
-#include <unistd.h>
-
+#include "tests/slam/temp_file.hpp"
 #include "mapping/slam/slam.hpp"
 
 using namespace hc::slam;
+using hc::slam::test::temp_file;
 namespace fs = std::filesystem;
 
 namespace {
-fs::path temp_file(const std::string& name, const std::string& text) {
-    const fs::path p = fs::temp_directory_path() / ("slam_trajectory_test_" + std::to_string(::getpid()) + "_" + name);
-    std::ofstream(p) << text;
-    return p;
-}
 
 Mat3 rot_x(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).toRotationMatrix(); }
 Mat3 rot_y(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).toRotationMatrix(); }
