@@ -4,12 +4,14 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
+#include <optional>
 #include <cstdio>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "model/driver/bus_loop.hpp"
 #include "model/harris/harris_top.hpp"
 
 namespace hc::eval {
@@ -54,16 +56,9 @@ double since(std::chrono::steady_clock::time_point t0) {
 
 SourceRun run_spec(const Stream& s, const spec::Options& o, int threads, const Image* before) {
     const auto t0 = std::chrono::steady_clock::now();
-    const spec::SpecModel m(o);
     std::vector<const Image*> ptrs;
     for (const auto& f : s.frames) ptrs.push_back(&f);
-    std::int64_t prev = m.reset_max();
-    if (before && o.max_from == spec::MaxFrom::previous) {   // as if `before` were the stream's first frame
-        spec::Response r;
-        m.response(*before, r);
-        prev = r.max;
-    }
-    auto fc = m.run(ptrs, prev, threads);
+    auto fc = spec::SpecStream(o, before).run(ptrs, threads);
     SourceRun r;
     for (auto& f : fc) {
         r.masks.push_back(std::move(f.mask));
@@ -277,6 +272,74 @@ std::string end_digest(const CycleSpan& span, const HarrisTop& top, const HostDr
     return chain_digest(c);
 }
 
+/// What a cycle run does on each write and read of its span: the positions of the recent
+/// writes, the frames handed on, the windows mixing two frames, find-max's publications,
+/// each thresholded window's threshold, the corners read back, the progress line.
+struct CycleHooks : BusHooks {
+    const CycleSpan& span;
+    const Geometry& g;
+    const HarrisTop& top;
+    const HostDriver& drv;
+    WriteRing& ring;
+    OpenFrames& open;
+    CycleCounts& r;
+    const std::function<void(CycleFrame&&)>& on_frame;
+    bool progress;
+    std::chrono::steady_clock::time_point t0;
+    // the threshold the design applies (it follows find-max's published maximum) and the
+    // period counter, as they were before the write in hand
+    std::int64_t thr_now;
+    long count_before;
+    std::int64_t thr_before = 0;
+    long last_report = 0;
+    int body_frame = -1;
+    bool more() const { return span.end_write == 0 || top.writes() < span.end_write; }
+    bool before(const BusEvent& ev) {
+        ring.push(top.writes() + 1, ev.pos);   // this write's number
+        const int fr = ev.pos.frame;
+        if (!ev.pos.tail && fr != body_frame) {   // a frame's body starts
+            body_frame = fr;
+            open.hand_on_below(fr - 1, on_frame);
+        }
+        thr_before = thr_now;
+        // a window whose response enters find-max on this write, mixing two frames: its
+        // newest column is one of a frame's first 6 columns of its first row (the 6 older
+        // columns of the 7x7 window come from the previous frame's last row)
+        if (top.t() & (1U << 4)) {
+            const WindowTag wt = top.tags().response;
+            if (wt.valid()) {
+                const WritePos& p = ring.pos_of(wt.write);
+                if (p.frame > 0 && p.i == 3 && p.j < 6) ++r.mixed_windows;
+            }
+        }
+        return true;
+    }
+    void after(const BusEvent& ev) {
+        // a publication: the period counter wrapped to 1 on this write
+        const long count = top.find_max_count();
+        const bool published = count == 1 && count_before != 1;
+        count_before = count;
+        if (count == 1) thr_now = top.thr().value();   // the maximum changes only where the counter is 1
+        if (published) open.publication(r, ev.pos.frame, top.find_max().max.value());
+        // the window thresholded on this write: remember its threshold by image position
+        const WindowTag th = top.tags().thresholded;
+        if (th.valid()) {
+            const Corner c = drv.write_centre(ring.pos_of(th.write), th.quadrant);
+            if (c.x >= 0 && c.y >= 0 && c.x < g.width && c.y < g.height)
+                open.threshold(c, g.width, thr_before);
+        }
+        if (progress && top.writes() - last_report >= 2'000'000) {
+            last_report = top.writes();
+            std::fprintf(stderr, "\r  cycle model: frame %d/%d, %.0f%% of writes, %.0f s", ev.pos.frame + 1,
+                         span.frames_total, 100.0 * top.writes() / drv.total_writes(), since(t0));
+        }
+    }
+    void read(const BusEvent&, std::uint32_t, const std::vector<Corner>& corners) {
+        ++r.reads;
+        for (const Corner& c : corners) open.slot(c.frame, "a corner").mask[static_cast<size_t>(c.y) * g.width + c.x] = 1;
+    }
+};
+
 }  // namespace
 
 CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f, const CycleSpan& span, bool progress,
@@ -294,58 +357,9 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
     const long begin = span.start ? span.start->writes : 0;
     WriteRing ring(begin, span.start);
     OpenFrames open(span, npix);
-    std::vector<Corner> corners;
-    BusEvent ev;
-    long last_report = 0;
-    int body_frame = -1;
-    // the threshold the design applies (it follows find-max's published maximum) and the
-    // period counter, as they were before the write in hand
-    std::int64_t thr_now = top.thr().value();
-    long count_before = top.find_max_count();
-    while ((span.end_write == 0 || top.writes() < span.end_write) && feed.next(ev)) {
-        ring.push(top.writes() + 1, ev.pos);   // this write's number
-        const int fr = ev.pos.frame;
-        if (!ev.pos.tail && fr != body_frame) {   // a frame's body starts
-            body_frame = fr;
-            open.hand_on_below(fr - 1, on_frame);
-        }
-        const std::int64_t thr_before = thr_now;
-        // a window whose response enters find-max on this write, mixing two frames: its
-        // newest column is one of a frame's first 6 columns of its first row (the 6 older
-        // columns of the 7x7 window come from the previous frame's last row)
-        if (top.t() & (1U << 4)) {
-            const WindowTag wt = top.tags().response;
-            if (wt.valid()) {
-                const WritePos& p = ring.pos_of(wt.write);
-                if (p.frame > 0 && p.i == 3 && p.j < 6) ++r.mixed_windows;
-            }
-        }
-        top.write(ev.data);
-        // a publication: the period counter wrapped to 1 on this write
-        const long count = top.find_max_count();
-        const bool published = count == 1 && count_before != 1;
-        count_before = count;
-        if (count == 1) thr_now = top.thr().value();   // the maximum changes only where the counter is 1
-        if (published) open.publication(r, fr, top.find_max().max.value());
-        // the window thresholded on this write: remember its threshold by image position
-        const WindowTag th = top.tags().thresholded;
-        if (th.valid()) {
-            const Corner c = drv.write_centre(ring.pos_of(th.write), th.quadrant);
-            if (c.x >= 0 && c.y >= 0 && c.x < g.width && c.y < g.height)
-                open.threshold(c, g.width, thr_before);
-        }
-        if (ev.read) {
-            ++r.reads;
-            corners.clear();
-            drv.decode(*ev.read, top.corner(), corners);
-            for (const Corner& c : corners) open.slot(c.frame, "a corner").mask[static_cast<size_t>(c.y) * g.width + c.x] = 1;
-        }
-        if (progress && top.writes() - last_report >= 2'000'000) {
-            last_report = top.writes();
-            std::fprintf(stderr, "\r  cycle model: frame %d/%d, %.0f%% of writes, %.0f s", fr + 1, span.frames_total,
-                         100.0 * top.writes() / drv.total_writes(), since(t0));
-        }
-    }
+    CycleHooks hooks{{}, span, g, top, drv, ring, open, r, on_frame, progress, t0, top.thr().value(), top.find_max_count()};
+    BusLoop loop(feed, top);
+    loop.run(hooks);
     if (progress) std::fprintf(stderr, "\n");
     r.end_digest = end_digest(span, top, drv, ring);
     open.hand_on_below(span.last, on_frame);
@@ -355,6 +369,44 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
 }
 
 namespace {
+
+/// A run up to a frame's body: the checkpoint there, the recent writes' positions and, after
+/// `margin` writes, find-max's publications.
+struct CheckpointHooks : BusHooks {
+    const HostDriver& drv;
+    const HarrisTop& top;
+    std::deque<WritePos>& recent;
+    int to;
+    long begin, margin;
+    long* publications;
+    DriverState state_before{};
+    long count_before = 0;
+    std::optional<CycleCheckpoint> at;
+    bool more() {
+        state_before = drv.state();
+        return true;
+    }
+    bool before(const BusEvent& ev) {
+        if (ev.pos.frame == to && !ev.pos.tail) {
+            CycleCheckpoint c;
+            c.frame = to;
+            c.model = top.save_state();
+            c.driver = state_before;
+            c.writes = top.writes();
+            c.recent.assign(recent.begin(), recent.end());
+            at = std::move(c);
+            return false;
+        }
+        count_before = top.find_max().count;
+        return true;
+    }
+    void after(const BusEvent& ev) {
+        if (publications && top.writes() - begin > margin && top.find_max().count == 1 && count_before != 1)
+            ++*publications;
+        recent.push_back(ev.pos);
+        if (recent.size() > kRecentWrites) recent.pop_front();
+    }
+};
 
 /// The model from `from` (rebased to `rebase` = {writes, count} when given) up to frame
 /// `to`'s body; counts find-max publications after the first `margin` writes.
@@ -371,26 +423,11 @@ CycleCheckpoint run_to(const Stream& s, const Formats& f, int offset, int frames
     const long begin = top.writes();
     std::deque<WritePos> recent;
     if (from) recent.assign(from->recent.begin(), from->recent.end());
-    BusEvent ev;
-    for (;;) {
-        const DriverState before = drv.state();
-        if (!drv.next(ev)) throw InternalError("cycle checkpoint: the stream ended before frame " + std::to_string(to));
-        if (ev.pos.frame == to && !ev.pos.tail) {
-            CycleCheckpoint c;
-            c.frame = to;
-            c.model = top.save_state();
-            c.driver = before;
-            c.writes = top.writes();
-            c.recent.assign(recent.begin(), recent.end());
-            return c;
-        }
-        const long count_before = top.find_max().count;
-        top.write(ev.data);
-        if (publications && top.writes() - begin > margin && top.find_max().count == 1 && count_before != 1)
-            ++*publications;
-        recent.push_back(ev.pos);
-        if (recent.size() > kRecentWrites) recent.pop_front();
-    }
+    CheckpointHooks hooks{{}, drv, top, recent, to, begin, margin, publications};
+    BusLoop loop(drv, top);
+    loop.run(hooks);
+    if (!hooks.at) throw InternalError("cycle checkpoint: the stream ended before frame " + std::to_string(to));
+    return std::move(*hooks.at);
 }
 
 HarrisTop model_of(const CycleCheckpoint& c, const Geometry& g, const Formats& f) {

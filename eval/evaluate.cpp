@@ -128,25 +128,6 @@ std::vector<AblationVariant> ablation_variants() {
 
 namespace {
 
-/// The spec model over a stream in order, a batch at a time: the maximum carried from one
-/// batch to the next as SpecModel::run carries it within one.
-struct SpecStream {
-    spec::SpecModel m;
-    std::int64_t prev;
-    /// `before`: the frame before the stream, for its maximum only (when the options take
-    /// the previous frame's maximum), else the reset value
-    SpecStream(const spec::Options& o, const Image* before) : m(o), prev(m.reset_max()) {
-        if (before && o.max_from == spec::MaxFrom::previous) {
-            spec::Response r;
-            m.response(*before, r);
-            prev = r.max;
-        }
-    }
-    std::vector<spec::FrameCorners> run(const std::vector<const Image*>& frames, tbb::task_arena& arena) {
-        return m.run(frames, prev, arena);
-    }
-};
-
 /// The scoring of a part a batch of frames at a time, in frame order: the reference, the
 /// spec model (the spec source, the ablation, the deviations), the rows and the counts.
 /// Holds only the batch's frames and masks, and one maximum per spec model run.
@@ -228,7 +209,7 @@ private:
                     const std::vector<spec::FrameCorners>& sp, const Scored& scored) {
         const Geometry g{p_.width, p_.height};
         const int W = g.width, H = g.height;
-        const spec::SpecModel& sm = spec_[0].m;
+        const spec::SpecModel& sm = spec_[0].model();
         const int x_lost = g.width / 2 - 1, x_lost2 = x_lost + g.dj();          // latched under load
         const int x_hw_max = g.width / 2 - 1 + g.dj(), y_hw_max = g.height / 2 - 1 + g.di();
         std::vector<std::vector<std::uint8_t>> at_hw_thr(static_cast<std::size_t>(n));
@@ -273,7 +254,7 @@ private:
     Part& p_;
     frames::FrameFeed& feed_;
     tbb::task_arena arena_;
-    std::vector<SpecStream> spec_;          ///< [0]: the thesis's options, then the variants'
+    std::vector<spec::SpecStream> spec_;          ///< [0]: the thesis's options, then the variants'
     std::vector<std::size_t> variant_run_;  ///< per ablation variant, its run in spec_
     double spec_seconds_ = 0;
 };

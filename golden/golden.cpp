@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "model/driver/bus_loop.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/harris/harris_top.hpp"
 #include "model/harris/observation.hpp"
@@ -41,19 +42,18 @@ StreamResult run_stream(const util::RegressionStream& s, bool with_stages) {
         for (const auto& f : obs_layout(fm)) stages << " " << f.name << "[" << f.elements() << "]";
         stages << "\n";
     }
-    BusEvent ev;
-    long last_max = top.find_max().max.value();
-    maxima << 0 << ',' << last_max << '\n';
-    while (drv.next(ev)) {
-        top.write(ev.data);
-        if (ev.read)
-            reads << top.writes() << ',' << ev.read->frame << ',' << ev.read->x << ',' << ev.read->y << ','
-                  << top.corner() << '\n';
-        if (top.find_max().max.value() != last_max) {
-            last_max = top.find_max().max.value();
-            maxima << top.writes() << ',' << last_max << '\n';
-        }
-        if (with_stages) {
+    struct Hooks : BusHooks {
+        const HarrisTop& top;
+        const Formats& fm;
+        bool with_stages;
+        std::ostringstream &reads, &maxima, &stages;
+        long last_max;
+        void after(const BusEvent&) {
+            if (top.find_max().max.value() != last_max) {
+                last_max = top.find_max().max.value();
+                maxima << top.writes() << ',' << last_max << '\n';
+            }
+            if (!with_stages) return;
             const FlatObservation fo = flatten(top.observe(), fm);
             stages << top.writes();
             char buf[24];
@@ -63,7 +63,13 @@ StreamResult run_stream(const util::RegressionStream& s, bool with_stages) {
             }
             stages << '\n';
         }
-    }
+        void read(const BusEvent& ev, std::uint32_t value, const std::vector<Corner>&) {
+            reads << top.writes() << ',' << ev.read->frame << ',' << ev.read->x << ',' << ev.read->y << ',' << value << '\n';
+        }
+    } hooks{{}, top, fm, with_stages, reads, maxima, stages, top.find_max().max.value()};
+    maxima << 0 << ',' << hooks.last_max << '\n';
+    BusLoop loop(drv, top);
+    loop.run(hooks);
     return {reads.str(), maxima.str(), stages.str()};
 }
 

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "model/driver/bus_loop.hpp"
 #include "model/harris/harris_top.hpp"
 
 namespace hc::vl {
@@ -89,12 +90,10 @@ Mismatch read_mismatch(const HostDriver& drv, const ReadPos& r, std::uint32_t ex
 
 // A corner read counted in the run's and its frame's figures, decoded, and passed to the
 // options' read hooks.
-void count_read(RunResult& res, FrameStats& fs, const HostDriver& drv, const ReadPos& r, std::uint32_t actual,
-                std::vector<Corner>& corners, const RunOptions& opt) {
+void count_read(RunResult& res, FrameStats& fs, const ReadPos& r, std::uint32_t actual,
+                const std::vector<Corner>& corners, const RunOptions& opt) {
     ++res.reads;
     ++fs.reads;
-    corners.clear();
-    drv.decode(r, actual, corners);
     res.corners += static_cast<long>(corners.size());
     fs.corners += static_cast<long>(corners.size());
     if (opt.on_read) opt.on_read(r, actual);
@@ -198,27 +197,47 @@ RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut
                         names, opt);
 }
 
-RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut, int count,
-                       const FeedDriver::FrameAt& frame, const std::vector<std::string>& names,
-                       const RunOptions& opt) {
-    RunResult res;
-    FeedDriver feed(g, count, frame);
-    const HostDriver& drv = feed.driver();
-    HarrisTop model(g, f);
-    dut.reset();
-    const auto layout = obs_layout(f);
-    std::vector<ObsSlot> slots;
-    if (opt.compare_obs) slots = obs_slots(f, dut.obs_bits());
+namespace {
 
-    res.frames = frame_stats(count, names);
-    std::vector<WritePos> ring(kRing);
-    std::vector<Corner> corners;
-    const auto t_start = Clock::now();
-    auto t_frame = t_start;
-    Clock::duration t_dut{}, t_model{};
+/// The two designs of a lock-step run: each write goes to the cycle model, then to the
+/// netlist, each timed; the corner bits read back are the netlist's.
+struct LockstepPair {
+    HarrisTop& model;
+    VerilatedDesign& dut;
+    Clock::duration t_model{}, t_dut{};
+    void write(std::uint32_t data) {
+        const auto t0 = Clock::now();
+        model.write(data);
+        const auto t1 = Clock::now();
+        dut.write(data);
+        t_model += t1 - t0;
+        t_dut += Clock::now() - t1;
+    }
+    std::uint32_t corner() {
+        const auto t0 = Clock::now();
+        const std::uint32_t v = dut.corner();
+        t_dut += Clock::now() - t0;
+        return v;
+    }
+};
+
+/// A lock-step run's writes and reads: the per-frame counts (a frame handed to `on_frame`
+/// once the next frame's body starts), each read compared with the model's, each write's
+/// observed registers when asked; a mismatch stops the run unless `keep_going`.
+struct LockstepHooks : BusHooks {
+    RunResult& res;
+    const HostDriver& drv;
+    const HarrisTop& model;
+    const Formats& f;
+    VerilatedDesign& dut;
+    const RunOptions& opt;
+    std::vector<ObsField> layout;
+    std::vector<ObsSlot> slots;
+    std::vector<WritePos> ring;
+    Clock::time_point t_frame;
     int open_frame = 0;   // lowest frame whose reads are not all done
 
-    auto finish_frames_below = [&](int limit) {
+    void finish_frames_below(int limit) {
         while (open_frame < limit) {
             const auto now = Clock::now();
             res.frames[static_cast<std::size_t>(open_frame)].seconds = secs(now - t_frame);
@@ -226,53 +245,58 @@ RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut
             if (opt.on_frame) opt.on_frame(res.frames[static_cast<std::size_t>(open_frame)]);
             ++open_frame;
         }
-    };
-
-    BusEvent ev;
-    while (feed.next(ev)) {
+    }
+    bool more() const { return !res.stopped_early; }
+    bool before(const BusEvent& ev) {
         // a frame is complete once the next frame's body (not its preload) starts
         if (!ev.pos.tail) finish_frames_below(ev.pos.frame);
         ++res.writes;
         ++res.frames[static_cast<std::size_t>(ev.pos.frame)].writes;
         ring[static_cast<std::size_t>(res.writes % kRing)] = ev.pos;
-
-        const auto t0 = Clock::now();
-        model.write(ev.data);
-        const auto t1 = Clock::now();
-        dut.write(ev.data);
-        std::uint32_t actual = 0;
-        if (ev.read) actual = dut.corner();
-        const auto t2 = Clock::now();
-        t_model += t1 - t0;
-        t_dut += t2 - t1;
-
-        if (ev.read) {
-            const ReadPos& r = *ev.read;
-            const std::uint32_t expected = model.corner();
-            FrameStats& fs = res.frames[static_cast<std::size_t>(r.frame)];
-            count_read(res, fs, drv, r, actual, corners, opt);
-            if (actual != expected) {
-                ++fs.mismatches;
-                ++res.read_mismatches;
-                record(res, read_mismatch(drv, r, expected, actual, res.writes), opt.max_reported);
-                res.stopped_early = !opt.keep_going;
-                if (res.stopped_early) break;
-            }
-        }
-
-        if (opt.compare_obs) {
-            if (std::optional<Mismatch> m = first_obs_mismatch(model, f, layout, slots, dut.obs(), drv, ring, ev.pos, res.writes)) {
-                record(res, std::move(*m), opt.max_reported);
-                ++res.frames[static_cast<std::size_t>(ev.pos.frame)].mismatches;
-                res.stopped_early = !opt.keep_going;
-                if (res.stopped_early) break;
-            }
+        return true;
+    }
+    void read(const BusEvent& ev, std::uint32_t actual, const std::vector<Corner>& corners) {
+        const ReadPos& r = *ev.read;
+        const std::uint32_t expected = model.corner();
+        FrameStats& fs = res.frames[static_cast<std::size_t>(r.frame)];
+        count_read(res, fs, r, actual, corners, opt);
+        if (actual != expected) {
+            ++fs.mismatches;
+            ++res.read_mismatches;
+            record(res, read_mismatch(drv, r, expected, actual, res.writes), opt.max_reported);
+            res.stopped_early = !opt.keep_going;
         }
     }
-    if (!res.stopped_early) finish_frames_below(count);
+    void after(const BusEvent& ev) {
+        if (res.stopped_early || !opt.compare_obs) return;
+        if (std::optional<Mismatch> m = first_obs_mismatch(model, f, layout, slots, dut.obs(), drv, ring, ev.pos, res.writes)) {
+            record(res, std::move(*m), opt.max_reported);
+            ++res.frames[static_cast<std::size_t>(ev.pos.frame)].mismatches;
+            res.stopped_early = !opt.keep_going;
+        }
+    }
+};
+
+}  // namespace
+
+RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut, int count,
+                       const FeedDriver::FrameAt& frame, const std::vector<std::string>& names,
+                       const RunOptions& opt) {
+    RunResult res;
+    FeedDriver feed(g, count, frame);
+    HarrisTop model(g, f);
+    dut.reset();
+    res.frames = frame_stats(count, names);
+    const auto t_start = Clock::now();
+    LockstepHooks hooks{{}, res, feed.driver(), model, f, dut, opt, obs_layout(f), {}, std::vector<WritePos>(kRing), t_start};
+    if (opt.compare_obs) hooks.slots = obs_slots(f, dut.obs_bits());
+    LockstepPair pair{model, dut};
+    BusLoop loop(feed, pair);
+    loop.run(hooks);
+    if (!res.stopped_early) hooks.finish_frames_below(count);
     res.seconds = secs(Clock::now() - t_start);
-    res.verilator_seconds = secs(t_dut);
-    res.model_seconds = secs(t_model);
+    res.verilator_seconds = secs(pair.t_dut);
+    res.model_seconds = secs(pair.t_model);
     return res;
 }
 

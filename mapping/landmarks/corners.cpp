@@ -14,6 +14,7 @@
 
 #include <opencv2/features2d.hpp>
 
+#include "model/driver/bus_loop.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/harris/harris_top.hpp"
 #include "cosim/verilator/gate.hpp"
@@ -169,6 +170,17 @@ std::unique_ptr<vl::VerilatedDesign> rtl_design(const Geometry& g, const Formats
 
 }  // namespace
 
+/// The design a cycle or rtl stream writes: the cycle model or the netlist.
+struct StreamDevice {
+    HarrisTop* top = nullptr;
+    vl::VerilatedDesign* dut = nullptr;
+    void write(std::uint32_t data) {
+        if (top) top->write(data);
+        else dut->write(data);
+    }
+    std::uint32_t corner() const { return top ? top->corner() : dut->corner(); }
+};
+
 /// The stream: for spec, the model run pair by pair with the previous frame's maximum carried;
 /// for cycle and rtl, one host-driver stream (seed pair, the pairs, flush pair: stream frames
 /// 0-1, 2k+2 and 2k+3 for pair k, then 2n+2 and 2n+3) whose frames are loaded as it reaches
@@ -182,15 +194,14 @@ struct PairCornerStream::Impl {
     int next_pair = 0;
     std::optional<StereoImages> first;          // pair 0: the seed, and the stream's size
     std::map<int, StereoImages> held;           // cycle/rtl: pairs loaded and not yet passed on
-    std::unique_ptr<spec::SpecModel> spec;
+    std::unique_ptr<spec::SpecStream> spec;
     std::unique_ptr<tbb::task_arena> arena;
-    std::int64_t prev_max = 0;
     std::unique_ptr<HarrisTop> top;
     std::unique_ptr<vl::VerilatedDesign> dut;
     std::unique_ptr<FeedDriver> feed;
     std::map<int, std::vector<std::uint8_t>> masks;   // cycle/rtl: stream frame -> corners so far
-    std::optional<BusEvent> pending;                  // the event that completed the last pair
-    std::vector<Corner> decoded;
+    StreamDevice device;
+    std::unique_ptr<BusLoop<FeedDriver, StreamDevice>> loop;   // holds the event that completed the last pair
     int last_frame = -1;
     std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
 
@@ -213,11 +224,10 @@ struct PairCornerStream::Impl {
         if (d == Detector::spec) {
             spec::Options so;
             so.formats = o.formats;
-            spec = std::make_unique<spec::SpecModel>(so);
+            spec = std::make_unique<spec::SpecStream>(so);
             arena = std::make_unique<tbb::task_arena>(tbb::task_arena::automatic);
-            prev_max = spec->reset_max();
             const Image l = to_image(first->left), r = to_image(first->right);
-            spec->run({&l, &r}, prev_max, *arena);   // the seed
+            spec->run({&l, &r}, *arena);   // the seed
             return;
         }
         const int total = 2 * n + 4;
@@ -229,43 +239,39 @@ struct PairCornerStream::Impl {
                 const StereoImages& p = pair(k);
                 return std::make_shared<const Image>(to_image(f % 2 ? p.right : p.left));
             });
+            device = {top.get(), dut.get()};
+            loop = std::make_unique<BusLoop<FeedDriver, StreamDevice>>(*feed, device);
         } catch (const std::invalid_argument& e) {   // the host driver's geometry checks
             throw InputError("corner source " + detector_name(d) + " on '" + first->name + "': " + e.what());
         }
     }
-    /// Streams until stream frame `last` is complete (or the stream ends).
-    void stream_through(int last) {
-        const int w = first->left.cols;
-        const size_t npix = static_cast<size_t>(w) * static_cast<size_t>(first->left.rows);
-        BusEvent ev;
-        while (true) {
-            if (pending) {
-                ev = *pending;
-                pending.reset();
-            } else if (!feed->next(ev)) {
-                return;
-            }
-            if (!ev.pos.tail && ev.pos.frame > last) {
-                pending = ev;
-                return;
-            }
-            if (top) top->write(ev.data);
-            else dut->write(ev.data);
-            if (ev.read) {
-                decoded.clear();
-                feed->driver().decode(*ev.read, top ? top->corner() : dut->corner(), decoded);
-                for (const Corner& c : decoded) {
-                    auto& m = masks[c.frame];
-                    if (m.empty()) m.assign(npix, 0);
-                    m[static_cast<size_t>(c.y) * static_cast<size_t>(w) + static_cast<size_t>(c.x)] = 1;
-                }
-            }
-            if (o.progress && ev.pos.frame != last_frame) {
-                last_frame = ev.pos.frame;
-                std::fprintf(stderr, "landmarks: %s frame %d/%d, %.0f s\n", detector_name(d).c_str(), last_frame + 1,
-                             2 * n + 4, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    /// A cycle or rtl stream's writes and reads: the corners into their frames' masks, a
+    /// progress line per frame; the loop stops before the first write of a frame after `last`.
+    struct StreamHooks : BusHooks {
+        Impl& s;
+        int last;
+        bool before(const BusEvent& ev) const { return ev.pos.tail || ev.pos.frame <= last; }
+        void after(const BusEvent& ev) {
+            if (s.o.progress && ev.pos.frame != s.last_frame) {
+                s.last_frame = ev.pos.frame;
+                std::fprintf(stderr, "landmarks: %s frame %d/%d, %.0f s\n", detector_name(s.d).c_str(), s.last_frame + 1,
+                             2 * s.n + 4, std::chrono::duration<double>(std::chrono::steady_clock::now() - s.t0).count());
             }
         }
+        void read(const BusEvent&, std::uint32_t, const std::vector<Corner>& corners) {
+            const size_t w = static_cast<size_t>(s.first->left.cols);
+            const size_t npix = w * static_cast<size_t>(s.first->left.rows);
+            for (const Corner& c : corners) {
+                auto& m = s.masks[c.frame];
+                if (m.empty()) m.assign(npix, 0);
+                m[static_cast<size_t>(c.y) * w + static_cast<size_t>(c.x)] = 1;
+            }
+        }
+    };
+    /// Streams until stream frame `last` is complete (or the stream ends).
+    void stream_through(int last) {
+        StreamHooks h{{}, *this, last};
+        loop->run(h);
     }
     std::vector<cv::KeyPoint> take_mask(int frame, int w, int id) {
         auto it = masks.find(frame);
@@ -304,7 +310,7 @@ bool PairCornerStream::next(StereoImages& images, PairKeypoints& kp) {
         if (s.spec) {
             images = k == 0 ? *s.first : s.load(k);
             const Image l = to_image(images.left), r = to_image(images.right);
-            const std::vector<spec::FrameCorners> fc = s.spec->run({&l, &r}, s.prev_max, *s.arena);
+            const std::vector<spec::FrameCorners> fc = s.spec->run({&l, &r}, *s.arena);
             kp.left.points = mask_keypoints(fc[0].mask, images.left.cols, s.o.keypoint_size, kp.left.frame);
             kp.right.points = mask_keypoints(fc[1].mask, images.left.cols, s.o.keypoint_size, kp.right.frame);
         } else {

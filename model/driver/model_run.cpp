@@ -5,6 +5,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "model/driver/bus_loop.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/harris/harris_top.hpp"
 
@@ -22,21 +23,21 @@ ModelRun run_cycle_model(const std::vector<Image>& frames, const Formats& f, boo
     run.corners_per_frame.assign(frames.size(), 0);
     std::ostringstream reads;
     if (record_reads) reads << "write,frame,x,y,value\n";
-    std::vector<Corner> cs;
-    BusEvent ev;
-    const auto t0 = std::chrono::steady_clock::now();
-    while (drv.next(ev)) {
-        top.write(ev.data);
-        if (ev.read) {
+    struct Hooks : BusHooks {
+        ModelRun& run;
+        const HarrisTop& top;
+        std::ostringstream* reads;   // null unless every read is listed
+        void read(const BusEvent& ev, std::uint32_t value, const std::vector<Corner>& cs) {
             ++run.reads;
-            cs.clear();
-            drv.decode(*ev.read, top.corner(), cs);
             run.corners_per_frame[ev.read->frame] += static_cast<long>(cs.size());
-            if (record_reads)
-                reads << top.writes() << ',' << ev.read->frame << ',' << ev.read->x << ',' << ev.read->y << ','
-                      << top.corner() << '\n';
+            if (reads)
+                *reads << top.writes() << ',' << ev.read->frame << ',' << ev.read->x << ',' << ev.read->y << ',' << value
+                       << '\n';
         }
-    }
+    } hooks{{}, run, top, record_reads ? &reads : nullptr};
+    const auto t0 = std::chrono::steady_clock::now();
+    BusLoop loop(drv, top);
+    loop.run(hooks);
     run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     run.writes = top.writes();
     run.reads_csv = reads.str();

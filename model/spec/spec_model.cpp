@@ -386,4 +386,20 @@ std::vector<FrameCorners> SpecModel::run(const std::vector<const Image*>& frames
     return out;
 }
 
+SpecStream::SpecStream(const Options& o, const Image* before) : m_(o), prev_(m_.reset_max()) {
+    if (before && o.max_from == MaxFrom::previous) {
+        Response r;
+        m_.response(*before, r);
+        prev_ = r.max;
+    }
+}
+
+std::vector<FrameCorners> SpecStream::run(const std::vector<const Image*>& frames, tbb::task_arena& arena) {
+    return m_.run(frames, prev_, arena);
+}
+
+std::vector<FrameCorners> SpecStream::run(const std::vector<const Image*>& frames, int threads) {
+    return m_.run(frames, prev_, threads);
+}
+
 }  // namespace hc::spec

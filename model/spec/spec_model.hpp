@@ -102,6 +102,25 @@ private:
     Options o_;
 };
 
+/// The spec model over a stream fed in order, a batch of frames at a time (one frame or
+/// many): the maximum carried from one batch to the next as SpecModel::run carries it within
+/// one, so each frame's threshold comes from the frame before it, whatever the batches.
+class SpecStream {
+public:
+    /// `before`: the frame before the stream, for its maximum only (when the options take
+    /// the previous frame's maximum); without it the stream starts from the reset value.
+    explicit SpecStream(const Options& o = {}, const Image* before = nullptr);
+    /// The next frames' corners (responses in parallel in `arena`).
+    std::vector<FrameCorners> run(const std::vector<const Image*>& frames, tbb::task_arena& arena);
+    /// The same on `threads` threads (<= 0: all cores).
+    std::vector<FrameCorners> run(const std::vector<const Image*>& frames, int threads = 0);
+    const SpecModel& model() const { return m_; }
+
+private:
+    SpecModel m_;
+    std::int64_t prev_;
+};
+
 /// Number of corners in a mask.
 long count_corners(const std::vector<std::uint8_t>& mask);
 
