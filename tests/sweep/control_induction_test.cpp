@@ -6,9 +6,12 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
+#include "model/util/errors.hpp"
 #include "model/util/util.hpp"
 #include "sweep/control_induction.hpp"
+#include "sweep/ranges_command.hpp"
 #include "tests/sweep/mutated_rtl.hpp"
 
 using namespace hc;
@@ -52,4 +55,26 @@ TEST_CASE("control induction: more distinct control states than the limit is ope
     CHECK(p.verdict == EqVerdict::open);
     CHECK(p.detail == "more than 10 distinct control states from reset");
     CHECK(p.queries == 0);
+}
+
+TEST_CASE("ranges --control-induction: the command reports each size's verdict in its JSON, and takes --rtl without --stages",
+          "[control-induction]") {
+    const util::ScratchDir dir;
+    RangesCommand c;
+    c.no_netlist = true;
+    c.control_induction = (dir.path() / "ci").string();
+    c.json = (dir.path() / "ranges.json").string();
+    c.out = (dir.path() / "ranges.md").string();
+    c.rtl = mutated_rtl(dir.path(), "load_control.vhd", "FILL       : positive := 49;", "FILL       : positive := 48;").string();
+    run_ranges_command(c);
+    const nlohmann::json j = nlohmann::json::parse(util::read_file(c.json));
+    const nlohmann::json& ci = j.at(0).at("control_induction").at(0);
+    CHECK(ci.at("size") == "10x8");
+    CHECK(ci.at("verdict") == "counterexample");
+    CHECK(ci.at("detail").get<std::string>().rfind("write 47: the netlist's next lc.load", 0) == 0);
+    CHECK(fs::is_regular_file(dir.path() / "ci" / "thesis" / "10x8" / "query.smt2"));
+    CHECK(util::read_file(c.out).find("## Control registers from reset: thesis") != std::string::npos);
+
+    c.control_sizes = {"8x8"};   // below the smallest width
+    CHECK_THROWS_AS(run_ranges_command(c), InputError);
 }
