@@ -11,7 +11,8 @@
 // The netlist: GHDL synthesises harris_top at the geometry and formats (OBSERVE false), yosys
 // ties rst high and write high, flattens it, turns every register into an input (its current
 // value) and an output (its next value) (`expose -evert-dff`) and writes the transition as
-// SMT-LIB. One query per distinct control state k: with the netlist's control registers at
+// SMT-LIB, cut to the cone of the control registers' next values (every register stays an
+// input, free unless a query fixes it). One query per distinct control state k: with the netlist's control registers at
 // c_k and every other register (every datapath register, the windows, the delays of the
 // pixels) and the written word free, is a next control register other than c_{k+1}? All
 // unsat, and the netlist's reset state (the reset value of a register the reset sets, the
