@@ -19,9 +19,10 @@
 // declared initial value of one it does not: i_dly, count) equal to c_0, is the induction:
 // after any number of writes n, of any pixels, the netlist's control registers hold c_n (by
 // induction on n; past prefix + period the states repeat, so the finite set of queries covers
-// every n). The control state's ready, which the co-simulation compares, is the next t(0), so
-// it is covered as well. z3 answers the queries (one file, one check per state); cvc5 answers
-// the same file again.
+// every n). Each query is preceded by a check of the state alone, which must be sat (the
+// netlist's constraints admit c_k, so its unsat is not vacuous). The control state's ready,
+// which the co-simulation compares, is the next t(0), so it is covered as well. z3 answers the
+// queries (one file, two checks per state); cvc5 answers the same file again.
 //
 // Not covered: the datapath registers (the stage proofs, stage_equivalence.hpp, prove each
 // stage's next registers equal to the model's for every input; that the whole design's
