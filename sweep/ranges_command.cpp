@@ -5,17 +5,58 @@
 #include <filesystem>
 #include <optional>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cosim/cosim.hpp"
 #include "model/util/util.hpp"
 #include "model/harris/formats_json.hpp"
+#include "sweep/control_induction.hpp"
 #include "sweep/stage_equivalence.hpp"
 #include "sweep/sweep_config.hpp"
 
 namespace fs = std::filesystem;
 
 namespace hc::sweep {
+
+namespace {
+
+/// --control-sizes as geometries; InputError for a size the design cannot be built for.
+std::vector<Geometry> control_sizes(const RangesCommand& c) {
+    std::vector<Geometry> sizes;
+    for (const auto& s : c.control_sizes) {
+        const auto [w, h] = util::parse_size(s, "--control-sizes");
+        sizes.push_back({w, h});
+        try {
+            sizes.back().validate();
+        } catch (const std::invalid_argument& e) {
+            throw InputError("ranges: --control-sizes " + s + ": " + e.what());
+        }
+    }
+    return sizes;
+}
+
+/// The control induction of `cfg` at each size: a line on stderr each, `js` the JSON array, and
+/// the Markdown section returned.
+std::string control_induction_section(const RangesCommand& c, const Config& cfg, const std::vector<Geometry>& sizes, nlohmann::json& js) {
+    std::vector<ControlInduction> ci;
+    js = nlohmann::json::array();
+    for (const Geometry& g : sizes) {
+        const std::string size = fmt::format("{}x{}", g.width, g.height);
+        ci.push_back(prove_control_from_reset(cfg.formats, g,
+                                              {.dir = fs::path(c.control_induction) / file_stem(cfg.name) / size, .rtl_dir = c.rtl}));
+        const ControlInduction& p = ci.back();
+        std::fprintf(stderr, "ranges: %s: control induction %s: %s, %ld queries (prefix %ld, period %ld), %s, %.1f s%s%s\n",
+                     cfg.name.c_str(), size.c_str(), eq_verdict_name(p.verdict), p.queries, p.prefix, p.period,
+                     p.recheck.empty() ? "no second solver" : p.recheck.c_str(), p.seconds, p.detail.empty() ? "" : ": ", p.detail.c_str());
+        js.push_back({{"size", size}, {"verdict", eq_verdict_name(p.verdict)}, {"prefix", p.prefix}, {"period", p.period},
+                      {"queries", p.queries}, {"registers", p.registers}, {"solver", p.solver}, {"recheck", p.recheck},
+                      {"rechecked", p.rechecked}, {"seconds", p.seconds}, {"detail", p.detail}, {"command", p.command}});
+    }
+    return control_induction_markdown(cfg.name, ci);
+}
+
+}  // namespace
 
 void run_ranges_command(const RangesCommand& c) {
     if (!c.config.empty() && !c.spec.empty()) throw InputError("ranges: --config and --spec exclude each other");
@@ -30,10 +71,12 @@ void run_ranges_command(const RangesCommand& c) {
     }
     if (c.pixel_max > 255) throw InputError("ranges: --pixel-max " + std::to_string(c.pixel_max) + " is above 255");
     if (!c.rtl.empty()) {
-        if (c.stages.empty()) throw InputError("ranges: --rtl " + c.rtl + " names the VHDL of the stage proofs: give --stages DIR too");
+        if (c.stages.empty() && c.control_induction.empty())
+            throw InputError("ranges: --rtl " + c.rtl + " names the VHDL of the stage proofs: give --stages DIR too (or --control-induction DIR)");
         for (const auto& f : cosim::rtl_sources(c.rtl))
             if (!fs::is_regular_file(f)) throw InputError("ranges: --rtl " + c.rtl + " has no " + f.filename().string());
     }
+    const std::vector<Geometry> sizes = control_sizes(c);
     std::vector<Config> configs;
     if (!c.spec.empty()) configs = load_sweep_spec(c.spec).configs;
     else configs.push_back({c.config.empty() ? "thesis" : fs::path(c.config).stem().string(),
@@ -71,6 +114,7 @@ void run_ranges_command(const RangesCommand& c) {
             md += stage_equivalence_markdown(cfg.name, se) + "\n";
             all.back()["stages"] = stage_equivalence_to_json(se);
         }
+        if (!c.control_induction.empty()) md += control_induction_section(c, cfg, sizes, all.back()["control_induction"]) + "\n";
         if (!c.witnesses.empty())
             for (const auto& w : write_witnesses(cfg.name, r, c.witnesses))
                 lines.push_back(w.regression_line(c.set_dir.empty() ? fs::path("golden") : fs::path(c.set_dir)));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "sweep/ranges.hpp"
 
@@ -18,6 +19,10 @@ struct RangesCommand {
     std::string netlist_dir;
     std::string stages;   ///< --stages DIR: stage equivalence too, its netlists and queries kept under DIR/<config>/<stage>
     std::string rtl;      ///< --rtl DIR: the VHDL the stage proofs synthesise (empty: the project's rtl/)
+    /// --control-induction DIR: the control registers of the whole design's netlist from reset
+    /// (control_induction.hpp), at each of `control_sizes`, kept under DIR/<config>/<WxH>
+    std::string control_induction;
+    std::vector<std::string> control_sizes{"10x8"};   ///< --control-sizes WxH,...
     std::string propose;  ///< --propose FILE: the narrowest proven widths (propose_widths) as a --config file
 };
 

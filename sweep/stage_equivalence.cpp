@@ -241,21 +241,6 @@ std::string synthesise(const Spec& sp, const Formats& f, const Geometry& geo, co
     return util::read_file(dir / "stage.smt2");
 }
 
-/// The ports yosys declares (`; yosys-smt2-input|output NAME W`): their widths by name.
-std::map<std::string, int> ports_of(const std::string& smt) {
-    std::map<std::string, int> names;
-    std::istringstream in(smt);
-    std::string line;
-    for (std::string kind, name; std::getline(in, line);)
-        if (line.rfind("; yosys-smt2-input ", 0) == 0 || line.rfind("; yosys-smt2-output ", 0) == 0) {
-            std::istringstream l(line.substr(2));
-            int w = 0;
-            l >> kind >> name >> w;
-            names[name] = w;
-        }
-    return names;
-}
-
 /// GHDL's register nets by the signal they drive: "assign ac = n32_q; // (signal)" gives ac -> n32_q,
 /// as does a signal with an initial value, "always @*\n    count = n37_q; // (isignal)".
 std::map<std::string, std::string> register_aliases(const std::string& verilog) {
@@ -287,7 +272,7 @@ std::string flop(const std::string& base, const std::map<std::string, int>& port
 /// The stage with its register names resolved on the netlist: every register input's term
 /// (<flop>.q) and width, and every next register's `.d` output or combinational output port (in `next`).
 Spec resolve(Spec sp, const std::string& netlist, const std::string& verilog, std::vector<std::string>& next) {
-    const std::map<std::string, int> ports = ports_of(netlist);
+    const std::map<std::string, int> ports = yosys_smt2_ports(netlist);
     const auto aliases = register_aliases(verilog);
     for (auto& x : sp.in) {
         if (x.netlist.rfind("@", 0) != 0) continue;
@@ -534,6 +519,21 @@ std::string domain_text(const Spec& sp, const std::map<std::string, Interval>& d
 }
 
 }  // namespace
+
+std::map<std::string, int> yosys_smt2_ports(const std::string& smt) {
+    std::map<std::string, int> names;
+    std::istringstream in(smt);
+    std::string line;
+    for (std::string kind, name; std::getline(in, line);)
+        if (line.rfind("; yosys-smt2-input ", 0) == 0 || line.rfind("; yosys-smt2-output ", 0) == 0) {
+            std::istringstream l(line.substr(2));
+            int w = 0;
+            l >> kind >> name >> w;
+            names[name] = w;
+        }
+    return names;
+}
+
 
 std::string pixel_input(int i, int j) { return fmt::format("p_{}_{}", i, j); }
 

@@ -93,6 +93,10 @@ struct StageOptions {
     std::string config = "thesis";
 };
 
+/// The ports yosys's write_smt2 declares in `smt` (`; yosys-smt2-input|output NAME W`): their
+/// widths by name.
+std::map<std::string, int> yosys_smt2_ports(const std::string& smt);
+
 /// The proof of one stage at formats `f`. SimulatorError when GHDL or yosys fails; a
 /// counterexample that does not hold in the model is std::logic_error.
 StageProof prove_stage(EqStage s, const Formats& f, const StageOptions& o = {});

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <compare>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -66,6 +67,19 @@ struct CycleWords<StaticFormats<F>> {
     static constexpr bool front_fits_32 = 2 * F.sobel_w <= 32 && F.m_prod_w <= 32 && F.bf_sum_w <= 32;
     using Front = std::conditional_t<front_fits_32, Lean32, Lean64>;
     using Back = Lean64;
+};
+
+/// The control registers of harris_top: load control, input_converter_mux's row counter and its
+/// delays, the stage enables and find_max's period counter. The model moves them on each write
+/// whatever the pixels are (sweep/control_induction.hpp proves the netlist does too).
+struct ControlRegisters {
+    int row = 1, col = 1;                ///< lc
+    bool load = true;                    ///< lc
+    int i = 1;                           ///< icmux
+    std::array<int, 3> i_dly{1, 1, 1};   ///< icmux: i delayed by 1, 2, 3 writes
+    std::uint8_t t = 0;                  ///< ctrl
+    long count = 1;                      ///< fm
+    auto operator<=>(const ControlRegisters&) const = default;
 };
 
 template <class FS>
@@ -180,6 +194,11 @@ public:
     }
 
     long find_max_count() const override { return q().fm.count; }
+
+    ControlRegisters control() const {
+        const Registers& r = q();
+        return {r.lc.row, r.lc.col, r.lc.load, r.icmux.i, r.icmux.i_dly, r.ctrl.t, r.fm.count};
+    }
 
     FindMax find_max() const override {
         const FindMaxT<Back>& m = q().fm;

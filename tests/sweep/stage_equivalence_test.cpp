@@ -19,6 +19,7 @@
 #include "sweep/cost.hpp"
 #include "sweep/ranges_command.hpp"
 #include "sweep/stage_equivalence.hpp"
+#include "tests/sweep/mutated_rtl.hpp"
 
 using namespace hc;
 using namespace hc::sweep;
@@ -57,24 +58,6 @@ TEST_CASE("thesis configuration: every stage's netlist is proven equal to its mo
         CHECK(back.stages[k].assumed == r.stages[k].assumed);
     }
 }
-
-namespace {
-
-/// A copy of rtl/ in `dir` with `from` replaced by `to` in `file` (which must hold it once).
-fs::path mutated_rtl(const fs::path& dir, const std::string& file, const std::string& from, const std::string& to) {
-    const fs::path rtl = dir / "rtl";
-    fs::create_directories(rtl);
-    for (const auto& e : fs::directory_iterator(HC_SOURCE_DIR "/rtl")) fs::copy_file(e.path(), rtl / e.path().filename());
-    std::string vhdl = util::read_file(rtl / file);
-    const size_t at = vhdl.find(from);
-    REQUIRE(at != std::string::npos);
-    REQUIRE(vhdl.find(from, at + 1) == std::string::npos);
-    vhdl.replace(at, from.size(), to);
-    util::write_file_atomic(rtl / file, vhdl);
-    return rtl;
-}
-
-}  // namespace
 
 TEST_CASE("find_max: the comparison flipped in a copy of the VHDL yields a counterexample that holds in the model", "[stages]") {
     const util::ScratchDir dir;

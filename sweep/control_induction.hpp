@@ -1,0 +1,74 @@
+// control_induction.hpp: harris_top's control registers proven to follow the cycle model's
+// from reset, for every input sequence, on GHDL's netlist of the whole design.
+//
+// The control registers (load control's row, col and load; input_converter_mux's row counter
+// i and its delays i_dly; the stage enables t; find_max's period counter count) move on each
+// write by the number of writes alone. The cycle model (HarrisTopT, model/harris/
+// harris_top_t.hpp) is run concretely from reset, its control state c_k after k writes read
+// by HarrisTopT::control(), until a state repeats: c_k for k < prefix + period are the
+// distinct states, c_{k + period} = c_k from k = prefix on.
+//
+// The netlist: GHDL synthesises harris_top at the geometry and formats (OBSERVE false), yosys
+// ties rst high and write high, flattens it, turns every register into an input (its current
+// value) and an output (its next value) (`expose -evert-dff`) and writes the transition as
+// SMT-LIB, cut to the cone of the control registers' next values (every register stays an
+// input, free unless a query fixes it). One query per distinct control state k: with the netlist's control registers at
+// c_k and every other register (every datapath register, the windows, the delays of the
+// pixels) and the written word free, is a next control register other than c_{k+1}? All
+// unsat, and the netlist's reset state (the reset value of a register the reset sets, the
+// declared initial value of one it does not: i_dly, count) equal to c_0, is the induction:
+// after any number of writes n, of any pixels, the netlist's control registers hold c_n (by
+// induction on n; past prefix + period the states repeat, so the finite set of queries covers
+// every n). Each query is preceded by a check of the state alone, which must be sat (the
+// netlist's constraints admit c_k, so its unsat is not vacuous). The control state's ready,
+// which the co-simulation compares, is the next t(0), so it is covered as well. z3 answers the
+// queries (one file, two checks per state); cvc5 answers the same file again.
+//
+// Not covered: the datapath registers (the stage proofs, stage_equivalence.hpp, prove each
+// stage's next registers equal to the model's for every input; that the whole design's
+// datapath registers equal the model's at every write is not proven here).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "model/harris/harris_pkg.hpp"
+#include "sweep/stage_equivalence.hpp"
+
+namespace hc::sweep {
+
+struct ControlInductionOptions {
+    /// keep the netlist, the yosys script and the query here; empty: a scratch directory
+    std::filesystem::path dir;
+    std::filesystem::path rtl_dir;     ///< the VHDL (empty: the project's rtl/)
+    /// at most this many distinct control states are asked (more: the verdict is open)
+    long max_states = 20'000;
+    bool recheck = true;               ///< cvc5 answers the same file again
+    int recheck_seconds = 300;         ///< cvc5's time for the whole file (wall clock)
+};
+
+/// The proof at one image size.
+struct ControlInduction {
+    Geometry geometry;
+    EqVerdict verdict = EqVerdict::open;   ///< equal: every query unsat and the reset state is c_0
+    long prefix = 0;                       ///< writes before the control states repeat
+    long period = 0;                       ///< the control states' period from there
+    long queries = 0;                      ///< one per distinct control state (prefix + period)
+    std::vector<std::string> registers;    ///< "lc.col = u.lc.col (6 bits)": model register = netlist flop
+    std::string solver = "z3";
+    std::string recheck;                   ///< "cvc5: 62 unsat of 62", or why not
+    bool rechecked = false;                ///< cvc5 answered unsat to every query too
+    double seconds = 0;                    ///< wall time: synthesis, the model's run, both solvers
+    std::string detail;                    ///< the first differing state and register, or why it is open
+    std::string command;                   ///< the one command that reruns the queries
+};
+
+/// The proof at geometry `g` and formats `f`. SimulatorError when GHDL or yosys fails;
+/// std::logic_error when a control register is not found on the netlist.
+ControlInduction prove_control_from_reset(const Formats& f, const Geometry& g, const ControlInductionOptions& o = {});
+
+/// One row per size: verdict, prefix, period, queries, second solver, seconds, command.
+std::string control_induction_markdown(const std::string& config, const std::vector<ControlInduction>& r);
+
+}  // namespace hc::sweep
