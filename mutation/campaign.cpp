@@ -468,12 +468,6 @@ void check_unmutated(const Options& o) {
     say(o, "control: the unmutated rtl/ passes " + o.quick.name);
 }
 
-namespace {
-Result& find_result(std::vector<Result>& rs, const Mutant& m) {
-    return *std::find_if(rs.begin(), rs.end(), [&](const Result& x) { return x.name == m.name(); });
-}
-}  // namespace
-
 bool stands_as_read(const Result& r) {
     return r.fate == Fate::killed || r.fate == Fate::stillborn ||
            (r.fate == Fate::equivalent && r.proof.reading == verilog_reading());
@@ -482,7 +476,7 @@ bool stands_as_read(const Result& r) {
 Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<Mutant>& sel, int jobs, int timeout_s,
                      const std::function<void(const std::string&)>& progress) {
     Reuse u;
-    std::vector<const Mutant*> again;
+    std::vector<std::pair<const Mutant*, bool>> again;   // a mutant, and whether it was proven unconditionally
     // the CSV keeps a name's line breaks (a mutant of an expression over lines) as spaces
     auto one_line = [](std::string s) {
         std::replace(s.begin(), s.end(), '\n', ' ');
@@ -496,8 +490,9 @@ Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<Mutant>& 
         if (it == old.end()) throw InputError("the reused verdicts have none for '" + m.name() + "'");
         u.results.push_back(*it);
         u.results.back().name = m.name();
-        if (!stands_as_read(*it)) again.push_back(&m);
-        u.reread += it->fate == Fate::equivalent && !stands_as_read(*it);
+        if (stands_as_read(*it)) continue;
+        again.emplace_back(&m, it->fate == Fate::equivalent);
+        u.reread += again.back().second;
     }
     u.reused = static_cast<int>(sel.size() - again.size());
     if (progress)
@@ -511,20 +506,17 @@ Reuse reuse_verdicts(const std::vector<Result>& old, const std::vector<Mutant>& 
     auto worker = [&] {
         try {
             for (std::size_t k; (k = next++) < again.size();) {
-                const Mutant& m = *again[k];
+                const auto [mp, unconditional] = again[k];
+                const Mutant& m = *mp;
                 const auto t = Clock::now();
                 util::ScratchDir scratch("harris-mutant-ag");
-                const bool unconditional = [&] {
-                    const std::lock_guard<std::mutex> g(lock);
-                    return find_result(u.results, m).fate == Fate::equivalent;
-                }();
                 Proof p = unconditional ? prove(m, scratch.path() / "unconditional", timeout_s) : Proof{};
                 const bool plain = p.equivalent;
                 if (!plain) p = prove_assuming(m, scratch.path(), timeout_s);
                 if (p.equivalent) p.reading = verilog_reading();
                 p.output = replace_path(p.output, scratch.path().string(), "<scratch>");
                 const std::lock_guard<std::mutex> g(lock);
-                Result& r = find_result(u.results, m);
+                Result& r = *std::find_if(u.results.begin(), u.results.end(), [&](const Result& x) { return x.name == m.name(); });
                 r.proof = p;
                 r.fate = plain ? Fate::equivalent : p.equivalent ? Fate::equivalent_assuming : Fate::surviving;
                 r.seconds = since(t);
