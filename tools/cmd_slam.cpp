@@ -62,6 +62,9 @@ void add_odometry_flags(CLI::App* cmd, slam::SlamCommand& o) {
     cmd->add_flag("!--no-vo-disparity-offset", o.vo_disparity_offset,
                   "visual odometry on pixels: do not estimate a disparity correction common to the rig's "
                   "measurements (estimated by default, with each motion)");
+    cmd->add_flag("!--no-vo-offset-uncertainty", o.vo_offset_uncertainty,
+                  "visual odometry on pixels: do not add the disparity correction's uncertainty to the motions' "
+                  "covariances (added by default: the motion's sensitivity to the correction times its variance)");
     cmd->add_flag("!--no-vo-level", o.vo_level,
                   "visual odometry on pixels: motions and the filter's frames in each camera's own frame, not levelled "
                   "by the tilt of the 6-DoF steps");

@@ -166,6 +166,9 @@ struct Solved {
     Eigen::Matrix<double, 6, 6> cov6 = Eigen::Matrix<double, 6, 6>::Zero();
     double residual_chi2 = 0;   // Σ of the inliers' squared Mahalanobis residuals at the estimate
     int residual_dof = 0;       // residuals minus parameters
+    double offset_used = 0, offset_variance = 0;   // pixels: MotionEstimate's
+    Eigen::Matrix<double, 6, 1> offset_sensitivity6 = Eigen::Matrix<double, 6, 1>::Zero();
+    Eigen::Vector3d offset_sensitivity = Eigen::Vector3d::Zero();
 };
 
 /// A hypothesis's support: the matches within `gate` of it (`distance2(m)`, a Mahalanobis
@@ -450,6 +453,37 @@ Eigen::Matrix<double, 6, 6> refine_two_view(const std::vector<const Match*>& in,
     return S.inverse();
 }
 
+/// The sensitivity of the motion T (refined on the inliers `in` at its correction T.c) to that
+/// correction: the same final refinement (two-view or on the previous frame's points) solved
+/// again from T at T.c ± h, central differences. Returns ∂(ω, δt)/∂c (T's perturbation,
+/// MotionEstimate::cov6's parameters) and, in `top`, ∂u/∂c of the top view in the previous
+/// camera's frame.
+Eigen::Matrix<double, 6, 1> offset_sensitivity(const std::vector<const Match*>& in, const landmarks::RectifiedRig& g,
+                                               const Rigid& T, bool two_view, Vec3& top) {
+    constexpr double h = 1e-3;   // px
+    Rigid plus = T, minus = T;
+    plus.c += h;
+    minus.c -= h;
+    for (Rigid* X : {&plus, &minus}) {
+        double chi2 = 0;
+        if (two_view)
+            refine_two_view(in, g, *X, chi2);
+        else
+            refine_pixels(in, g, *X, false);
+    }
+    const auto delta = [&](const Rigid& X) {   // (ω, δt) with X = T moved by it
+        const Eigen::AngleAxisd w(T.R.transpose() * X.R);
+        Eigen::Matrix<double, 6, 1> d;
+        d << w.angle() * w.axis(), X.t - T.t;
+        return d;
+    };
+    const Eigen::Matrix<double, 6, 6> none = Eigen::Matrix<double, 6, 6>::Zero();
+    Motion du = levelled_motion(Mat3::Identity(), plus.R, plus.t, none) - levelled_motion(Mat3::Identity(), minus.R, minus.t, none);
+    du(2) = wrap_angle(du(2));
+    top = du / (2 * h);
+    return (delta(plus) - delta(minus)) / (2 * h);
+}
+
 Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfig& cfg, const DisparityPrior& prior) {
     Solved out;
     if (matches.size() < 3) return out;
@@ -476,16 +510,23 @@ Solved pixel_motion(const std::vector<Match>& matches, const VisualOdometryConfi
         out.cov6 = H.inverse().topLeftCorner<6, 6>();
         for (const Match* m : out.inliers) out.residual_chi2 += pixel_distance2(*m, T, g);
     }
-    out.rotation = T.R;
-    out.translation = T.t;
-    out.u = levelled_motion(Mat3::Identity(), T.R, T.t, out.cov6, &out.cov);
-    out.residual_dof = 3 * static_cast<int>(out.inliers.size()) - 6;
     if (cfg.estimate_disparity_offset) {   // the correction's estimate with this step's inliers
         Rigid T7 = T;
         const Mat7 H7 = refine_pixels(out.inliers, g, T7, true, prior);
         out.disparity_offset = T7.c;
         out.disparity_offset_sigma = std::sqrt(H7.inverse()(6, 6));
+        // the uncertainty of the correction T was computed at (MotionEstimate::offset_variance)
+        const DisparityPrior known = prior.sigma > 0 ? prior : DisparityPrior{T7.c, out.disparity_offset_sigma};
+        out.offset_used = T.c;
+        out.offset_variance = (known.mean - T.c) * (known.mean - T.c) + known.sigma * known.sigma;
+        out.offset_sensitivity6 = offset_sensitivity(out.inliers, g, T, cfg.two_view_points, out.offset_sensitivity);
+        if (cfg.offset_uncertainty)
+            out.cov6 += out.offset_variance * out.offset_sensitivity6 * out.offset_sensitivity6.transpose();
     }
+    out.rotation = T.R;
+    out.translation = T.t;
+    out.u = levelled_motion(Mat3::Identity(), T.R, T.t, out.cov6, &out.cov);
+    out.residual_dof = 3 * static_cast<int>(out.inliers.size()) - 6;
     out.ok = true;
     return out;
 }
@@ -551,6 +592,10 @@ MotionEstimate estimate_motion(const StereoFrame& previous, const StereoFrame& c
     est.cov6 = s.cov6;
     est.residual_chi2 = s.residual_chi2;
     est.residual_dof = s.residual_dof;
+    est.offset_used = s.offset_used;
+    est.offset_variance = s.offset_variance;
+    est.offset_sensitivity6 = s.offset_sensitivity6;
+    est.offset_sensitivity = s.offset_sensitivity;
     est.ok = true;
     for (const Match* m : s.inliers) est.matches.emplace_back(m->p->index, m->c->index);
     return est;

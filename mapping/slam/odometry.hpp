@@ -14,7 +14,9 @@
 //    observable because a point's optical flow gives Z_prev / Z_cur independently of its
 //    disparity. c is estimated recursively over the sequence (each step's estimate has the one
 //    before as its prior); once it is significant (a 3σ test) the motions are computed, and
-//    the filter's frames corrected, at the estimate so far.
+//    the filter's frames corrected, at the estimate so far. With offset_uncertainty, each
+//    motion's covariance also carries the uncertainty of the correction it was computed at:
+//    σ_c² s sᵀ, s the motion's sensitivity to the correction (MotionEstimate::offset_variance).
 //  - top view (OdometryResidual::top_view): 3-DoF. The top-view points of the two frames
 //    aligned in the plane; RANSAC over pairs of matches (the closed-form 2-D alignment).
 // Deterministic: RANSAC draws from a generator of fixed seed.
@@ -44,6 +46,10 @@ struct VisualOdometryConfig {
     /// The correction is applied (to the motions and the filter's frames) once its estimate
     /// differs from 0 by more than this many standard deviations (a 3σ test).
     double disparity_offset_significance = 3.0;
+    /// Pixels, with estimate_disparity_offset: each motion's covariance also carries the
+    /// uncertainty of the correction it was computed at, σ_c² s sᵀ (s = ∂u/∂c, σ_c² the mean
+    /// square of the correction's error; MotionEstimate::offset_variance).
+    bool offset_uncertainty = true;
     /// Pixels only: the motions and the filter's frames are taken in the levelled frame of each
     /// camera (VisualOdometry::tilt), so that a camera that pitches and rolls relative to the
     /// first one still moves and sees in one plane; false: in each camera's own frame.
@@ -89,6 +95,18 @@ struct MotionEstimate {
     /// 3n − 6 on pixels, 2n − 3 on the top view).
     double residual_chi2 = 0;
     int residual_dof = 0;
+    /// Pixels, with estimate_disparity_offset: the correction c_used (px) the motion was
+    /// computed at (0 until the correction is applied), the motion's sensitivity to it,
+    /// ∂(ω, δt)/∂c of the 6-DoF motion and ∂u/∂c of its top view (the final refinement solved
+    /// again at c_used ± h), and σ_c², the mean square of c − c_used under what is known of c
+    /// when the motion is computed: the estimate of the earlier steps N(m, σ²) (the prior), or
+    /// this step's own estimate when there is none: (m − c_used)² + σ². Applied, that is σ²;
+    /// not applied yet, the motion errs by s·c, and σ_c² is the mean square of c itself. With
+    /// offset_uncertainty, σ_c² s sᵀ is added to cov6 (and so to cov); else all are computed
+    /// and nothing is added. 0 without the correction estimated (a rig taken as exact).
+    double offset_used = 0, offset_variance = 0;
+    Eigen::Matrix<double, 6, 1> offset_sensitivity6 = Eigen::Matrix<double, 6, 1>::Zero();
+    Eigen::Vector3d offset_sensitivity = Eigen::Vector3d::Zero();
     std::vector<std::pair<int, int>> matches;   ///< inliers: (index in previous, index in current)
     /// Pixels: the 6-DoF motion, X_prev = rotation · X_cur + translation, and the covariance of
     /// its perturbation (ω, δt) (rotation · Exp(ω), translation + δt); u is its top view in the

@@ -190,6 +190,7 @@ KittiRunOptions kitti_options(const SlamCommand& o) {
     vc.max_range = o.vo_max_range;
     vc.residual = o.vo_residual == "top-view" ? OdometryResidual::top_view : OdometryResidual::pixels;
     vc.estimate_disparity_offset = o.vo_disparity_offset;
+    vc.offset_uncertainty = o.vo_offset_uncertainty;
     vc.level = o.vo_level;
     vc.noise_from_residuals = o.vo_measured_noise;
     vc.two_view_points = o.vo_two_view;

@@ -48,6 +48,7 @@ struct SlamCommand {
     std::optional<double> sigma_dx, sigma_dtheta_deg;
     double sigma_dy = SyntheticOdometry{}.sigma_dy;
     bool descriptor = true, vo_disparity_offset = VisualOdometryConfig{}.estimate_disparity_offset;
+    bool vo_offset_uncertainty = VisualOdometryConfig{}.offset_uncertainty;
     bool noise_at_prediction = AssociationConfig{}.noise_at_prediction, vo_level = VisualOdometryConfig{}.level;
     bool vo_measured_noise = VisualOdometryConfig{}.noise_from_residuals, vo_two_view = VisualOdometryConfig{}.two_view_points;
     // --landmarks-from stereo: the landmark pipeline's options
