@@ -170,6 +170,7 @@ TEST_CASE("a report's command line is the one typed, less the sharding flags, an
     CHECK(s.find("sequences=01\n") != std::string::npos);
     CHECK(s.find("no-vo-level=true\n") != std::string::npos);     // given
     CHECK(s.find("vo-two-view=false\n") != std::string::npos);    // not given
+    CHECK(s.find("no-vo-offset-uncertainty=false\n") != std::string::npos);   // not given
     CHECK(s.find("vo-max-range=60\n") != std::string::npos);      // its default
     CHECK(s.find("out=a b\n") != std::string::npos);
     CHECK(s.find("jobs=") == std::string::npos);                  // sharding flags are not settings
