@@ -59,7 +59,7 @@ void run_job(const EvalCommand& c, const cluster::JobRunner& runner) {
     // a shard is one process on one core unless --threads says otherwise
     j.threads = runner.sharded() && !c.threads_given ? 1 : c.threads;
     const cluster::Manifest m = eval_manifest(j);
-    if (j.source == "rtl") vl::prepare_rtl(m);
+    if (corners::source_info(parse_source(j.source)).needs_simulator) vl::prepare_rtl(m);
     if (runner.sharded())
         std::fprintf(stderr, "eval: %zu shard(s) in %s\n", m.shards.size(), runner.run_dir(c.out).c_str());
     const auto merged = runner.run(m, c.out, /*fork=*/true);
