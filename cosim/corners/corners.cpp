@@ -25,7 +25,7 @@ const std::vector<SourceInfo>& source_table() {
 
 const SourceInfo& source_info(Source s) { return util::row_of(source_table(), s, "a corner source"); }
 
-Source parse_source(const std::string& name) { return util::row_named(source_table(), name, "corner source"); }
+Source parse_source(const std::string& name, const std::string& what) { return util::row_named(source_table(), name, what); }
 
 std::string source_name(Source s) { return source_info(s).name; }
 

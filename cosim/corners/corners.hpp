@@ -47,7 +47,8 @@ struct SourceInfo {
 /// Every source, in the order of the enum.
 const std::vector<SourceInfo>& source_table();
 const SourceInfo& source_info(Source s);
-Source parse_source(const std::string& name);   ///< a table name; InputError naming the known ones
+/// A table name; InputError "unknown <what> '<name>' (one of: ...)" else (what: the flag, say).
+Source parse_source(const std::string& name, const std::string& what = "corner source");
 std::string source_name(Source s);
 /// The names joined by ", " (with_help: each followed by its help in parentheses).
 std::string source_list(bool with_help = false);

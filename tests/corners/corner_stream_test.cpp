@@ -6,6 +6,7 @@
 
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "cosim/corners/corners.hpp"
@@ -78,17 +79,24 @@ long corners_in(const std::vector<std::vector<std::uint8_t>>& masks) {
 
 TEST_CASE("the co-processor's corner sources are one table", "[corners]") {
     const auto& t = corners::source_table();
-    REQUIRE(t.size() == 3);
+    std::string names;
     for (std::size_t i = 0; i < t.size(); ++i) {
-        CHECK(static_cast<std::size_t>(t[i].id) == i);
+        CHECK(static_cast<std::size_t>(t[i].id) == i);   // in the enum's order
         CHECK(corners::parse_source(t[i].name) == t[i].id);
         CHECK(corners::source_name(t[i].id) == t[i].name);
+        CHECK(*t[i].help);
+        names += (i ? ", " : "") + std::string(t[i].name);
     }
+    CHECK(corners::source_list() == names);
+    CHECK_THAT(corners::source_list(), Catch::StartsWith("spec, cycle, rtl"));
     CHECK_FALSE(corners::source_info(corners::Source::spec).cycle_accurate);
+    CHECK(corners::source_info(corners::Source::cycle).cycle_accurate);
     CHECK(corners::source_info(corners::Source::cycle).observed);
+    CHECK_FALSE(corners::source_info(corners::Source::cycle).needs_simulator);
     CHECK(corners::source_info(corners::Source::rtl).needs_simulator);
-    CHECK(corners::source_list() == "spec, cycle, rtl");
-    CHECK_THROWS_WITH(corners::parse_source("fpga"), Catch::Contains("fpga") && Catch::Contains("spec, cycle, rtl"));
+    CHECK_FALSE(corners::source_info(corners::Source::rtl).observed);
+    CHECK_THROWS_WITH(corners::parse_source("fpga"), Catch::Contains("unknown corner source 'fpga'") && Catch::Contains(names));
+    CHECK_THROWS_WITH(corners::parse_source("fpga", "--source"), Catch::Contains("unknown --source 'fpga'"));
 }
 
 TEST_CASE("the spec and cycle streams, frame by frame, give the corners of each source's own path", "[corners]") {
