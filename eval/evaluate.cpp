@@ -290,7 +290,8 @@ void run_cycle_source(const PartInput& in, frames::FrameFeed& feed, PartScorer& 
 /// A source behind corners::CornerStream (the spec model; the netlist in lock step with the
 /// cycle model, trusted only after its GHDL/Verilator/model gate passes: else MismatchError):
 /// the part's frames streamed (each loaded as the stream reaches it) and handed to the scorer
-/// `batch` at a time.
+/// `batch` at a time. The source's time: the netlist's preparation and the stream's own (not
+/// the scoring).
 void run_stream_source(const PartInput& in, frames::FrameFeed& feed, PartScorer& scorer, int batch, Part& p) {
     const auto t0 = std::chrono::steady_clock::now();
     const Formats f{};
@@ -318,9 +319,14 @@ void run_stream_source(const PartInput& in, frames::FrameFeed& feed, PartScorer&
         r.progress = "eval";
     }
     const std::unique_ptr<corners::CornerStream> stream = corners::open_stream(in.source, std::move(r));
+    const auto since = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    double seconds = since(t0);
     for (int a = in.first; a < in.last; a += batch) {
         const int b = std::min(in.last, a + batch);
         std::vector<SourceFrame> fs(static_cast<std::size_t>(b - a));
+        const auto t1 = std::chrono::steady_clock::now();
         for (SourceFrame& sf : fs) {
             corners::StreamFrame fr;
             if (!stream->next(fr)) throw InternalError("eval part: the corner stream ended before frame " + std::to_string(b));
@@ -328,10 +334,11 @@ void run_stream_source(const PartInput& in, frames::FrameFeed& feed, PartScorer&
             sf.thr = fr.thr;
             sf.max = fr.max;
         }
+        seconds += since(t1);
         scorer.score(a, b, fs);
         feed.release_below(b - in.offset);
     }
-    p.seconds_source = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    p.seconds_source = seconds;
 }
 
 }  // namespace
