@@ -1,7 +1,7 @@
 // corner_stream_test.cpp: the co-processor's corner sources (cosim/corners): the table, and the
-// stream fed frame by frame with the threshold carried, against the code each source ran as
-// its own path: the spec model over the whole stream in one run, and the cycle model fed the
-// host driver's events in one loop with every read's corners kept by frame.
+// stream fed frame by frame with the threshold carried, against each source's direct path: the
+// spec model over the whole stream in one run, and the cycle model fed the host driver's
+// events in one loop with every read's corners kept by frame.
 #include <catch2/catch.hpp>
 
 #include <map>
