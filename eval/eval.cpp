@@ -32,22 +32,6 @@ Confusion classify(const std::vector<std::uint8_t>& test, const std::vector<std:
     return c;
 }
 
-Source parse_source(const std::string& s) {
-    if (s == "spec") return Source::spec;
-    if (s == "cycle") return Source::cycle;
-    if (s == "rtl") return Source::rtl;
-    throw InputError("unknown --source '" + s + "' (spec, cycle or rtl)");
-}
-
-std::string source_name(Source s) {
-    switch (s) {
-    case Source::spec: return "spec";
-    case Source::cycle: return "cycle";
-    case Source::rtl: return "rtl";
-    }
-    return "?";
-}
-
 namespace {
 double since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -348,18 +332,17 @@ CycleCounts run_cycle(const FrameAt& frames, const Geometry& g, const Formats& f
     if (span.first < 0 || span.first >= span.last || span.last > span.frames_total)
         throw InternalError("cycle span: frames [" + std::to_string(span.first) + ", " + std::to_string(span.last) +
                             ") of a stream of " + std::to_string(span.frames_total));
-    FeedDriver feed(g, span.frames_total, frames);
-    const HostDriver& drv = feed.driver();
-    HarrisTop top(g, f);
-    start_at(span.start, top, feed);
+    corners::DesignStream design(g, f, span.frames_total, frames);
+    const HostDriver& drv = design.driver();
+    HarrisTop& top = design.model();
+    start_at(span.start, top, design.feed());
     const size_t npix = static_cast<size_t>(g.width) * g.height;
     CycleCounts r;
     const long begin = span.start ? span.start->writes : 0;
     WriteRing ring(begin, span.start);
     OpenFrames open(span, npix);
     CycleHooks hooks{{}, span, g, top, drv, ring, open, r, on_frame, progress, t0, top.thr().value(), top.find_max_count()};
-    BusLoop loop(feed, top);
-    loop.run(hooks);
+    design.run(hooks);
     if (progress) std::fprintf(stderr, "\n");
     r.end_digest = end_digest(span, top, drv, ring);
     open.hand_on_below(span.last, on_frame);

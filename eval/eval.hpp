@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cosim/corners/corners.hpp"
 #include "io/frames/frames.hpp"
 #include "model/driver/host_driver.hpp"
 #include "model/image/image.hpp"
@@ -39,9 +40,10 @@ struct Confusion {
 /// Per-pixel classification of `test` against `ref` (both row-major masks, same size).
 Confusion classify(const std::vector<std::uint8_t>& test, const std::vector<std::uint8_t>& ref);
 
-enum class Source { spec, cycle, rtl };
-Source parse_source(const std::string& s);   ///< throws InputError naming the source
-std::string source_name(Source s);
+/// The co-processor's corner sources: the rows of corners::source_table().
+using corners::Source;
+using corners::parse_source;
+using corners::source_name;
 
 /// The frames of one evaluation: a stream of stereo pairs (2 frames each).
 using Stream = frames::Stream;

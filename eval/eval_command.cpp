@@ -49,7 +49,7 @@ void run_job(const EvalCommand& c, const cluster::JobRunner& runner) {
         throw InputError("--sequences and the sharding flags evaluate KITTI sequences: leave out images and --pattern");
     const fs::path kitti = frames::require_kitti_root(s.kitti, s.data, "--sequences and sharded runs need KITTI data");
     EvalJob j;
-    j.source = source_name(parse_source(c.source));
+    j.source = source_name(parse_source(c.source, "--source"));
     j.kitti = kitti;
     j.sequences = c.sequences.empty() ? std::vector<std::string>{s.sequence} : frames::parse_sequences(c.sequences);
     j.pairs = frames::job_pair_range(s);
@@ -59,7 +59,7 @@ void run_job(const EvalCommand& c, const cluster::JobRunner& runner) {
     // a shard is one process on one core unless --threads says otherwise
     j.threads = runner.sharded() && !c.threads_given ? 1 : c.threads;
     const cluster::Manifest m = eval_manifest(j);
-    if (j.source == "rtl") vl::prepare_rtl(m);
+    if (corners::source_info(parse_source(j.source)).needs_simulator) vl::prepare_rtl(m);
     if (runner.sharded())
         std::fprintf(stderr, "eval: %zu shard(s) in %s\n", m.shards.size(), runner.run_dir(c.out).c_str());
     const auto merged = runner.run(m, c.out, /*fork=*/true);
@@ -86,7 +86,7 @@ void run_eval_command(const EvalCommand& c, const cluster::JobRunner& runner) {
         return;
     }
     Request r;
-    r.source = parse_source(c.source);
+    r.source = parse_source(c.source, "--source");
     r.frames = c.src;
     r.overlays = parse_list(c.overlay);
     r.out = c.out;

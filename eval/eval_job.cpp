@@ -90,8 +90,7 @@ json run_eval_shard(const json& common, const json& shard, std::size_t) {
     in.end_write = shard.at("end_write");
     in.ablation = common.at("ablation");
     in.threads = common.at("threads");
-    std::fprintf(stderr, "eval shard: %s source, sequence %s, pairs %d..%d%s\n", in.source == Source::spec ? "spec"
-                 : in.source == Source::cycle ? "cycle" : "rtl", seq.c_str(), a, b - 1,
+    std::fprintf(stderr, "eval shard: %s source, sequence %s, pairs %d..%d%s\n", source_name(in.source).c_str(), seq.c_str(), a, b - 1,
                  start ? fmt::format(" from the checkpoint after {} writes", start->writes).c_str() : "");
     return evaluate_part(in).to_json();
 }
@@ -118,7 +117,8 @@ cluster::Manifest eval_manifest(const EvalJob& j) {
         pairs.push_back(ranges.back().last - ranges.back().first);
     }
     const int n = static_cast<int>(j.sequences.size());
-    const std::vector<int> k = source == Source::rtl ? std::vector<int>(n, 1)
+    // a source run by the simulators runs whole sequences; the others split them in parts
+    const std::vector<int> k = corners::source_info(source).needs_simulator ? std::vector<int>(n, 1)
                                                            : parts_per_sequence(pairs, std::max(j.shards, n));
     cluster::Manifest m;
     m.job = "eval";
@@ -131,7 +131,7 @@ cluster::Manifest eval_manifest(const EvalJob& j) {
         // (warm_checkpoint), or from reset for a part starting within the first frames
         std::vector<json> starts(parts.size());
         std::vector<long> end_writes(parts.size(), 0);
-        if (source == Source::cycle && parts.size() > 1) {
+        if (corners::source_info(source).observed && parts.size() > 1) {
             const int total = 2 * (p1 - p0);
             const auto load = [&](int a, int b) {   // pairs [a, b) of the sequence
                 return frames::load_kitti_stream(j.kitti, j.sequences[s], {a, b}, j.pairs_flag, j.threads, 1);

@@ -15,9 +15,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "cosim/verilator/gate.hpp"
-#include "cosim/verilator/lockstep.hpp"
-#include "cosim/verilator/netlist.hpp"
+#include "cosim/corners/corners.hpp"
 #include "eval/evaluate.hpp"
 #include "eval/sequences.hpp"
 #include "model/driver/host_driver.hpp"
@@ -34,76 +32,6 @@ struct SourceFrame {
     std::int64_t thr = -1, max = -1;
     CycleFrame cycle;   ///< the cycle source's thresholds per window (else empty)
 };
-
-/// The RTL as a corner source: the GHDL-synthesised netlist under Verilator (trusted only
-/// after its GHDL/Verilator/model gate passes), streamed exactly like the cycle model; the
-/// masks come from the corner bits the netlist returns on every read, handed to `on_batch`
-/// `batch` frames at a time as their reads complete (frames loaded as the stream reaches
-/// them). `mismatches` counts reads where the netlist and the cycle model (run in lock
-/// step) disagree.
-void run_rtl_source(frames::FrameFeed& feed, long& mismatches, double& seconds, int batch,
-                    const std::function<void(int first, std::vector<SourceFrame>& frames)>& on_batch) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const Formats f{};
-    const fs::path cache = vl::default_cache_dir();
-    bool cached = false;
-    const vl::GateResult gate = vl::run_gate_cached(f, {}, cache, std::cerr, &cached);
-    if (gate.verdict != vl::GateVerdict::pass)
-        throw MismatchError("--source rtl: the GHDL/Verilator/model gate did not pass (" +
-                                 std::string(vl::verdict_name(gate.verdict)) + "): " + gate.first);
-    const Geometry g{feed.width(), feed.height()};
-    const vl::NetlistConfig nc{g, f, false, {}};
-    const fs::path so = vl::build_netlist(nc, cache, std::cerr);
-    vl::VerilatedDesign dut(so, vl::config_key(nc));
-    const int n = feed.size();
-    const size_t npix = static_cast<size_t>(g.width) * static_cast<size_t>(g.height);
-    const Image blank(g.width, g.height);
-    const HostDriver decoder(g, {&blank});   // the corner bits' image positions
-    std::deque<std::vector<std::uint8_t>> open;   // masks of frames open_first.. whose reads go on
-    int open_first = 0, pending_first = 0;
-    std::vector<SourceFrame> pending;
-    std::vector<Corner> cs;
-    vl::RunOptions opt;
-    opt.keep_going = true;
-    const auto mask_of = [&](int frame) -> std::vector<std::uint8_t>& {
-        if (frame < open_first || frame >= n)
-            throw InternalError("--source rtl: a read of frame " + std::to_string(frame) + " after its frame was complete");
-        while (open_first + static_cast<int>(open.size()) <= frame) open.emplace_back(npix, 0);
-        return open[static_cast<std::size_t>(frame - open_first)];
-    };
-    opt.on_read = [&](const ReadPos& r, std::uint32_t value) {
-        cs.clear();
-        decoder.decode(r, value, cs);
-        for (const Corner& c : cs) mask_of(c.frame)[static_cast<size_t>(c.y) * g.width + c.x] = 1;
-    };
-    const auto flush = [&] {
-        if (pending.empty()) return;
-        on_batch(pending_first, pending);
-        pending_first += static_cast<int>(pending.size());
-        pending.clear();
-    };
-    opt.on_frame = [&](const vl::FrameStats& s) {
-        std::fprintf(stderr, "eval: rtl frame %d/%d: %ld reads, %ld corners, %ld mismatches\n", s.index + 1, n,
-                     s.reads, s.corners, s.mismatches);
-        if (s.index != open_first) throw InternalError("--source rtl: frame " + std::to_string(s.index) + " completed out of order");
-        SourceFrame sf;
-        sf.mask = std::move(mask_of(s.index));   // thr and max are not observed on the netlist (no obs port)
-        open.pop_front();
-        ++open_first;
-        pending.push_back(std::move(sf));
-        if (static_cast<int>(pending.size()) == batch) flush();
-    };
-    const vl::RunResult rr = vl::run_lockstep(g, f, dut, n, [&](int k) {
-        auto im = feed.frame(k);
-        feed.prefetch(k + 1);   // decoded while the netlist runs
-        return im;
-    }, feed.names(), opt);
-    flush();
-    if (open_first != n)
-        throw InternalError("--source rtl: " + std::to_string(open_first) + " of " + std::to_string(n) + " frames completed");
-    mismatches = rr.mismatches;
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
 
@@ -148,13 +76,11 @@ public:
     }
     /// Frames the scorer takes at a time.
     int batch() const { return std::clamp(2 * arena_.max_concurrency(), 2, 16); }
-    double spec_seconds() const { return spec_seconds_; }
 
-    /// Scores frames [a, a + src.size()) (stream indices), or [a, b) of the spec source
-    /// when `src` is null.
-    void score(int a, int b, std::vector<SourceFrame>* src) {
+    /// Scores frames [a, b) (stream indices), whose source output `src` holds.
+    void score(int a, int b, const std::vector<SourceFrame>& src) {
         const int n = b - a;
-        const Source source = in_.source;
+        const corners::SourceInfo& source = corners::source_info(in_.source);
         std::vector<std::shared_ptr<const Image>> imgs(static_cast<std::size_t>(n));
         std::vector<const Image*> ptrs(static_cast<std::size_t>(n));
         std::vector<std::vector<std::uint8_t>> ref(static_cast<std::size_t>(n));
@@ -167,22 +93,18 @@ public:
             });
         });
         p_.seconds_reference += since(t0);
-        const auto t1 = std::chrono::steady_clock::now();
         std::vector<std::vector<spec::FrameCorners>> runs(spec_.size());
-        const bool thesis_needed = source != Source::rtl || in_.ablation;
-        if (thesis_needed) runs[0] = spec_[0].run(ptrs, arena_);
-        if (source == Source::spec) spec_seconds_ += since(t1);
+        // the thesis's spec run: the observed source's deviations, the ablation
+        if (source.observed || in_.ablation) runs[0] = spec_[0].run(ptrs, arena_);
         for (std::size_t v = 1; v < spec_.size(); ++v) runs[v] = spec_[v].run(ptrs, arena_);
 
         const auto pair_of = [&](int k) { return feed_.pair_index()[static_cast<std::size_t>(a + k - in_.offset)]; };
-        // scoring: drop the first pair (threshold seed) and, but for the spec model, the
+        // scoring: drop the first pair (threshold seed) and, for a cycle-accurate source, the
         // last (its last windows are read only while a next pair is written)
         const auto scored = [&](int k) {
-            return pair_of(k) != in_.first_pair && (source == Source::spec || pair_of(k) != in_.last_pair);
+            return pair_of(k) != in_.first_pair && (!source.cycle_accurate || pair_of(k) != in_.last_pair);
         };
-        const auto mask_of = [&](int k) -> const std::vector<std::uint8_t>& {
-            return src ? (*src)[static_cast<std::size_t>(k)].mask : runs[0][static_cast<std::size_t>(k)].mask;
-        };
+        const auto mask_of = [&](int k) -> const std::vector<std::uint8_t>& { return src[static_cast<std::size_t>(k)].mask; };
         for (int k = 0; k < n; ++k) {
             FrameRow row;
             row.frame = a + k;
@@ -192,15 +114,15 @@ public:
             row.c = classify(mask_of(k), ref[k]);
             row.source_corners = spec::count_corners(mask_of(k));
             row.reference_corners = spec::count_corners(ref[k]);
-            row.thr = src ? (*src)[k].thr : runs[0][k].thr;
-            row.max = src ? (*src)[k].max : runs[0][k].max;
+            row.thr = src[k].thr;
+            row.max = src[k].max;
             p_.rows.push_back(row);
             if (in_.on_masks) in_.on_masks(a + k, *imgs[k], mask_of(k), ref[k]);
         }
         for (std::size_t v = 0; v < variant_run_.size(); ++v)
             for (int k = 0; k < n; ++k)
                 if (pair_of(k) != in_.first_pair) p_.ablation[v].add(classify(runs[variant_run_[v]][k].mask, ref[k]));
-        if (source == Source::cycle) deviations(n, imgs, *src, runs[0], scored);
+        if (source.observed) deviations(n, imgs, src, runs[0], scored);
     }
 
 private:
@@ -256,7 +178,6 @@ private:
     tbb::task_arena arena_;
     std::vector<spec::SpecStream> spec_;          ///< [0]: the thesis's options, then the variants'
     std::vector<std::size_t> variant_run_;  ///< per ablation variant, its run in spec_
-    double spec_seconds_ = 0;
 };
 
 /// One job at a time on a thread of its own, kept for the whole part (a thread started per
@@ -328,7 +249,7 @@ void run_cycle_source(const PartInput& in, frames::FrameFeed& feed, PartScorer& 
         if (pending.empty()) return;
         const int a = pending_first, size = static_cast<int>(pending.size());
         auto job = [&scorer, &feed, off = in.offset, a, size, fs = std::make_shared<std::vector<SourceFrame>>(std::move(pending))] {
-            scorer.score(a, a + size, fs.get());
+            scorer.score(a, a + size, *fs);
             feed.release_below(a + size - off);
         };
         pending_first += size;
@@ -366,6 +287,60 @@ void run_cycle_source(const PartInput& in, frames::FrameFeed& feed, PartScorer& 
     p.end_digest = c.end_digest;
 }
 
+/// A source behind corners::CornerStream (the spec model; the netlist in lock step with the
+/// cycle model, trusted only after its GHDL/Verilator/model gate passes: else MismatchError):
+/// the part's frames streamed (each loaded as the stream reaches it) and handed to the scorer
+/// `batch` at a time. The source's time: the netlist's preparation and the stream's own (not
+/// the scoring).
+void run_stream_source(const PartInput& in, frames::FrameFeed& feed, PartScorer& scorer, int batch, Part& p) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Formats f{};
+    const Geometry g{feed.width(), feed.height()};
+    corners::StreamRequest r;
+    r.geometry = g;
+    r.formats = f;
+    r.frames = in.last - in.first;
+    r.threads = in.threads;
+    const int off = in.first - in.offset;   // stream frame 0 in the feed
+    r.frame_at = [&feed, off](int k) {
+        auto im = feed.frame(off + k);
+        feed.prefetch(off + k + 1);   // decoded while the source runs
+        return im;
+    };
+    if (in.first > 0) r.before = feed.frame(off - 1);   // its maximum sets the first threshold
+    if (corners::source_info(in.source).needs_simulator) {
+        if (in.first != 0 || in.last != in.frames_total || in.offset != 0)
+            throw InternalError("eval part: the " + source_name(in.source) + " source runs whole sequences only");
+        const vl::GateResult gate = corners::gate(f, std::cerr);
+        if (gate.verdict != vl::GateVerdict::pass)
+            throw MismatchError("--source " + source_name(in.source) + ": the GHDL/Verilator/model gate did not pass (" +
+                                std::string(vl::verdict_name(gate.verdict)) + "): " + gate.first);
+        r.netlist = corners::netlist(g, f, std::cerr);
+        r.progress = "eval";
+    }
+    const std::unique_ptr<corners::CornerStream> stream = corners::open_stream(in.source, std::move(r));
+    const auto since = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    double seconds = since(t0);
+    for (int a = in.first; a < in.last; a += batch) {
+        const int b = std::min(in.last, a + batch);
+        std::vector<SourceFrame> fs(static_cast<std::size_t>(b - a));
+        const auto t1 = std::chrono::steady_clock::now();
+        for (SourceFrame& sf : fs) {
+            corners::StreamFrame fr;
+            if (!stream->next(fr)) throw InternalError("eval part: the corner stream ended before frame " + std::to_string(b));
+            sf.mask = std::move(fr.mask);
+            sf.thr = fr.thr;
+            sf.max = fr.max;
+        }
+        seconds += since(t1);
+        scorer.score(a, b, fs);
+        feed.release_below(b - in.offset);
+    }
+    p.seconds_source = seconds;
+}
+
 }  // namespace
 
 Part evaluate_part(const PartInput& in) {
@@ -376,7 +351,7 @@ Part evaluate_part(const PartInput& in) {
         in.last > in.frames_total)
         throw InternalError(fmt::format("eval part: frames [{}, {}) and their neighbours are not in the frames [{}, {}) held",
                                         in.first, in.last, in.offset, in.offset + held));
-    const Source source = in.source;
+    const corners::SourceInfo& source = corners::source_info(in.source);
     Part p;
     const std::string& first_name = feed.names()[static_cast<std::size_t>(in.first - in.offset)];
     p.sequence = first_name.substr(0, first_name.find('/'));
@@ -387,23 +362,8 @@ Part evaluate_part(const PartInput& in) {
     PartScorer scorer(in, p);
     const int batch = scorer.batch();
 
-    if (source == Source::spec) {
-        for (int a = in.first; a < in.last; a += batch) {
-            const int b = std::min(in.last, a + batch);
-            scorer.score(a, b, nullptr);
-            feed.release_below(b - in.offset);
-        }
-        p.seconds_source = scorer.spec_seconds();
-    } else if (source == Source::rtl) {
-        if (in.first != 0 || in.last != in.frames_total || in.offset != 0)
-            throw InternalError("eval part: the RTL source runs whole sequences only");
-        run_rtl_source(feed, p.rtl_mismatches, p.seconds_source, batch, [&](int a, std::vector<SourceFrame>& fs) {
-            scorer.score(a, a + static_cast<int>(fs.size()), &fs);
-            feed.release_below(a + static_cast<int>(fs.size()));
-        });
-    } else {
-        run_cycle_source(in, feed, scorer, batch, p);
-    }
+    if (source.observed) run_cycle_source(in, feed, scorer, batch, p);   // its registers recorded on every write
+    else run_stream_source(in, feed, scorer, batch, p);
     return p;
 }
 
@@ -411,9 +371,10 @@ Report evaluate(const Request& o) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     const Source source = o.source;
-    if (source == Source::rtl) {
+    if (corners::source_info(source).needs_simulator) {
         std::string why;
-        if (!vl::toolchain_available(&why)) throw InputError("--source rtl needs GHDL and Verilator: " + why);
+        if (!vl::toolchain_available(&why))
+            throw InputError("--source " + source_name(source) + " needs GHDL and Verilator: " + why);
     }
     const std::vector<int>& overlays = o.overlays;
     cv::setNumThreads(1);   // frames run in parallel; OpenCV's own threads would oversubscribe

@@ -142,6 +142,7 @@ Part Part::from_json(const json& j) {
 }
 
 std::vector<Part> fold_sequences(const std::vector<Part>& parts, Source source) {
+    const bool observed = corners::source_info(source).observed;   // parts chained by checkpoints
     std::vector<Part> out;
     for (const Part& p : parts) {
         if (out.empty() || out.back().sequence != p.sequence) {
@@ -157,7 +158,7 @@ std::vector<Part> fold_sequences(const std::vector<Part>& parts, Source source) 
                                          q.rows.empty() ? -1 : q.rows.back().frame));
         if (p.ablation.size() != q.ablation.size()) throw InputError("eval parts of sequence " + p.sequence + " differ in ablation");
         // the chain check: where the part before stopped is where this one started
-        if (source == Source::cycle) {
+        if (observed) {
             const FrameRow& at = p.rows.front();
             if (q.end_digest.empty() || q.end_digest != p.start_digest)
                 throw SimulatorError(fmt::format(
@@ -172,11 +173,11 @@ std::vector<Part> fold_sequences(const std::vector<Part>& parts, Source source) 
             FrameRow row = p.rows[k];
             // the first frame's maximum: the last one published while it streamed, which
             // is the previous part's when none was published in this part's share of it
-            if (source == Source::cycle && k == 0 && q.next_publications > 0 && p.publications.at(0) == 0)
+            if (observed && k == 0 && q.next_publications > 0 && p.publications.at(0) == 0)
                 row.max = q.next_max;
             q.rows.push_back(row);
         }
-        if (source == Source::cycle) {
+        if (observed) {
             std::vector<long> pub = p.publications;
             pub.at(0) += q.next_publications;
             q.publications.insert(q.publications.end(), pub.begin(), pub.end());
@@ -191,6 +192,7 @@ std::vector<Part> fold_sequences(const std::vector<Part>& parts, Source source) 
 }
 
 Report merge_parts(const std::vector<Part>& parts, Source source, bool ablation) {
+    const bool observed = corners::source_info(source).observed;   // the deviation catalog
     Report rep;
     rep.source = source_name(source);
     const auto variants = ablation_variants();
@@ -221,7 +223,7 @@ Report merge_parts(const std::vector<Part>& parts, Source source, bool ablation)
     }
     if (rep.sequences.size() == 1) rep.sequences.clear();   // a single stream: no per-sequence table
     rep.rtl_mismatches = sum.rtl_mismatches;
-    if (source == Source::rtl)
+    if (corners::source_info(source).needs_simulator)
         rep.notes.push_back(fmt::format(
             "RTL source: GHDL-synthesised netlist under Verilator (gate passed), {} reads disagreeing with the "
             "cycle model run in lock step; the thr/max columns are not observed on the netlist (-1).",
@@ -231,7 +233,7 @@ Report merge_parts(const std::vector<Part>& parts, Source source, bool ablation)
             rep.ablation.push_back({variants[v].name, variants[v].opt.describe(), abl[v]});
         rep.notes.push_back("Ablation rows score every pair but the first (the spec model has no incomplete last pair).");
     }
-    if (source == Source::cycle) add_cycle_deviations(rep, sum, geometries);
+    if (observed) add_cycle_deviations(rep, sum, geometries);
     return rep;
 }
 

@@ -4,9 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "model/driver/bus_loop.hpp"
-#include "model/driver/host_driver.hpp"
-#include "model/harris/harris_top.hpp"
+#include "cosim/corners/corners.hpp"
 #include "model/harris/observation.hpp"
 
 namespace fs = std::filesystem;
@@ -23,12 +21,12 @@ struct StreamResult {
 
 StreamResult run_stream(const util::RegressionStream& s, bool with_stages) {
     const std::vector<Image> frames = stream_frames(s);
-    std::vector<const Image*> ptrs;
-    for (const auto& f : frames) ptrs.push_back(&f);
     const Geometry g{s.width, s.height};
     const Formats fm{};
-    HostDriver drv(g, ptrs);
-    HarrisTop top(g, fm);
+    corners::DesignStream design(g, fm, static_cast<int>(frames.size()), [&frames](int k) {
+        return std::shared_ptr<const Image>(std::shared_ptr<const Image>{}, &frames.at(static_cast<std::size_t>(k)));   // not owned
+    });
+    const HarrisTop& top = design.model();
     std::ostringstream reads, maxima, stages;
     const std::string what = "# " + std::to_string(s.frames) + " frames of " +
                              (s.image.empty() ? "pattern '" + s.pattern + "' (seed 1), " : "image '" + s.pattern + "', ") +
@@ -68,8 +66,7 @@ StreamResult run_stream(const util::RegressionStream& s, bool with_stages) {
         }
     } hooks{{}, top, fm, with_stages, reads, maxima, stages, top.find_max().max.value()};
     maxima << 0 << ',' << hooks.last_max << '\n';
-    BusLoop loop(drv, top);
-    loop.run(hooks);
+    design.run(hooks);
     return {reads.str(), maxima.str(), stages.str()};
 }
 

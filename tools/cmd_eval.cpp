@@ -1,5 +1,6 @@
 // cmd_eval.cpp: the flags of `harris-cosim eval` (eval/eval_command.hpp), the thesis's
 // precision/recall evaluation against OpenCV's Harris (docs/metrics.md).
+#include "cosim/corners/corners.hpp"
 #include "eval/eval_command.hpp"
 #include "tools/commands.hpp"
 
@@ -12,7 +13,7 @@ void add_eval_command(CLI::App& app) {
     cmd->add_option("--sequences", o->sequences,
                     "KITTI sequences, each from its own reset: a range 00-21 or a list 00,01,05 (per-sequence rows "
                     "and the total; --pairs applies to each)");
-    cmd->add_option("--source", o->source, "corner source: spec, cycle or rtl")->capture_default_str();
+    cmd->add_option("--source", o->source, "corner source: " + corners::source_list(true))->capture_default_str();
     cmd->add_option("--out", o->out, "output directory")->capture_default_str();
     cmd->add_option("--overlay", o->overlay, "stream frames to draw, e.g. 2,3");
     cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")->check(whole_number(0));

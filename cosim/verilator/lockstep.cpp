@@ -54,40 +54,6 @@ void record(RunResult& res, Mismatch m, int max_reported) {
     if (static_cast<int>(res.reported.size()) < max_reported) res.reported.push_back(std::move(m));
 }
 
-// The mismatch of a corner read: the first differing corner bit (bit 3 = quadrant 0); other
-// bits of the word (31..4 must be 0) are reported as the whole word.
-Mismatch read_mismatch(const HostDriver& drv, const ReadPos& r, std::uint32_t expected, std::uint32_t actual, long write) {
-    const std::uint32_t diff = actual ^ expected;
-    Mismatch m;
-    m.kind = "read";
-    m.write = write;
-    int bit = -1;
-    for (int b = 3; b >= 0; --b)
-        if ((diff >> b) & 1U) {
-            bit = b;
-            break;
-        }
-    if (bit >= 0) {
-        const Corner c = drv.quadrant_centre(r, 3 - bit);
-        m.frame = c.frame;
-        m.x = c.x;
-        m.y = c.y;
-        m.quadrant = 3 - bit;
-        m.signal = "corner(" + std::to_string(bit) + ")";
-        m.expected = std::to_string((expected >> bit) & 1U);
-        m.actual = std::to_string((actual >> bit) & 1U);
-    } else {
-        m.frame = r.frame;
-        m.x = r.x;
-        m.y = r.y;
-        m.signal = "corner";
-        m.expected = hex(expected);
-        m.actual = hex(actual);
-    }
-    m.stage = "corner_shift_register";
-    return m;
-}
-
 // A corner read counted in the run's and its frame's figures, decoded, and passed to the
 // options' read hooks.
 void count_read(RunResult& res, FrameStats& fs, const ReadPos& r, std::uint32_t actual,
@@ -186,6 +152,38 @@ std::string Mismatch::describe() const {
     s << ", signal " << signal << " (" << stage << "): expected " << expected
       << " (model), actual " << actual << " (Verilator)";
     return s.str();
+}
+
+Mismatch read_mismatch(const HostDriver& drv, const ReadPos& r, std::uint32_t expected, std::uint32_t actual, long write) {
+    const std::uint32_t diff = actual ^ expected;
+    Mismatch m;
+    m.kind = "read";
+    m.write = write;
+    int bit = -1;
+    for (int b = 3; b >= 0; --b)
+        if ((diff >> b) & 1U) {
+            bit = b;
+            break;
+        }
+    if (bit >= 0) {
+        const Corner c = drv.quadrant_centre(r, 3 - bit);
+        m.frame = c.frame;
+        m.x = c.x;
+        m.y = c.y;
+        m.quadrant = 3 - bit;
+        m.signal = "corner(" + std::to_string(bit) + ")";
+        m.expected = std::to_string((expected >> bit) & 1U);
+        m.actual = std::to_string((actual >> bit) & 1U);
+    } else {
+        m.frame = r.frame;
+        m.x = r.x;
+        m.y = r.y;
+        m.signal = "corner";
+        m.expected = hex(expected);
+        m.actual = hex(actual);
+    }
+    m.stage = "corner_shift_register";
+    return m;
 }
 
 RunResult run_lockstep(const Geometry& g, const Formats& f, VerilatedDesign& dut,

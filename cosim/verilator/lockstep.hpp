@@ -43,6 +43,11 @@ struct Mismatch {
     std::string describe() const;
 };
 
+/// The mismatch of a corner read after write number `write`: the first differing corner bit
+/// (bit 3 = quadrant 0) at its window's pixel; other bits of the word (31..4 must be 0) are
+/// reported as the whole word.
+Mismatch read_mismatch(const HostDriver& drv, const ReadPos& r, std::uint32_t expected, std::uint32_t actual, long write);
+
 struct FrameStats {
     int index = 0;
     std::string source;

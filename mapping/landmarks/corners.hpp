@@ -24,9 +24,11 @@ enum class Detector {
     sift512,   ///< cv::SIFT detector, the 512 strongest points by response (thesis 6.4.1)
     orb,       ///< cv::ORB detector (nfeatures = CornerOptions::orb_features)
     brisk,     ///< cv::BRISK detector
-    spec,      ///< co-processor, frame-level spec model (hc::spec::SpecModel)
-    cycle,     ///< co-processor, cycle model hc::HarrisTop through the host driver
-    rtl,       ///< co-processor, Verilator netlist of rtl/ (GHDL synthesis), after its gate
+    // the co-processor's sources: the rows of hc::corners::source_table() in its order, from
+    // here on (a source added there follows rtl without a name of its own here)
+    spec,      ///< frame-level spec model (hc::spec::SpecModel)
+    cycle,     ///< cycle model hc::HarrisTop through the host driver
+    rtl,       ///< Verilator netlist of rtl/ (GHDL synthesis), after its gate, in lock step with the cycle model
 };
 
 struct CornerOptions {
@@ -46,7 +48,7 @@ struct DetectorInfo {
     const char* help;    ///< what the help text says of it after its name ("": nothing)
     /// the corners of one 8-bit grey image, as the source gives them (pt, size, response,
     /// octave); null for the co-processor's sources (spec, cycle, rtl), which a stream drives
-    /// with the threshold carried from frame to frame (PairCornerStream)
+    /// with the threshold carried from frame to frame (PairCornerStream over hc::corners::CornerStream)
     std::vector<cv::KeyPoint> (*detect)(const cv::Mat& grey, const CornerOptions& o);
 };
 /// Every corner source, in the order of the enum.

@@ -6,6 +6,7 @@
 
 #include "mapping/landmarks/descriptors.hpp"
 #include "mapping/landmarks/matching.hpp"
+#include "model/util/table.hpp"
 
 namespace hc::landmarks {
 
@@ -50,30 +51,14 @@ const std::vector<DescriptorInfo>& descriptor_table() {
     return table;
 }
 
-const DescriptorInfo& descriptor_info(Descriptor d) {
-    const auto& t = descriptor_table();
-    const auto it = std::find_if(t.begin(), t.end(), [d](const DescriptorInfo& r) { return r.id == d; });
-    if (it == t.end()) throw std::logic_error("descriptor_info: a descriptor without a row in the table");
-    return *it;
-}
+const DescriptorInfo& descriptor_info(Descriptor d) { return util::row_of(descriptor_table(), d, "a descriptor"); }
 
-Descriptor parse_descriptor(const std::string& s) {
-    for (const auto& r : descriptor_table())
-        if (s == r.name) return r.id;
-    throw InputError("unknown descriptor '" + s + "' (one of: " + descriptor_list() + ")");
-}
+Descriptor parse_descriptor(const std::string& s) { return util::row_named(descriptor_table(), s, "descriptor"); }
 
 std::string descriptor_name(Descriptor d) { return descriptor_info(d).name; }
 
 std::string descriptor_list(bool with_help, bool (*keep)(const DescriptorInfo&)) {
-    std::string out;
-    for (const auto& r : descriptor_table()) {
-        if (keep && !keep(r)) continue;
-        if (!out.empty()) out += ", ";
-        out += r.name;
-        if (with_help && *r.help) out += std::string(" (") + r.help + ")";
-    }
-    return out;
+    return util::row_names(descriptor_table(), with_help, keep);
 }
 
 std::vector<Descriptor> comparison_descriptors() {
