@@ -37,7 +37,8 @@ echo "== 3. precision/recall against OpenCV (thesis Table 5 protocol) =="
 "$cli" eval "${eval_args[@]}" --source spec --out out/eval-spec
 if "$cli" verilate --help >/dev/null 2>&1; then
   # the hardware's corners: the Verilator netlist, gated against GHDL and the model, in lock
-  # step with the cycle model (status 1 on any disagreeing read, after the report is written)
+  # step with the cycle model (the first read on which they disagree stops the job with status 1,
+  # naming the read)
   "$cli" eval "${eval_args[@]}" --source rtl --no-ablation --out out/eval-rtl
 else
   "$cli" eval "${eval_args[@]}" --source cycle --no-ablation --out out/eval-cycle
