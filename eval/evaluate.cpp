@@ -94,8 +94,10 @@ public:
         });
         p_.seconds_reference += since(t0);
         std::vector<std::vector<spec::FrameCorners>> runs(spec_.size());
-        // the thesis's spec run: the observed source's deviations, the ablation
-        if (source.observed || in_.ablation) runs[0] = spec_[0].run(ptrs, arena_);
+        // the thesis's spec run: the observed source's deviations, the ablation; a source that
+        // is not cycle-accurate is that run (the spec model at the thesis's formats), taken
+        // from its frames rather than run twice
+        if (source.observed || in_.ablation) runs[0] = source.cycle_accurate ? spec_[0].run(ptrs, arena_) : as_spec_run(src);
         for (std::size_t v = 1; v < spec_.size(); ++v) runs[v] = spec_[v].run(ptrs, arena_);
 
         const auto pair_of = [&](int k) { return feed_.pair_index()[static_cast<std::size_t>(a + k - in_.offset)]; };
@@ -126,6 +128,16 @@ public:
     }
 
 private:
+    static std::vector<spec::FrameCorners> as_spec_run(const std::vector<SourceFrame>& src) {
+        std::vector<spec::FrameCorners> run(src.size());
+        for (std::size_t k = 0; k < src.size(); ++k) {
+            run[k].mask = src[k].mask;
+            run[k].thr = src[k].thr;
+            run[k].max = src[k].max;
+            run[k].count = spec::count_corners(src[k].mask);
+        }
+        return run;
+    }
     template <class Scored>
     void deviations(int n, const std::vector<std::shared_ptr<const Image>>& imgs, const std::vector<SourceFrame>& src,
                     const std::vector<spec::FrameCorners>& sp, const Scored& scored) {
