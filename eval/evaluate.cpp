@@ -300,17 +300,15 @@ void run_cycle_source(const PartInput& in, frames::FrameFeed& feed, PartScorer& 
 }
 
 /// A source behind corners::CornerStream (the spec model; the netlist in lock step with the
-/// cycle model, trusted only after its GHDL/Verilator/model gate passes: else MismatchError):
+/// cycle model, trusted only after its GHDL/Verilator/model gate passes: corners::trusted_netlist):
 /// the part's frames streamed (each loaded as the stream reaches it) and handed to the scorer
 /// `batch` at a time. The source's time: the netlist's preparation and the stream's own (not
 /// the scoring).
 void run_stream_source(const PartInput& in, frames::FrameFeed& feed, PartScorer& scorer, int batch, Part& p) {
     const auto t0 = std::chrono::steady_clock::now();
-    const Formats f{};
-    const Geometry g{feed.width(), feed.height()};
     corners::StreamRequest r;
-    r.geometry = g;
-    r.formats = f;
+    r.geometry = Geometry{feed.width(), feed.height()};
+    r.formats = Formats{};
     r.frames = in.last - in.first;
     r.threads = in.threads;
     const int off = in.first - in.offset;   // stream frame 0 in the feed
@@ -323,11 +321,6 @@ void run_stream_source(const PartInput& in, frames::FrameFeed& feed, PartScorer&
     if (corners::source_info(in.source).needs_simulator) {
         if (in.first != 0 || in.last != in.frames_total || in.offset != 0)
             throw InternalError("eval part: the " + source_name(in.source) + " source runs whole sequences only");
-        const vl::GateResult gate = corners::gate(f, std::cerr);
-        if (gate.verdict != vl::GateVerdict::pass)
-            throw MismatchError("--source " + source_name(in.source) + ": the GHDL/Verilator/model gate did not pass (" +
-                                std::string(vl::verdict_name(gate.verdict)) + "): " + gate.first);
-        r.netlist = corners::netlist(g, f, std::cerr);
         r.progress = "eval";
     }
     const std::unique_ptr<corners::CornerStream> stream = corners::open_stream(in.source, std::move(r));

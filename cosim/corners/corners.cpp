@@ -31,14 +31,24 @@ std::string source_name(Source s) { return source_info(s).name; }
 
 std::string source_list(bool with_help) { return util::row_names(source_table(), with_help); }
 
-vl::GateResult gate(const Formats& f, std::ostream& log) {
+std::unique_ptr<vl::VerilatedDesign> trusted_netlist(Source s, const Geometry& g, const Formats& f, std::ostream& log) {
+    std::string why;
+    if (!vl::toolchain_available(&why)) throw InputError("corner source " + source_name(s) + " needs GHDL and Verilator: " + why);
     bool cached = false;
-    return vl::run_gate_cached(f, {}, vl::default_cache_dir(), log, &cached);
-}
-
-std::unique_ptr<vl::VerilatedDesign> netlist(const Geometry& g, const Formats& f, std::ostream& log) {
+    require_gate_pass(s, vl::run_gate_cached(f, {}, vl::default_cache_dir(), log, &cached));
     const vl::NetlistConfig nc{g, f, false, {}};
     return std::make_unique<vl::VerilatedDesign>(vl::build_netlist(nc, vl::default_cache_dir(), log), vl::config_key(nc));
+}
+
+void require_gate_pass(Source s, const vl::GateResult& gate) {
+    const std::string failed = "corner source " + source_name(s) + ": the GHDL/Verilator/model gate did not pass (" +
+                               vl::verdict_name(gate.verdict) + "): " + gate.first;
+    switch (gate.verdict) {
+        case vl::GateVerdict::pass: return;
+        case vl::GateVerdict::translation_fault: throw TranslationFault(failed);
+        case vl::GateVerdict::rtl_fault: throw MismatchError(failed);
+    }
+    throw InternalError(failed);
 }
 
 DesignStream::DesignStream(const Geometry& g, const Formats& f, int frames, FeedDriver::FrameAt frame_at,
@@ -106,8 +116,10 @@ private:
 /// body (not its preload) starts, or the stream ends.
 class DesignFrames : public CornerStream {
 public:
-    DesignFrames(Source s, StreamRequest r)
-        : s_(s), r_(std::move(r)), design_(r_.geometry, r_.formats, r_.frames, r_.frame_at, r_.netlist.get()) {}
+    /// `netlist` null: the cycle model alone.
+    DesignFrames(Source s, StreamRequest r, std::unique_ptr<vl::VerilatedDesign> netlist)
+        : s_(s), r_(std::move(r)), netlist_(std::move(netlist)),
+          design_(r_.geometry, r_.formats, r_.frames, r_.frame_at, netlist_.get()) {}
     bool next(StreamFrame& out) override {
         if (k_ >= r_.frames) return false;
         if (!ended_) {
@@ -155,6 +167,7 @@ private:
     };
     Source s_;
     StreamRequest r_;
+    std::unique_ptr<vl::VerilatedDesign> netlist_;
     DesignStream design_;
     std::map<int, std::vector<std::uint8_t>> masks_;   // frame -> corners read so far
     int k_ = 0;
@@ -177,17 +190,9 @@ std::unique_ptr<CornerStream> open_stream(Source s, StreamRequest r) {
     check_formats(r.formats);
     const SourceInfo& info = source_info(s);
     if (!info.cycle_accurate) return std::make_unique<SpecFrames>(std::move(r));
-    if (info.needs_simulator && !r.netlist) {
-        std::string why;
-        if (!vl::toolchain_available(&why))
-            throw InputError("corner source " + source_name(s) + " needs GHDL and Verilator: " + why);
-        const vl::GateResult g = gate(r.formats, std::cerr);
-        if (g.verdict != vl::GateVerdict::pass)
-            throw std::runtime_error("corner source " + source_name(s) + ": the GHDL/Verilator/model gate did not pass (" +
-                                     vl::verdict_name(g.verdict) + "): " + g.first);
-        r.netlist = netlist(r.geometry, r.formats, std::cerr);
-    }
-    return std::make_unique<DesignFrames>(s, std::move(r));
+    std::unique_ptr<vl::VerilatedDesign> net;
+    if (info.needs_simulator) net = trusted_netlist(s, r.geometry, r.formats, std::cerr);
+    return std::make_unique<DesignFrames>(s, std::move(r), std::move(net));
 }
 
 }  // namespace hc::corners

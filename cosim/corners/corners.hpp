@@ -55,11 +55,14 @@ std::string source_list(bool with_help = false);
 
 // ---- the netlist behind its gate -------------------------------------------------------
 
-/// The GHDL/Verilator/model gate for formats `f` (cached per design and tools,
-/// cosim/verilator/gate.hpp), its log on `log`.
-vl::GateResult gate(const Formats& f, std::ostream& log);
-/// The netlist of rtl/ for `g` and `f`, built (cached) for a design whose gate passed.
-std::unique_ptr<vl::VerilatedDesign> netlist(const Geometry& g, const Formats& f, std::ostream& log);
+/// The netlist of rtl/ for `g` and `f` as source `s` uses it, built (cached) only after the
+/// GHDL/Verilator/model gate for `f` passes (cached per design and tools,
+/// cosim/verilator/gate.hpp), the logs on `log`. InputError without GHDL and Verilator; a
+/// gate that does not pass is its verdict's failure, as `verilate` reports it: a translation
+/// fault TranslationFault (status 4), an RTL fault MismatchError (status 1).
+std::unique_ptr<vl::VerilatedDesign> trusted_netlist(Source s, const Geometry& g, const Formats& f, std::ostream& log);
+/// Nothing for a gate that passed; else its verdict's failure, as trusted_netlist() throws it.
+void require_gate_pass(Source s, const vl::GateResult& gate);
 
 // ---- the host-driver loop --------------------------------------------------------------
 
@@ -139,9 +142,6 @@ struct StreamRequest {
     /// spec: frames run at a time, asked of frame_at ahead of the one handed on (0: twice the
     /// threads, 2 to 16)
     int batch = 0;
-    /// rtl: the netlist for `geometry` and `formats` (its gate passed); null: built here
-    /// (gate, then netlist) and a gate that does not pass is std::runtime_error
-    std::unique_ptr<vl::VerilatedDesign> netlist;
     /// a line per frame on stderr as a cycle-accurate source reaches it, led by this (empty: none)
     std::string progress;
 };
@@ -170,8 +170,9 @@ public:
 /// InputError naming the formats' first refused field.
 void check_formats(const Formats& f);
 
-/// The stream of source `s`. InputError: rtl without GHDL and Verilator, formats it refuses;
-/// std::invalid_argument: a geometry the host driver refuses.
+/// The stream of source `s`; a source that needs the simulator gets its trusted_netlist()
+/// here, whose failures it throws. InputError: formats it refuses; std::invalid_argument: a
+/// geometry the host driver refuses.
 std::unique_ptr<CornerStream> open_stream(Source s, StreamRequest r);
 
 }  // namespace hc::corners

@@ -1,7 +1,7 @@
 // corner_stream_test.cpp: the co-processor's corner sources (cosim/corners): the table, and the
 // stream fed frame by frame with the threshold carried, against each source's direct path: the
 // spec model over the whole stream in one run, and the cycle model fed the host driver's
-// events in one loop with every read's corners kept by frame.
+// events in one loop with every read's corners kept by frame; a failed gate's error type.
 #include <catch2/catch.hpp>
 
 #include <map>
@@ -120,4 +120,17 @@ TEST_CASE("a stream refuses formats the co-processor cannot have", "[corners]") 
     r.frame_at = [](int) { return std::make_shared<const Image>(kW, kH); };
     r.formats.resp_w = 0;
     CHECK_THROWS_AS(corners::open_stream(corners::Source::spec, std::move(r)), InputError);
+}
+
+TEST_CASE("a gate that does not pass stops the rtl source with its verdict's status", "[corners]") {
+    vl::GateResult g;
+    CHECK_NOTHROW(corners::require_gate_pass(corners::Source::rtl, g));
+    g.first = "max (find_max) differs at write 1";
+    g.verdict = vl::GateVerdict::translation_fault;
+    CHECK_THROWS_AS(corners::require_gate_pass(corners::Source::rtl, g), TranslationFault);
+    CHECK_THROWS_WITH(corners::require_gate_pass(corners::Source::rtl, g),
+                      Catch::Contains("corner source rtl") && Catch::Contains("translation fault") &&
+                          Catch::Contains("max (find_max) differs at write 1"));
+    g.verdict = vl::GateVerdict::rtl_fault;
+    CHECK_THROWS_AS(corners::require_gate_pass(corners::Source::rtl, g), MismatchError);
 }
