@@ -105,6 +105,13 @@ void add_landmark_flags(CLI::App* cmd, slam::SlamCommand& o) {
     cmd->add_flag("!--noise-at-measurement", o.noise_at_prediction,
                   "gate, associate and correct each observation with its noise where it was measured, not at the "
                   "landmark's prediction");
+    cmd->add_flag("!--no-odometry-inlier-corrections", o.correct_with_odometry_inliers,
+                  "visual odometry: an observation that was an inlier of the motion into its frame is associated "
+                  "but does not correct the filter (its pixels used by the motion only; corrected by default)");
+    cmd->add_option("--odometry-inlier-noise-scale", o.odometry_inlier_noise_scale,
+                    "visual odometry: an observation that was an inlier of the motion into its frame gates, associates "
+                    "and corrects the filter with its noise times this (at least 1)")
+        ->capture_default_str();
     cmd->add_option("--forget-after", o.forget_after, "remove landmarks unseen for this many frames (0: keep)")->capture_default_str();
     cmd->add_option("--max-observations", o.max_observations, "observations used per frame, the most precise first (0: all)")
         ->capture_default_str();

@@ -50,6 +50,7 @@ void RunTotals::add(const FrameStats& f) {
     checked += f.matched_checked;
     wrong += f.matched_wrong;
     jcbb_cut += f.jcbb_complete ? 0 : 1;
+    not_corrected += f.matched_not_corrected;
 }
 
 FrameSource frames_of(const std::vector<StereoFrame>& frames) {

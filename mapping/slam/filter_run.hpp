@@ -43,7 +43,7 @@ struct RunRecord {
 /// The counts of a run's frames, summed as frames come.
 struct RunTotals {
     int matched = 0, observed = 0, peak = 0, final_map_size = 0, hinted = 0, agreeing = 0, checked = 0, wrong = 0,
-        jcbb_cut = 0;
+        jcbb_cut = 0, not_corrected = 0;
     void add(const FrameStats& f);
 };
 

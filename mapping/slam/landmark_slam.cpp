@@ -29,6 +29,9 @@ void AssociationConfig::validate() const {
         throw InputError("--max-hamming-fraction must be in [0, 1], got " + std::to_string(max_hamming_fraction));
     if (forget_after < 0) throw InputError("--forget-after must not be negative");
     if (max_observations < 0) throw InputError("--max-observations must not be negative");
+    if (!(odometry_inlier_noise_scale >= 1 && std::isfinite(odometry_inlier_noise_scale)))
+        throw InputError("--odometry-inlier-noise-scale must be a finite number of at least 1, got " +
+                         std::to_string(odometry_inlier_noise_scale));
     if (!(min_range >= 0 && max_range > min_range)) throw InputError("the observation range limits are not 0 <= min < max");
 }
 
@@ -107,7 +110,8 @@ FrameStats LandmarkSlam::observe(const StereoFrame& frame) {
 }
 
 Mat2 LandmarkSlam::noise_of(const StereoLandmarkObs& o, const RangeBearing& rb, const Vec2& at) const {
-    return cfg_.noise_at_prediction ? observation_noise_at(o, at) : rb.R;
+    const Mat2 R = cfg_.noise_at_prediction ? observation_noise_at(o, at) : rb.R;
+    return o.odometry_inlier ? Mat2(cfg_.odometry_inlier_noise_scale * R) : R;
 }
 
 Vec2 LandmarkSlam::predicted_point(int id) const { return to_frame(ekf_.pose(), ekf_.landmark(id)); }
@@ -157,7 +161,10 @@ void LandmarkSlam::correct_matched(const StereoFrame& frame, const std::vector<R
         const int id = landmark[i];
         if (id < 0) continue;
         // the noise where the filter now predicts the landmark (earlier corrections moved it)
-        ekf_.correct(id, obs[i].y, noise_of(frame[src[i]], obs[i], predicted_point(id)));
+        if (cfg_.correct_with_odometry_inliers || !frame[src[i]].odometry_inlier)
+            ekf_.correct(id, obs[i].y, noise_of(frame[src[i]], obs[i], predicted_point(id)));
+        else
+            ++st.matched_not_corrected;
         last_seen_[id] = frame_;
         last_matches_.emplace_back(src[i], id);
         const int hint = frame[src[i]].id_hint;

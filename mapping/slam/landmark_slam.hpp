@@ -38,6 +38,15 @@ struct AssociationConfig {
     /// noise at the landmark's prediction (observation_noise_at; LandmarkSlam); false: at its
     /// measurement (the covariance the frame carries).
     bool noise_at_prediction = true;
+    /// false: an observation marked odometry_inlier (an inlier of the motion into its frame) is
+    /// gated and associated (a mapped landmark is not added again) but does not correct the
+    /// filter, so that its pixels enter the frame's prediction (the motion) and not also its
+    /// update.
+    bool correct_with_odometry_inliers = true;
+    /// The noise of an observation marked odometry_inlier, where it corrects the filter, is
+    /// its covariance times this (≥ 1): the information its pixels gave the motion not
+    /// counted again in full.
+    double odometry_inlier_noise_scale = 1;
     void validate() const;
 };
 
@@ -49,6 +58,7 @@ int hamming_threshold(double fraction, size_t bytes);
 struct FrameStats {
     int observed = 0, matched = 0, added = 0, rejected_by_descriptor = 0, removed = 0, map_size = 0;
     int matched_with_hints = 0, matched_agreeing = 0;   ///< matches where both id hints are set / equal
+    int matched_not_corrected = 0;   ///< matches that did not correct (correct_with_odometry_inliers false)
     /// Scored against ground truth after the run (never used by it): matches whose observation
     /// and the landmark's first observation, placed in the world with the true poses, are
     /// farther apart than their covariances allow (χ²(2) 0.999).
@@ -86,7 +96,8 @@ public:
 private:
     FrameStats observe(const StereoFrame& frame);
     /// The noise of observation o (rb, its range-bearing form) as a landmark the filter
-    /// predicts at `at` (predicted_point): there with noise_at_prediction, else rb.R.
+    /// predicts at `at` (predicted_point): there with noise_at_prediction, else rb.R; times
+    /// odometry_inlier_noise_scale for an odometry inlier.
     Mat2 noise_of(const StereoLandmarkObs& o, const RangeBearing& rb, const Vec2& at) const;
     /// Where the filter predicts landmark `id`, in the robot's frame.
     Vec2 predicted_point(int id) const;

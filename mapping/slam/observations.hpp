@@ -22,6 +22,9 @@ struct StereoLandmarkObs {
     /// both an observation and the observation that created its landmark carry one, a
     /// match counts as agreeing (FrameStats::matched_agreeing) if they are equal.
     int id_hint = -1;
+    /// Set by the visual-odometry run: an inlier of the motion into this observation's frame
+    /// (AssociationConfig::correct_with_odometry_inliers).
+    bool odometry_inlier = false;
 };
 using StereoFrame = std::vector<StereoLandmarkObs>;
 

@@ -345,6 +345,7 @@ void save_sequence_summary(const fs::path& file, const SequenceRun& r, const Seq
     }
     j["observations"] = t.observed;
     j["matched"] = t.matched;
+    j["matched_not_corrected"] = t.not_corrected;
     j["map_size"] = {{"final", t.final_map_size}, {"peak", t.peak}};
     j["matches_with_id_hints"] = {{"total", t.hinted}, {"agreeing", t.agreeing}};
     j["matches_checked_against_truth"] = {{"total", t.checked}, {"wrong", t.wrong}};

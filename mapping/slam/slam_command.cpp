@@ -184,6 +184,8 @@ KittiRunOptions kitti_options(const SlamCommand& o) {
     ac.forget_after = o.forget_after;
     ac.max_observations = o.max_observations;
     ac.noise_at_prediction = o.noise_at_prediction;
+    ac.correct_with_odometry_inliers = o.correct_with_odometry_inliers;
+    ac.odometry_inlier_noise_scale = o.odometry_inlier_noise_scale;
     VisualOdometryConfig& vc = k.vo;
     vc.max_hamming_fraction = o.vo_hamming_fraction;
     vc.min_inliers = o.vo_min_inliers;

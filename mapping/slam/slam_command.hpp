@@ -50,6 +50,8 @@ struct SlamCommand {
     bool descriptor = true, vo_disparity_offset = VisualOdometryConfig{}.estimate_disparity_offset;
     bool vo_offset_uncertainty = VisualOdometryConfig{}.offset_uncertainty;
     bool noise_at_prediction = AssociationConfig{}.noise_at_prediction, vo_level = VisualOdometryConfig{}.level;
+    bool correct_with_odometry_inliers = AssociationConfig{}.correct_with_odometry_inliers;
+    double odometry_inlier_noise_scale = AssociationConfig{}.odometry_inlier_noise_scale;
     bool vo_measured_noise = VisualOdometryConfig{}.noise_from_residuals, vo_two_view = VisualOdometryConfig{}.two_view_points;
     // --landmarks-from stereo: the landmark pipeline's options
     std::string corners = landmarks::detector_name(KittiRunOptions{}.pipeline.detector),

@@ -333,6 +333,12 @@ std::vector<Mat34> tilting_drive(int count) {
     }
     return out;
 }
+/// The top views of `poses`.
+std::vector<Pose> planar_truth(const std::vector<Mat34>& poses) {
+    std::vector<Pose> truth;
+    for (const auto& T : poses) truth.push_back(planar_pose(T));
+    return truth;
+}
 /// The rotation and translation of camera k in camera k-1 (X_prev = R X_cur + t).
 std::pair<Mat3, Eigen::Vector3d> step(const Mat34& a, const Mat34& b) {
     const Mat3 Ra = a.leftCols<3>(), Rb = b.leftCols<3>();
@@ -342,8 +348,7 @@ std::pair<Mat3, Eigen::Vector3d> step(const Mat34& a, const Mat34& b) {
 
 TEST_CASE("levelled motions of a tilting camera integrate to its top-view trajectory", "[slam][odometry]") {
     const auto poses = tilting_drive(51);
-    std::vector<Pose> truth;
-    for (const auto& T : poses) truth.push_back(planar_pose(T));
+    const std::vector<Pose> truth = planar_truth(poses);
     const Eigen::Matrix<double, 6, 6> none = Eigen::Matrix<double, 6, 6>::Zero();
     std::vector<Motion> levelled_steps, camera_steps;
     Mat3 A = Mat3::Identity();
@@ -399,8 +404,7 @@ TEST_CASE("on a tilting drive with synthetic landmarks EKF-SLAM ends no farther 
     // 0.5 px, world seeds 1-4; visual odometry on pixels and the filter with their defaults,
     // and the filter with each observation's noise at its measurement (the former filter)
     const auto poses = tilting_drive(51);
-    std::vector<Pose> truth;
-    for (const auto& T : poses) truth.push_back(planar_pose(T));
+    const std::vector<Pose> truth = planar_truth(poses);
     AssociationConfig at_measurement;
     at_measurement.noise_at_prediction = false;
     int behind_at_measurement = 0;
@@ -433,6 +437,33 @@ TEST_CASE("on a tilting drive with synthetic landmarks EKF-SLAM ends no farther 
     }
     // with the noise at the measurement the filter ends behind its odometry (measured: 4 of 4)
     CHECK(behind_at_measurement >= 3);
+}
+
+TEST_CASE("without the odometry inliers' corrections the filter's NEES comes down to its odometry's",
+          "[slam][odometry]") {
+    // the tilting drive's world seeds 1-4: the filter with its defaults, and with the
+    // observations that were inliers of the motion into their frame associated but not
+    // corrected (each feature's pixels used by the motion only)
+    const auto poses = tilting_drive(51);
+    AssociationConfig skip;
+    skip.correct_with_odometry_inliers = false;
+    const std::vector<Pose> truth = planar_truth(poses);
+    for (uint64_t seed = 1; seed <= 4; ++seed) {
+        const auto frames = synthesize_stereo_frames(poses, synthetic_rig(), {}, 1000, 8, seed);
+        const SequenceRun s = run_visual_sequence(frames, truth, odometry(), skip);
+        const SequenceRun r = run_visual_sequence(frames, truth, odometry(), AssociationConfig{});
+        const double vo = r.odometry_metrics.nees_mean;
+        INFO("seed " << seed << ": mean NEES odometry " << vo << ", filter " << r.slam_metrics.nees_mean
+             << ", without the inliers' corrections " << s.slam_metrics.nees_mean << "; APE " << r.slam_metrics.ape
+             << " / " << s.slam_metrics.ape << " m, odometry " << r.odometry_metrics.ape << " m; matched "
+             << s.totals.matched << ", not corrected " << s.totals.not_corrected);
+        CHECK(r.totals.not_corrected == 0);
+        CHECK(s.totals.not_corrected > s.totals.matched / 2);   // most matches were the motion's inliers
+        CHECK(s.totals.not_corrected <= s.totals.matched);
+        CHECK(s.odometry_metrics.ape == r.odometry_metrics.ape);   // the motions are the same
+        CHECK(s.slam_metrics.nees_mean < r.slam_metrics.nees_mean);
+        CHECK(s.slam_metrics.nees_mean < 1.3 * vo);
+    }
 }
 
 TEST_CASE("the descriptor threshold is a fraction of the descriptor's bits", "[slam]") {

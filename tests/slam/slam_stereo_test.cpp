@@ -190,6 +190,42 @@ TEST_CASE("association matches inside the gate and refuses a descriptor that dif
     CHECK(t.next_frame(Motion::Zero(), Q0, {a2}).matched == 1);
 }
 
+TEST_CASE("an odometry inlier corrects the filter with its noise scaled, or not at all", "[slam]") {
+    const hc::landmarks::RectifiedRig cam = synthetic_rig();
+    const StereoLandmarkObs a = to_observation(hc::landmarks::triangulate(cam, {700, 200, 670, 200}));
+    StereoLandmarkObs inlier = a;
+    inlier.odometry_inlier = true;
+    // the pose variance after a motion and one observation of a landmark mapped in frame 0
+    const auto pose_variance = [&](const AssociationConfig& ac, const StereoLandmarkObs& seen, FrameStats* st = nullptr) {
+        LandmarkSlam s(Pose::Zero(), ac);
+        s.first_frame({a});
+        const FrameStats f = s.next_frame(Motion::Zero(), Q0, {seen});
+        if (st) *st = f;
+        return s.filter().pose_covariance().trace();
+    };
+    const AssociationConfig plain;
+    const double predicted = Q0.trace() + LandmarkSlam(Pose::Zero(), plain).filter().pose_covariance().trace();
+    const double corrected = pose_variance(plain, a);
+    CHECK(corrected < predicted);
+    CHECK(pose_variance(plain, inlier) == corrected);   // the mark alone changes nothing
+    AssociationConfig scaled;
+    scaled.odometry_inlier_noise_scale = 4;
+    const double weaker = pose_variance(scaled, inlier);
+    CHECK(weaker > corrected);
+    CHECK(weaker < predicted);
+    CHECK(pose_variance(scaled, a) == corrected);       // an observation not marked is as measured
+    AssociationConfig skip;
+    skip.correct_with_odometry_inliers = false;
+    FrameStats st;
+    CHECK(pose_variance(skip, inlier, &st) == Approx(predicted).epsilon(1e-12));
+    CHECK(st.matched == 1);                              // associated, not added again
+    CHECK(st.added == 0);
+    CHECK(st.matched_not_corrected == 1);
+    CHECK(pose_variance(skip, a) == corrected);
+    scaled.odometry_inlier_noise_scale = 0.5;
+    CHECK_THROWS_WITH(scaled.validate(), Catch::Contains("--odometry-inlier-noise-scale"));
+}
+
 TEST_CASE("landmarks unseen for forget_after frames are removed", "[slam]") {
     AssociationConfig ac;
     ac.forget_after = 2;
