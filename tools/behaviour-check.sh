@@ -54,10 +54,10 @@ run mutate "$cli" mutate --report "$out/mutate/mutation-smoke.md"
 run golden "$cli" golden --check
 fi
 
-# digests: JSON without keys that hold times, hosts, the command line (it names OUT_DIR) or the
+# digests: JSON without keys that hold times, hosts, the command line or the output folder (they name OUT_DIR) or the
 # state of a cache (whether a result was recorded by an earlier run: `cached`, the gate's
 # `detail`, gates run or recorded), CSV without such columns
-timing='seconds|time|wall|elapsed|duration|host|date|_ms$|_s$|ms_per|per_second|^command$|cached|^gates_run$|^detail$'
+timing='seconds|time|wall|elapsed|duration|host|date|_ms$|_s$|ms_per|per_second|^command$|^out$|cached|^gates_run$|^detail$'
 digests="$out/digests.txt"
 : > "$digests"
 find "$out" -path "$out/sweep-cache" -prune -o -type f \( -name '*.json' -o -name '*.csv' \) -print | LC_ALL=C sort |
