@@ -34,17 +34,17 @@ std::string source_list(bool with_help) { return util::row_names(source_table(),
 std::unique_ptr<vl::VerilatedDesign> trusted_netlist(Source s, const Geometry& g, const Formats& f, std::ostream& log) {
     std::string why;
     if (!vl::toolchain_available(&why)) throw InputError("corner source " + source_name(s) + " needs GHDL and Verilator: " + why);
-    bool cached = false;
-    require_gate_pass(s, vl::run_gate_cached(f, {}, vl::default_cache_dir(), log, &cached));
+    require_gate_pass(s, vl::run_gate_cached(f, {}, vl::default_cache_dir(), log, nullptr));
     const vl::NetlistConfig nc{g, f, false, {}};
     return std::make_unique<vl::VerilatedDesign>(vl::build_netlist(nc, vl::default_cache_dir(), log), vl::config_key(nc));
 }
 
 void require_gate_pass(Source s, const vl::GateResult& gate) {
+    if (gate.verdict == vl::GateVerdict::pass) return;
     const std::string failed = "corner source " + source_name(s) + ": the GHDL/Verilator/model gate did not pass (" +
                                vl::verdict_name(gate.verdict) + "): " + gate.first;
     switch (gate.verdict) {
-        case vl::GateVerdict::pass: return;
+        case vl::GateVerdict::pass: break;
         case vl::GateVerdict::translation_fault: throw TranslationFault(failed);
         case vl::GateVerdict::rtl_fault: throw MismatchError(failed);
     }

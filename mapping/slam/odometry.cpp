@@ -766,8 +766,7 @@ SequenceRun visual_run(const FrameSource& frames, const std::vector<Pose>& truth
     if (frames(previous)) {
         for (k = 1; frames(current); ++k) {
             vos.step(previous, current);
-            if (!association.correct_with_odometry_inliers || association.odometry_inlier_noise_scale != 1)
-                for (const auto& [p, c] : vos.estimate().matches) current[static_cast<std::size_t>(c)].odometry_inlier = true;
+            for (const auto& [p, c] : vos.estimate().matches) current[static_cast<std::size_t>(c)].odometry_inlier = true;
             if (offsets) note_offset(offset_range, vos.disparity_offset());
             if (k == 1) {
                 if (pixels) filter.set_spatial(track.tilt(), track.height());
