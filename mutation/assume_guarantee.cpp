@@ -21,6 +21,9 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 
 constexpr int pixel_w = 8;   // rtl/harris_pkg.vhd PIXEL_W: not a generic
 
+/// where prove_assuming's `sat` writes its log with the inputs of a failing base case
+constexpr const char* kModelLog = "sat-model.log";
+
 /// floor(x / 2^k)
 long long floor_shift(long long x, int k) { return x >> k; }
 
@@ -262,24 +265,19 @@ Proof prove_assuming(const Mutant& m, const fs::path& work, int timeout_s, const
     const std::string script = load_pair_script(m) + "miter -equiv -flatten gold gate miter\n" + expose +
                                "read_verilog -formal <<EOT\n" + wrapper +
                                "EOT\nproc\nhierarchy -top ag\nflatten\nasync2sync\nopt -fast\n"
-                               "sat -verify -tempinduct " + goals +
-                               " -set-assumes -set-init-zero -seq 1 -maxsteps 10\n";
+                               "tee -o " + std::string(kModelLog) + " sat -verify -tempinduct " + goals +
+                               " -set-assumes -set-init-zero -seq 1 -maxsteps 10 -show-inputs\n";
+    fs::remove(work / kModelLog);
     p.equivalent = run_yosys("assume-guarantee", script, work, timeout_s, p);
     p.seconds = since(t0);
     return p;
 }
 
-std::vector<CexValue> counterexample(const Proof& p, const fs::path& work, int timeout_s) {
-    std::string script = p.script;
-    const size_t sat = script.rfind("sat -verify ");
-    if (sat == std::string::npos) throw std::logic_error("counterexample: the proof's script has no `sat -verify`: " + p.method);
-    script.replace(sat, 12, "sat ");
-    const size_t eol = script.find('\n', sat);
-    script.insert(eol == std::string::npos ? script.size() : eol, " -show-inputs");
-    const fs::path ys = work / "counterexample.ys", log = work / "counterexample.log";
-    util::write_file_atomic(ys, script);
-    fs::remove(log);
-    util::run_process({"timeout", std::to_string(timeout_s), "yosys", "-s", ys.filename().string()}, {.cwd = work, .log = log});
+std::vector<CexValue> counterexample(const Proof& p, const fs::path& work) {
+    if (p.method != "assume-guarantee" || p.script.find(kModelLog) == std::string::npos)
+        throw std::logic_error("counterexample: the proof did not print its inputs (method " + p.method + ")");
+    const fs::path log = work / kModelLog;
+    if (!fs::exists(log)) throw std::logic_error("counterexample: the proof's " + log.string() + " is missing");
     // "SAT temporal induction proof finished - model found for base case: FAIL!", then the
     // table: "  <step> \\<signal> <dec> <hex> <bin>"
     const std::string out = util::read_file(log);

@@ -206,11 +206,11 @@ struct CexValue {
     std::string signal;     ///< yosys's name without the leading backslash ("in_a")
     long long value = 0;    ///< the bits read as a signed number
 };
-/// The inputs of the base-case counterexample of a failed `sat -tempinduct` proof (method
-/// "miter" or "assume-guarantee"): p.script run again in `work` (beside its gold.v and gate.v)
-/// without -verify and with -show-inputs. Empty when yosys finds no base-case counterexample
-/// (the proof holds for `-maxsteps` steps, or only its induction step fails).
-std::vector<CexValue> counterexample(const Proof& p, const fs::path& work, int timeout_s);
+/// The inputs of the base-case counterexample of a failed prove_assuming proof made in `work`,
+/// read from the `sat` log that proof printed them to (its `-show-inputs`, so no second solver
+/// run). Empty when yosys found no base-case counterexample (the proof holds for `-maxsteps`
+/// steps, or only its induction step fails); std::logic_error for a proof of another method.
+std::vector<CexValue> counterexample(const Proof& p, const fs::path& work);
 
 /// Verdicts of the mutants `sel` from `old` (results_from_csv of an earlier run on this rtl/):
 /// killed, stillborn and unconditionally proven ones stand; a surviving one, or one proven

@@ -123,7 +123,7 @@ TEST_CASE("a weakened upstream guarantee (a and c anywhere in 16 signed bits) an
     CHECK(p.script.find("assume(in_a >= -32768 && in_a <= 32767)") != std::string::npos);
     // the solver's failing input: a*c outside the 31 signed bits the mutant keeps (the only
     // place it differs), with a or c outside the true range [0, 18288]
-    const std::vector<mutation::CexValue> cex = mutation::counterexample(p, work.path() / "p", timeout_s);
+    const std::vector<mutation::CexValue> cex = mutation::counterexample(p, work.path() / "p");
     REQUIRE_FALSE(cex.empty());
     const long long lo = -(1LL << 30), hi = (1LL << 30) - 1;
     bool overflow = false;
