@@ -1,7 +1,6 @@
 // cluster_test: shards, result files, the local runner, resume after a failed and a killed
 // shard, and (with a running Slurm cluster, tag [slurm]) the Slurm runner. Every run's
 // merged result must equal the single-process result exactly.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <signal.h>

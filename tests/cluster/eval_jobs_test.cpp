@@ -6,8 +6,9 @@
 // `eval_jobs_tests --make-standin DIR` writes the stand-in KITTI sequences 02 and 03 into
 // DIR, `--make-standin DIR SEQ WxH PAIRS` one of that size (for the command-line tests). Runs whose tags name [kitti] exit 77 (skipped) without
 // KITTI sequence 01.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <unistd.h>
 
@@ -399,7 +400,7 @@ int main(int argc, char** argv) {
                     "kitti/sequences/01; see the data README.md (../shared/data beside the repository))\n");
         return 77;
     }
-    const int rc = Catch::Session().run(argc, argv);
+    const int rc = hc::test::run_catch(argc, argv);
     std::error_code ec;
     fs::remove_all(fs::temp_directory_path() / ("hc-eval-jobs-" + std::to_string(::getpid())), ec);
     return rc;

@@ -1,7 +1,8 @@
 // eval_kitti_test.cpp: the evaluation on real KITTI frames. Exits 77 (CTest: skipped) with
 // a message when the data directory holds no KITTI sequence 01.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <unistd.h>
 
@@ -122,5 +123,5 @@ int main(int argc, char** argv) {
     const auto d = frames::test::data_dir_holding("kitti/sequences/01/image_0");
     if (!d) return 77;
     g_kitti = *d / "kitti";
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }

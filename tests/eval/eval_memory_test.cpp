@@ -11,8 +11,9 @@
 // the peak of a run three times longer equals the shorter one's within 16 MB (the retained
 // write positions and thresholds once cost about 21 MB a frame), and for the cycle and rtl
 // sources a stream of 2,000 small frames stays within 8 MB of a 100-frame one.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -146,5 +147,5 @@ int main(int argc, char** argv) {
     // by hand: one run in this process, e.g. `/usr/bin/time -v eval_memory_tests --run cycle 1241 376 2000 1`
     if (argc == 7 && std::strcmp(argv[1], "--run") == 0)
         return run_child_status(argv[2], std::stoi(argv[3]), std::stoi(argv[4]), std::stoi(argv[5]), argv[6][0] == '1');
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }

@@ -1,6 +1,5 @@
 // slam_job_test: Monte-Carlo seeds run in shards by `harris-cosim shard run` and folded by
 // slam::slam_result give slam::monte_carlo's statistics bit for bit.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <unistd.h>

@@ -3,8 +3,9 @@
 // own single-camera result left_intrinsics.yml. The directory is HC_OPENCV_SAMPLES (found by
 // CMake in Debian's opencv-doc) or $HARRIS_COSIM_OPENCV_SAMPLES; without it the test exits 77
 // (CTest: skipped) with a message.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <opencv2/calib3d.hpp>
 
@@ -161,5 +162,5 @@ int main(int argc, char** argv) {
                     g_dir.string().c_str());
         return 77;
     }
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }

@@ -1,7 +1,8 @@
 // calib_kitti_test.cpp: the KITTI reader on the sequence 01 calib.txt of the data directory
 // (io/frames/frames.hpp data_dir). Exits 77 (CTest: skipped) with a message when it is absent.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <filesystem>
 
@@ -31,5 +32,5 @@ int main(int argc, char** argv) {
     const auto d = hc::frames::test::data_dir_holding("kitti/sequences/01/calib.txt");
     if (!d) return 77;
     g_calib = *d / "kitti/sequences/01/calib.txt";
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }

@@ -2,8 +2,9 @@
 // encoding pinned on pixels checked by hand against the images, the comparison on
 // Middlebury scenes, and KITTI calibration and pairs. Exits 77 (CTest: skipped) with a
 // message when the data directory ($HARRIS_COSIM_DATA, else ../shared/data) lacks the sets.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -48,7 +49,7 @@ int main(int argc, char** argv) {
                     g_data.string().c_str());
         return 77;
     }
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }
 
 TEST_CASE("half-size disp1.png holds twice the half-size disparity: pixels checked by hand", "[landmarks][data]") {

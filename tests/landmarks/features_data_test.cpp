@@ -1,8 +1,9 @@
 // The grid descriptor's quirks measured on a real stereo pair (KITTI 01 pair 0, else
 // opencv-doc's aloe pair) with the 1,000 strongest Harris corners per image; prints the
 // figures docs/landmarks.md quotes. Exits 77 (CTest: skipped) without either pair.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <cstdio>
 #include <set>
@@ -93,5 +94,5 @@ int main(int argc, char** argv) {
                              "../shared/data) nor opencv-doc's aloeL.jpg/aloeR.jpg found\n");
         return 77;
     }
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }

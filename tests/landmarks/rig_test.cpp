@@ -5,8 +5,9 @@
 // one square apart on one plane and share a rectified row; the pipeline's matches share a
 // row too, and outnumber those of the same pair taken as rectified.
 // Exits 77 (CTest: skipped) without the samples.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -38,7 +39,7 @@ int main(int argc, char** argv) {
                     g_samples.string().c_str());
         return 77;
     }
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }
 
 TEST_CASE("on a calibrated rig's unrectified pair, the chessboard's landmarks are flat, one square apart, on one row",

@@ -3,7 +3,6 @@
 // proof that would assume it; survivors of the entity-level proofs proven under the proven
 // ranges (harris_response) and under the proven enable (threshold); verdict lists reused only
 // for the RTL they are about.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <map>

@@ -1,7 +1,6 @@
 // campaign_test: generated mutants with known verdicts: one the quick stimulus kills, one
 // that does not analyse and one that does not elaborate (stillborn), one that passes every
 // stimulus and yosys proves equivalent; the selection flags and the job kind's manifest.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <algorithm>

@@ -1,6 +1,5 @@
 // vhdl_mutants_test: the mutant generator on a small hand-written design, every mutant
 // checked, and on the project's rtl/ (deterministic, every mutant applies and changes text).
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <filesystem>

@@ -6,7 +6,6 @@
 // the model's expected outputs: Sobel +-1020 at the appendix A windows, the response extremes
 // 282223846 and -668975042 at appendix A's argmax/argmin, the reset value 0 on the first cycle,
 // and the run's vector counts.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include "tests/rtl/stage_bench.hpp"

@@ -5,8 +5,9 @@
 // the poses read only to score): APE of EKF-SLAM at most visual odometry's and at most 1.5 %
 // of the path, one frame per stereo pair of the data. Exits 77 (CTest: skipped) with a message when the
 // data directory holds no poses/01.txt.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -137,5 +138,5 @@ int main(int argc, char** argv) {
         return 77;
     }
     g_kitti = *d / "kitti";
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }

@@ -11,8 +11,9 @@
 //  - synthetic: sequence 00's 4,541 poses with synthetic landmarks (N = 2,270).
 // Each case runs alone in its own ctest process (the peak is the process's). Exits 77 (skipped)
 // without the data.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <fstream>
 #include <sstream>
@@ -141,5 +142,5 @@ int main(int argc, char** argv) {
         std::printf("SKIPPED: no KITTI 01 stereo pairs or sequence 00's poses in the data directory\n");
         return 77;
     }
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }

@@ -4,8 +4,9 @@
 // both counts, or scored on the overlap with score_overlap), with a times.txt (the TUM
 // timestamps), a range of its pairs (scored against their poses), and the same pairs as a
 // rig's plain images with a rig file converted from calib.txt (zero distortion). Exits 77 (CTest: skipped) with a message without KITTI 01.
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -381,7 +382,7 @@ int main(int argc, char** argv) {
     g_work = fs::temp_directory_path() / ("slam_sources_test_" + std::to_string(::getpid()));
     fs::remove_all(g_work);
     fs::create_directories(g_work);
-    const int rc = Catch::Session().run(argc, argv);
+    const int rc = hc::test::run_catch(argc, argv);
     fs::remove_all(g_work);
     return rc;
 }

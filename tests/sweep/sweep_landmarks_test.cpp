@@ -2,8 +2,9 @@
 // chain per configuration) equals landmarks::score_formats called directly, and the reports
 // carry it. Exits 77 (CTest: skipped) with a message without the Middlebury 2006 half-size
 // scenes under the data directory ($HARRIS_COSIM_DATA, else ../shared/data).
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -30,7 +31,7 @@ int main(int argc, char** argv) {
         std::printf("SKIP: no Middlebury 2006 half-size scenes under '%s' (set HARRIS_COSIM_DATA)\n", g_half.string().c_str());
         return 77;
     }
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }
 
 TEST_CASE("the sweep's stereo-match column is score_formats of each configuration, in every report", "[landmarks][sweep]") {

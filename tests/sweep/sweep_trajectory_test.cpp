@@ -2,8 +2,9 @@
 // KITTI 01 from each configuration's spec-model corners) equals slam::run_kitti_sequence
 // called directly, and the reports carry it. Exits 77 (CTest: skipped) with a message without
 // KITTI 01's stereo pairs under the data directory ($HARRIS_COSIM_DATA, else ../shared/data).
-#define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
+
+#include "tests/catch_session.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -70,5 +71,5 @@ int main(int argc, char** argv) {
         std::printf("SKIP: no KITTI 01 stereo pairs and poses under '%s' (set HARRIS_COSIM_DATA)\n", g_kitti.string().c_str());
         return 77;
     }
-    return Catch::Session().run(argc, argv);
+    return hc::test::run_catch(argc, argv);
 }

@@ -3,7 +3,6 @@
 // GHDL turns the VHDL port obs(0 to N-1) into Verilog [N-1:0] with obs(0) as bit N-1, and
 // Verilator stores bit b in word b/32. These tests pin that mapping down without a
 // simulator, so that a decoding error cannot hide behind a netlist that happens to agree.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include "model/harris/observation.hpp"
