@@ -58,10 +58,18 @@ sweep_rtl_inputs() {   # spec.json, streams.txt and the cache of the sweep_rtl k
  "trust": {"rtl": true, "verilator_pairs": "", "verilator_gate": false}}
 SPEC
   printf 'flat 33x21 3 0\nrandom 40x30 3 13\n' > streams.txt
-  fresh_trust_cache sweep-rtl-shard-cache
+  fresh_trust_cache
 }
-fresh_trust_cache() {   # fresh_trust_cache NAME: $cache = ../NAME, its trust cache emptied now and between the runs
-  cache=$work/../$1
+sweep_cache() {   # sweep_cache: $cache = ./cache, an empty trust cache of this test's own beside the
+                 # syntheses, ranges and stage proofs that every sweep kind shares (content-keyed
+                 # entries, written atomically, so concurrent tests may fill them)
+  local shared=$work/../sweep-shared-cache d
+  cache=$work/cache
+  mkdir -p "$cache"
+  for d in synth ranges stages; do mkdir -p "$shared/$d"; ln -s "$shared/$d" "$cache/$d"; done
+}
+fresh_trust_cache() {   # fresh_trust_cache: sweep_cache, its trust cache emptied now and between the runs
+  sweep_cache
   between="rm -rf $cache/trust"
   $between
 }
@@ -113,8 +121,9 @@ sweep)
 {"name": "shard-test", "configs": [{"name": "thesis"}, {"name": "m6", "m_drop": 6}, {"name": "b5", "bf_drop": 5},
  {"name": "sobel9", "sobel_w": 9}], "data": {"sequence": "01", "pairs": "0:3"}}
 SPEC
+  sweep_cache
   shards=3
-  both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$work/../sweep-shard-cache" --quiet --no-rtl --threads 1
+  both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --no-rtl --threads 1
   same_sweep_reports
   echo "sweep: $(($(wc -l < single/sweep.csv) - 1)) configurations in 3 shards: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
   ;;
@@ -156,7 +165,7 @@ sweep_verilator)
 {"name": "shard-verilator-test", "configs": [{"name": "m6", "m_drop": 6}], "data": {"sequence": "01", "pairs": "0:3"},
  "trust": {"rtl": false, "verilator_pairs": "0:1", "verilator_gate": false}}
 SPEC
-  fresh_trust_cache sweep-verilator-shard-cache
+  fresh_trust_cache
   shards=1
   both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1
   grep -q '^\[shards\] 2/2 done' sharded.log || fail "the sharded run did not report the 2 check shards done"
