@@ -1,8 +1,9 @@
 # content_rebuild.cmake: an RTL edit that leaves the file older than the simulator (as
 # `cp -p`, `rsync -t` or `tar x` of an older copy do) is rebuilt by `cmake --build`, and the
 # rebuilt simulator catches the mutant. In a scratch copy of the source tree (rtl/ of the
-# tree under test is never touched), configured without tests, only the mcode simulator is
-# built (its C++ side: hc_util, hc_model, hc_cosim, the bridge):
+# tree under test is never touched), configured without tests and without optimisation (the
+# VHDL's rebuild is the subject, and an unoptimised C++ side builds faster), only the mcode
+# simulator is built (its C++ side: hc_util, hc_model, hc_cosim, the bridge):
 #   1. build, run the co-simulation: pass;
 #   2. mutate rtl/m_products.vhd (b = ix*ix instead of ix*iy), date it 2000-01-01, build again;
 #   3. the simulator was re-analysed (its stamp is newer), and the run fails with a mismatch
@@ -39,7 +40,7 @@ foreach(e IN LISTS entries)
   file(COPY ${SRC}/${e} DESTINATION ${WORK}/src)
 endforeach()
 
-run_checked(${CMAKE_COMMAND} -S ${WORK}/src -B ${WORK}/build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF)
+run_checked(${CMAKE_COMMAND} -S ${WORK}/src -B ${WORK}/build -DCMAKE_BUILD_TYPE=Debug -DBUILD_TESTING=OFF)
 run_checked(${CMAKE_COMMAND} --build ${WORK}/build --target ghdl_sim_mcode -j2)
 set(stamp ${WORK}/build/cosim/ghdl-mcode/analysed.stamp)
 file(TIMESTAMP ${stamp} first "%s")
