@@ -113,6 +113,14 @@ void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string&
         ->type_name("A:B");
 }
 
+void add_rig_options(CLI::App* cmd, frames::RigSource& r, const std::string& use) {
+    cmd->add_option("--calib", r.calib,
+                    "a rig's calibration (harris-cosim calibrate's calib.yml/.json, or a KITTI-style calib.txt of "
+                    "rectified images): " + use);
+    cmd->add_option("--left", r.left, "with --calib: the rig's left images (files, quoted glob patterns or folders, sorted by name)");
+    cmd->add_option("--right", r.right, "with --calib: the rig's right images, paired with --left in order");
+}
+
 void add_commands(CLI::App& app) {
     // in the order --help lists them
     for (auto add : {add_rtl_command, add_model_command, add_golden_command, add_mutate_command, add_verilate_command,

@@ -33,11 +33,8 @@ void add_landmarks_command(CLI::App& app) {
     cmd->add_option("--kitti", o->source.kitti, "KITTI odometry root holding sequences/ (default: <data>/kitti)");
     cmd->add_option("--sequence", o->source.sequence, "KITTI sequence")->capture_default_str();
     add_pair_range_option(cmd, o->source.pairs, "; --dataset kitti, default " + o->source.pairs);
-    cmd->add_option("--calib", o->source.calib,
-                    "a rig's calibration (harris-cosim calibrate's calib.yml/.json, or a calib.txt of rectified images): "
+    add_rig_options(cmd, o->source.rig,
                     "run on its unrectified pairs --left/--right, keypoints undistorted and rectified (cv::undistortPoints)");
-    cmd->add_option("--left", o->source.left, "with --calib: the rig's left images (files, glob patterns or folders, sorted)");
-    cmd->add_option("--right", o->source.right, "with --calib: the rig's right images, in the order of --left");
     cmd->add_option("--data", o->source.data, "data directory (else $HARRIS_COSIM_DATA, else the build default)");
     cmd->add_option("--config", o->config, "formats JSON of the co-processor (spec, cycle, rtl corners)");
     cmd->add_option("--sigma", o->sigma, "corner localisation noise: standard deviation (px) of each of x_l, y_l, x_r, y_r, independent, "

@@ -127,11 +127,9 @@ void add_slam_command(CLI::App& app) {
                     "KITTI sequences, comma-separated (e.g. 01 or 01,02): stereo pairs of sequences/NN, "
                     "ground truth poses/NN.txt when present (read only to score)");
     add_pair_range_option(cmd, o->pairs, ", or of the rig's --left/--right; ground truth: the poses of these pairs");
-    cmd->add_option("--calib", o->calib,
-                    "a rig's calibration (calibrate's .yml/.json, or a KITTI-style calib.txt): run on --left/--right "
-                    "pairs instead of a KITTI sequence, keypoints rectified as landmarks --calib does");
-    cmd->add_option("--left", o->left, "the rig's left images: files, quoted glob patterns or folders (sorted by name)");
-    cmd->add_option("--right", o->right, "the rig's right images, paired with --left in order");
+    add_rig_options(cmd, o->rig,
+                    "run on its --left/--right pairs instead of a KITTI sequence, keypoints rectified as landmarks "
+                    "--calib does");
     cmd->add_option("--truth", o->truth,
                     "ground truth (KITTI: 12 numbers a line, or TUM: t tx ty tz qx qy qz qw; camera 0 in the first "
                     "camera's frame, one pose per frame in order); default: the sequence's poses/NN.txt when present, "

@@ -49,6 +49,11 @@ void add_frame_source_options(CLI::App* cmd, frames::FrameSource& o);
 /// `more` (a command's own default or use) appended.
 void add_pair_range_option(CLI::App* cmd, std::string& range, const std::string& more = {});
 
+/// A user's rig, bound to `r` (frames::RigSource): --calib FILE, --left and --right (image
+/// files, quoted glob patterns or folders, paired in order): the one help text of every command
+/// that reads a rig, with `use` (what the command does with it) appended to --calib's.
+void add_rig_options(CLI::App* cmd, frames::RigSource& r, const std::string& use);
+
 /// The sharding flags (in an option group "Sharding"), bound to `s`.
 void add_runner_flags(CLI::App* cmd, cluster::RunnerSettings& s);
 

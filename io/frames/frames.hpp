@@ -209,6 +209,26 @@ bool is_video_file(const std::filesystem::path& p);
 /// matches nothing, a folder without images, or no item at all.
 std::vector<std::filesystem::path> expand_image_list(const std::vector<std::string>& items, const std::string& what);
 
+/// A user's stereo rig as the command line names it, with the same flags on every command that
+/// reads one (--calib, --left, --right): the calibration `harris-cosim calibrate` wrote (or a
+/// KITTI-style calib.txt of rectified images) and the left and right images, paired in order.
+struct RigSource {
+    std::string calib;                      ///< the calibration file ("": no rig)
+    std::vector<std::string> left, right;   ///< image files, glob patterns or folders
+    /// True when any of the three flags is given.
+    bool given() const { return !calib.empty() || !left.empty() || !right.empty(); }
+};
+/// A rig's stereo pairs: its calibration file and left[i], right[i] for each pair i.
+struct RigPairs {
+    std::filesystem::path calib;
+    std::vector<std::filesystem::path> left, right;
+    int pairs() const { return static_cast<int>(left.size()); }
+};
+/// The pairs `r` names (expand_image_list on --left and --right). InputError naming the flags
+/// for images without --calib, --calib without both lists of images, lists that differ in
+/// length (both counts named), and expand_image_list's own.
+RigPairs open_rig(const RigSource& r);
+
 /// What a command streams when no frame-source flag names a source: `pattern`, three 64x36
 /// frames of the `blocks` pattern (a --pattern's defaults); `stereo`, the KITTI sequence
 /// `--sequence` of the data directory when it has a KITTI root (a missing sequence is an

@@ -232,6 +232,16 @@ std::vector<fs::path> expand_image_list(const std::vector<std::string>& items, c
     return expand(items, what, true);
 }
 
+RigPairs open_rig(const RigSource& r) {
+    if (r.calib.empty()) throw InputError("--left and --right are the images of a rig: give its --calib");
+    if (r.left.empty() || r.right.empty()) throw InputError("--calib needs the rig's images: --left and --right");
+    RigPairs p{r.calib, expand_image_list(r.left, "--left"), expand_image_list(r.right, "--right")};
+    if (p.left.size() != p.right.size())
+        throw InputError("a rig's stereo pairs: " + std::to_string(p.left.size()) + " left images but " +
+                         std::to_string(p.right.size()) + " right images (--left, --right)");
+    return p;
+}
+
 FrameFeed open_kitti_feed(const fs::path& kitti_dir, const std::string& sequence, util::Range r, const std::string& what,
                           int min_pairs, const FeedCut& cut) {
     const KittiSequence k = open_kitti(kitti_dir, sequence);

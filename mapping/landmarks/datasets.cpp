@@ -151,12 +151,10 @@ Dataset rig_dataset(const std::vector<fs::path>& left, const std::vector<fs::pat
 }
 
 Dataset open_dataset(const DatasetChoice& c, fs::path& root) {
-    if (!c.calib.empty()) {
-        if (c.left.empty() || c.right.empty()) throw InputError("--calib needs the rig's images: --left and --right");
-        return rig_dataset(frames::expand_image_list(c.left, "--left"), frames::expand_image_list(c.right, "--right"),
-                           read_rig_calibration(c.calib));
+    if (c.rig.given()) {
+        const frames::RigPairs rig = frames::open_rig(c.rig);
+        return rig_dataset(rig.left, rig.right, read_rig_calibration(rig.calib));
     }
-    if (!c.left.empty() || !c.right.empty()) throw InputError("--left and --right are the images of a rig: give its --calib");
     const auto data = frames::data_dir(c.data);
     if (c.dataset == "middlebury") {
         root = c.middlebury;

@@ -5,6 +5,7 @@
 #include "mapping/landmarks/calib.hpp"
 #include "mapping/landmarks/corners.hpp"
 #include "mapping/landmarks/stereo.hpp"
+#include "io/frames/frames.hpp"
 #include "model/util/util.hpp"
 
 #include <cstdint>
@@ -71,8 +72,7 @@ Dataset rig_dataset(const std::vector<std::filesystem::path>& left, const std::v
 /// (--calib with --left and --right), else Middlebury (--middlebury, default
 /// <data>/middlebury2006/half) or KITTI (--kitti, default <data>/kitti) by --dataset.
 struct DatasetChoice {
-    std::string calib;                      ///< the rig's calibration file ("": no rig)
-    std::vector<std::string> left, right;   ///< the rig's images, files or glob patterns
+    frames::RigSource rig;                  ///< a user's rig (--calib, --left, --right), when given
     std::string dataset = "middlebury";     ///< middlebury or kitti
     std::string middlebury, kitti;          ///< the dataset's folder ("": under the data directory)
     std::string data;                       ///< the data directory (--data; "": frames::data_dir's default)

@@ -71,7 +71,7 @@ ComparisonOptions comparison_options(const LandmarksCommand& o) {
 std::optional<std::vector<ComparisonRow>> sharded_rows(const LandmarksCommand& o, const Dataset& ds, const fs::path& root,
                                                        const ComparisonOptions& co, const cluster::JobRunner& runner) {
     if (o.study) throw InputError("--study runs in one process: leave out " + cluster::sharding_flags_named());
-    if (!o.source.calib.empty())
+    if (o.source.rig.given())
         throw InputError("--calib (a rig's pairs) runs in one process: leave out " + cluster::sharding_flags_named());
     LandmarksJob p;
     p.dataset = o.source.dataset;
@@ -98,14 +98,14 @@ void run_landmarks_command(const LandmarksCommand& o, const cluster::JobRunner& 
     const auto t0 = std::chrono::steady_clock::now();
     const std::function<double()> secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     if (o.reobservation) {
-        if (o.compare || o.study || runner.sharded() || !o.source.calib.empty())
+        if (o.compare || o.study || runner.sharded() || o.source.rig.given())
             throw InputError("--reobservation runs alone: leave out --compare, --study, --calib and " +
                              cluster::sharding_flags_named());
         run_reobservation(o);
         return;
     }
     const ComparisonOptions co = comparison_options(o);
-    std::fprintf(stderr, "landmarks: loading %s...\n", o.source.calib.empty() ? o.source.dataset.c_str() : o.source.calib.c_str());
+    std::fprintf(stderr, "landmarks: loading %s...\n", o.source.rig.given() ? o.source.rig.calib.c_str() : o.source.dataset.c_str());
     fs::path root;
     const Dataset ds = open_dataset(o.source, root);
     std::fprintf(stderr, "landmarks: %s, %zu pairs\n", ds.name.c_str(), ds.pairs.size());
@@ -128,7 +128,7 @@ void run_landmarks_command(const LandmarksCommand& o, const cluster::JobRunner& 
     ro.study = o.study;
     ro.corrected = o.corrected;
     ro.threads = o.threads;
-    ro.calib = o.source.calib;
+    ro.calib = o.source.rig.calib;
     ro.config = o.config;
     const auto rep = write_comparison_report(ds, co, rows, kps, ro, secs);
     std::printf("%s", comparison_markdown(rows).c_str());

@@ -278,19 +278,15 @@ KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::strin
     return run;
 }
 
-KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o) {
+KittiRun run_rig_sequence(const frames::RigSource& rig, const KittiRunOptions& o) {
     if (!o.stereo_landmarks)
         throw InputError("--landmarks-from synthetic makes its own frames: leave out --left, --right and --calib");
-    if (rig.calib.empty()) throw InputError("--left and --right are the images of a rig: give its --calib");
-    if (rig.left.empty() || rig.right.empty()) throw InputError("--calib needs the rig's images: --left and --right");
+    const frames::RigPairs lists = frames::open_rig(rig);
     std::vector<Mat34> truth = o.truth.empty() ? std::vector<Mat34>{} : read_trajectory_file(o.truth);
     VisualOdometryConfig vo = checked_options(o);
-    const auto calibration = std::make_shared<const landmarks::Calibration>(landmarks::read_rig_calibration(rig.calib));
-    const std::vector<std::filesystem::path> left = frames::expand_image_list(rig.left, "--left");
-    const std::vector<std::filesystem::path> right = frames::expand_image_list(rig.right, "--right");
-    if (left.size() != right.size())
-        throw InputError("a rig's stereo pairs: " + std::to_string(left.size()) + " left images but " +
-                         std::to_string(right.size()) + " right images");
+    const auto calibration = std::make_shared<const landmarks::Calibration>(landmarks::read_rig_calibration(lists.calib));
+    const std::vector<std::filesystem::path>& left = lists.left;
+    const std::vector<std::filesystem::path>& right = lists.right;
     const util::Range r = picked_pairs(o, static_cast<int>(left.size()), "the rig's --left/--right");
     const int pairs = r.last - r.first;
     if (pairs < 2)

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "io/frames/frames.hpp"
 #include "mapping/landmarks/landmarks.hpp"
 #include "mapping/slam/filter_run.hpp"
 #include "mapping/slam/landmark_slam.hpp"
@@ -101,21 +102,17 @@ struct KittiRun {
 /// (frames::pairs_within, naming --pairs and their count).
 KittiRun run_kitti_sequence(const std::filesystem::path& kitti, const std::string& sequence, const KittiRunOptions& o);
 
-/// A user's rig: unrectified stereo pairs (files, glob patterns or folders, expanded by
-/// frames::expand_image_list) and the calibration `harris-cosim calibrate` wrote (or a KITTI-style
-/// calib.txt: pairs already rectified); keypoints rectified as `landmarks --calib` does
+/// A user's rig (frames::RigSource: --calib with --left and --right, opened by frames::open_rig):
+/// unrectified stereo pairs and the calibration `harris-cosim calibrate` wrote (or a KITTI-style
+/// calib.txt: pairs already rectified), keypoints rectified as `landmarks --calib` does
 /// (landmarks::open_dataset).
-struct RigPairs {
-    std::string calib;
-    std::vector<std::string> left, right;
-};
 /// run_kitti_sequence on a rig's pairs with the landmark pipeline (o.stereo_landmarks must be
 /// set), pair by pair as a KITTI layout's (landmark_stream: each pair read when it is reached,
 /// landmarks::rig_dataset's checks on it then): ground truth from o.truth only, timestamps frame
-/// index × o.frame_period. InputError as run_kitti_sequence's, for lists of images that are
-/// empty or differ in length (before the run), and rig_dataset's for a pair's image that is
-/// missing, unreadable or of another size than the calibration's (when the pair is reached).
-/// o.pairs picks pairs of the lists (and the poses of o.truth) as of a KITTI sequence.
-KittiRun run_rig_sequence(const RigPairs& rig, const KittiRunOptions& o);
+/// index × o.frame_period. InputError as run_kitti_sequence's and frames::open_rig's (before the
+/// run), and rig_dataset's for a pair's image that is missing, unreadable or of another size
+/// than the calibration's (when the pair is reached). o.pairs picks pairs of the lists (and
+/// the poses of o.truth) as of a KITTI sequence.
+KittiRun run_rig_sequence(const frames::RigSource& rig, const KittiRunOptions& o);
 
 }  // namespace hc::slam

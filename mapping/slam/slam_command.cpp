@@ -96,7 +96,7 @@ std::string provenance(const SlamCommand& o, bool has_truth) {
 
 /// The title of a run's report.
 std::string run_title(const SlamCommand& o, const KittiRunOptions& k, const std::string& sequence) {
-    const std::string what = sequence.empty() ? "the rig of " + o.calib : "KITTI " + sequence;   // no apostrophe: gnuplot quotes the plot titles
+    const std::string what = sequence.empty() ? "the rig of " + o.rig.calib : "KITTI " + sequence;   // no apostrophe: gnuplot quotes the plot titles
     return k.stereo_landmarks ? what + " (stereo landmarks: " + o.descriptor_name + " on " + o.corners + " corners, " +
                                     o.odometry + " odometry)"
                               : what + " (synthetic landmarks on the real trajectory, " + o.odometry + " odometry)";
@@ -110,7 +110,7 @@ SequenceRun run_one_sequence(const SlamCommand& o, const fs::path& kitti, const 
     SequenceFiles files(out);
     k.sink = files.sink();
     k.keep_frames = false;
-    const KittiRun kr = sequence.empty() ? run_rig_sequence({o.calib, o.left, o.right}, k)
+    const KittiRun kr = sequence.empty() ? run_rig_sequence(o.rig, k)
                                          : run_kitti_sequence(kitti, sequence, k);
     const SequenceRun& run = kr.run;
     const std::string name = sequence.empty() ? "rig" : sequence;
@@ -224,7 +224,7 @@ KittiRunOptions kitti_options(const SlamCommand& o) {
 void run_slam_command(const SlamCommand& o, const cluster::JobRunner& runner) {
     if (runner.sharded() && !o.simulate)
         throw InputError(cluster::sharding_flags_named() + " shard the Monte-Carlo seeds of --simulate only");
-    const bool rig = !o.calib.empty() || !o.left.empty() || !o.right.empty();
+    const bool rig = o.rig.given();
     if (int(o.simulate) + int(!o.sequences.empty()) + int(rig) != 1)
         throw InputError("give exactly one of --simulate, --sequences NN[,NN...] and --calib FILE --left ... --right ...");
     if (o.simulate && !o.pairs.empty())

@@ -29,7 +29,7 @@ struct SlamCommand {
     /// every flag's value, given or default, one `name=value` a line, for the reports
     std::string settings;
     std::string pairs;          ///< --pairs a:b of each sequence or of the rig (KittiRunOptions::pairs)
-    std::string sequences, kitti, data, out = "slam-report", world = "cloister", truth, calib,
+    std::string sequences, kitti, data, out = "slam-report", world = "cloister", truth,
         landmarks_from = KittiRunOptions{}.stereo_landmarks ? "stereo" : "synthetic", odometry = "visual",
         association = "jcbb", vo_residual = "pixels";
     int landmarks = SimConfig{}.landmarks, steps = SimConfig{}.steps, runs = 50,
@@ -58,7 +58,7 @@ struct SlamCommand {
                 descriptor_name = landmarks::descriptor_name(KittiRunOptions{}.pipeline.descriptor), config;
     int g = KittiRunOptions{}.pipeline.grid.g, h = KittiRunOptions{}.pipeline.grid.h;
     // a rig's pairs instead of a KITTI-layout sequence, the ground truth, the timestamps
-    std::vector<std::string> left, right;
+    frames::RigSource rig;      ///< --calib, --left, --right
     bool score_overlap = KittiRunOptions{}.score_overlap;
     double frame_period = KittiRunOptions{}.frame_period, truth_time_tolerance = KittiRunOptions{}.truth_time_tolerance;
 };

@@ -1,5 +1,5 @@
 // frame_flags_test.cpp: the frame-source flags mean the same in every command. One table states
-// each flag's meaning (a count of frames, a range of stereo pairs, a text) and the commands
+// each flag's meaning (a count of frames, a range of stereo pairs, a text, a list of images) and the commands
 // that must have it; every command of harris-cosim (tools/commands.hpp add_commands) is then
 // parsed in-process, its callbacks replaced by no-ops, with each of these flags it has: the
 // values the meaning accepts give the typed value, the others are refused, and no flag has a
@@ -17,7 +17,7 @@
 
 namespace {
 
-enum class Meaning { frame_count, pair_range, text };
+enum class Meaning { frame_count, pair_range, text, image_list };
 
 struct Flag {
     std::string name;
@@ -33,6 +33,9 @@ const std::vector<Flag>& table() {
         {"--sequences", Meaning::text, {"verilate", "eval", "slam"}},
         {"--kitti", Meaning::text, {"rtl", "model", "verilate", "eval", "landmarks", "slam"}},
         {"--data", Meaning::text, {"rtl", "model", "verilate", "eval", "landmarks", "slam"}},
+        {"--calib", Meaning::text, {"landmarks", "slam"}},
+        {"--left", Meaning::image_list, {"landmarks", "slam", "calibrate"}},
+        {"--right", Meaning::image_list, {"landmarks", "slam", "calibrate"}},
     };
     return t;
 }
@@ -107,7 +110,8 @@ TEST_CASE("each frame-source flag is where the table says and has one name", "[c
             if (!o) continue;
             CHECK(o->get_lnames() == std::vector<std::string>{f.name.substr(2)});
             CHECK(o->get_snames().empty());
-            CHECK(o->get_type_size() == 1);   // one value, not a flag
+            CHECK(o->get_type_size() == 1);   // values, not a flag
+            CHECK((o->get_expected_max() > 1) == (f.meaning == Meaning::image_list));   // a list takes several
         }
         // no other option answers to one of the table's names (an alias of another option)
         for (const CLI::Option* o : c->get_options())
@@ -148,6 +152,10 @@ TEST_CASE("each frame-source flag takes the values of its meaning in every comma
             }
             case Meaning::text:
                 CHECK(parse(path, f.name, "07").option->as<std::string>() == "07");
+                break;
+            case Meaning::image_list:
+                CHECK(parse(path, f.name, "a.png 'b*.png' dir").option->as<std::vector<std::string>>() ==
+                      std::vector<std::string>{"a.png", "b*.png", "dir"});
                 break;
             }
         }

@@ -109,6 +109,32 @@ TEST_CASE("a missing image or a pattern matching nothing is named", "[frames]") 
     CHECK_THROWS_AS(frames::expand_image_list({}, "--left"), InputError);
 }
 
+TEST_CASE("a rig's flags open as its calibration and its pairs in order, or are bad input naming the flags", "[frames]") {
+    const fs::path dir = sources_scratch("rig");
+    const auto frames_written = write_frames(dir, 4);
+    REQUIRE(frames_written.size() == 4);
+    frames::RigSource r;
+    CHECK_FALSE(r.given());
+    r.calib = (dir / "calib.yml").string();
+    CHECK(r.given());
+    CHECK_THROWS_WITH(frames::open_rig(r), "--calib needs the rig's images: --left and --right");
+    r.left = {(dir / "frame_[02].png").string()};
+    CHECK_THROWS_WITH(frames::open_rig(r), "--calib needs the rig's images: --left and --right");
+    r.right = {(dir / "frame_[13].png").string()};
+    const frames::RigPairs p = frames::open_rig(r);
+    CHECK(p.calib == dir / "calib.yml");
+    REQUIRE(p.pairs() == 2);
+    CHECK(p.left == std::vector<fs::path>{dir / "frame_0.png", dir / "frame_2.png"});
+    CHECK(p.right == std::vector<fs::path>{dir / "frame_1.png", dir / "frame_3.png"});
+    r.right = {dir.string()};
+    CHECK_THROWS_WITH(frames::open_rig(r), "a rig's stereo pairs: 2 left images but 4 right images (--left, --right)");
+    r.right = {(dir / "none_*.png").string()};
+    CHECK_THROWS_WITH(frames::open_rig(r), Catch::Contains("--right: pattern"));
+    r.calib.clear();
+    CHECK(r.given());
+    CHECK_THROWS_WITH(frames::open_rig(r), "--left and --right are the images of a rig: give its --calib");
+}
+
 TEST_CASE("a glob pattern expands to its files in sorted order", "[frames]") {
     const fs::path dir = fs::temp_directory_path() / "hc_frames_glob_test";
     fs::create_directories(dir);

@@ -11,12 +11,12 @@ TEST_CASE("a rig's calibration without its images, images without a rig and an u
           "[landmarks][datasets]") {
     std::filesystem::path root;
     DatasetChoice c;
-    c.calib = "rig.yml";
-    c.left = {"left.png"};
+    c.rig.calib = "rig.yml";
+    c.rig.left = {"left.png"};
     CHECK_THROWS_WITH(open_dataset(c, root), Catch::Contains("--calib needs the rig's images: --left and --right"));
-    c.calib.clear();
+    c.rig.calib.clear();
     CHECK_THROWS_WITH(open_dataset(c, root), Catch::Contains("--left and --right are the images of a rig"));
-    c.left.clear();
+    c.rig.left.clear();
     c.dataset = "tum";
     CHECK_THROWS_AS(open_dataset(c, root), hc::InputError);
     CHECK_THROWS_WITH(open_dataset(c, root), Catch::Contains("--dataset 'tum' (middlebury or kitti)"));

@@ -330,9 +330,9 @@ TEST_CASE("a rig's plain images with a rig file from calib.txt give the KITTI-la
         KittiRunOptions oc = o;
         oc.pipeline.detector = corners;
         hc::landmarks::DatasetChoice choice;
-        choice.calib = rig_file.string();
-        choice.left = {left.string()};
-        choice.right = {(right / "*.png").string()};
+        choice.rig.calib = rig_file.string();
+        choice.rig.left = {left.string()};
+        choice.rig.right = {(right / "*.png").string()};
         fs::path root;
         const hc::landmarks::Dataset ds = hc::landmarks::open_dataset(choice, root);
         VisualOdometryConfig vo = oc.vo;
