@@ -4,10 +4,13 @@
 
 #include <chrono>
 #include <map>
+#include <numeric>
 #include <regex>
 #include <sstream>
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "cosim/cosim.hpp"
 #include "cosim/ghdl_verilog.hpp"
@@ -145,14 +148,34 @@ std::pair<std::string, std::string> synthesise(const Formats& f, const Geometry&
     return {util::read_file(dir / "harris_top.v"), util::read_file(dir / "top.smt2")};
 }
 
-/// The model's control states from reset until one repeats: the distinct states in order
-/// (prefix then period); `prefix` set. Empty when more than `limit` are distinct.
-std::vector<ControlRegisters> control_states(const Formats& f, const Geometry& g, long limit, long& prefix) {
+/// The control state less find_max's counter: the registers whose states repeat every frame.
+ControlRegisters frame_part(ControlRegisters c) {
+    c.count = 0;
+    return c;
+}
+
+/// The model's control, as the queries take it: the distinct frame parts from reset
+/// (c_0 ... c_{prefix+period-1}, the frame part after write k+1 being c_{k+1}, or c_prefix
+/// after the last) and the counter's rule at each of them, checked on the model's own run.
+struct ModelControl {
+    std::vector<ControlRegisters> states;   ///< frame parts (count 0)
+    long prefix = 0;
+    std::vector<char> advances;             ///< per state: the write moves the counter
+    long lo = 0, hi = 0;                    ///< the counter's values seen
+    long wrap_from = -1, wrap_to = -1;      ///< an advance from wrap_from goes to wrap_to (else +1)
+    long count0 = 0;                        ///< the counter after reset
+    long writes = 0;                        ///< writes run until the whole control state repeated
+    std::string fault;                      ///< why the model does not fit this form ("": it does)
+    long next_state(long k) const { return k + 1 < static_cast<long>(states.size()) ? k + 1 : prefix; }
+};
+
+/// The distinct frame parts from reset until one repeats; empty when more than `limit`.
+std::vector<ControlRegisters> frame_states(const Formats& f, const Geometry& g, long limit, long& prefix) {
     HarrisTopT<DynamicFormats> m(g, DynamicFormats{f});
     std::map<ControlRegisters, long> seen;
     std::vector<ControlRegisters> seq;
     for (;;) {
-        const ControlRegisters c = m.control();
+        const ControlRegisters c = frame_part(m.control());
         if (const auto s = seen.find(c); s != seen.end()) {
             prefix = s->second;
             return seq;
@@ -161,6 +184,42 @@ std::vector<ControlRegisters> control_states(const Formats& f, const Geometry& g
         seen.emplace(c, static_cast<long>(seq.size()));
         seq.push_back(c);
         m.write(0x80808080U);   // any pixels: the control registers do not read them
+    }
+}
+
+/// The model's control (ModelControl), its run checked write by write until its whole control
+/// state repeats (at most `max_writes` writes): the frame part after each write is the next
+/// state's, and the counter moves by one rule per state: unchanged, or +1 but for one wrap.
+ModelControl model_control(const Formats& f, const Geometry& g, long limit, long max_writes) {
+    ModelControl mc;
+    mc.states = frame_states(f, g, limit, mc.prefix);
+    if (mc.states.empty()) return mc;
+    mc.advances.assign(mc.states.size(), -1);
+    HarrisTopT<DynamicFormats> m(g, DynamicFormats{f});
+    ControlRegisters c = m.control(), back;
+    mc.count0 = mc.lo = mc.hi = c.count;
+    const auto fail = [&](const std::string& why) {
+        mc.fault = fmt::format("the model after write {}: {}", mc.writes, why);
+        return mc;
+    };
+    for (long k = 0;; k = mc.next_state(k)) {
+        if (mc.writes == mc.prefix) back = c;
+        else if (k == mc.prefix && mc.writes > mc.prefix && c == back) return mc;   // its whole control state repeats
+        if (mc.writes >= max_writes) return fail(fmt::format("its control state did not repeat within {} writes", max_writes));
+        m.write(0x80808080U);
+        ++mc.writes;
+        const ControlRegisters n = m.control();
+        if (frame_part(n) != mc.states[mc.next_state(k)]) return fail("its frame part is not the next state's");
+        const char adv = n.count != c.count;
+        if (mc.advances[k] == -1) mc.advances[k] = adv;
+        if (mc.advances[k] != adv) return fail(fmt::format("state {} moves find_max's counter on one visit and not on another", k));
+        if (adv && n.count != c.count + 1) {
+            if (mc.wrap_from == -1) std::tie(mc.wrap_from, mc.wrap_to) = std::pair{c.count, n.count};
+            if (mc.wrap_from != c.count || mc.wrap_to != n.count) return fail("find_max's counter wraps at two values");
+        }
+        mc.lo = std::min(mc.lo, n.count);
+        mc.hi = std::max(mc.hi, n.count);
+        c = n;
     }
 }
 
@@ -181,17 +240,47 @@ std::string control_cone(const std::vector<Flop>& flops, const fs::path& dir) {
 }
 
 std::string term(const Flop& f, const char* side) { return fmt::format("(|top_n {}.{}| s)", f.name, side); }
-/// `flop.side = v` (yosys writes a one-bit net as a Bool).
-std::string equal(const Flop& f, const char* side, std::uint64_t v) {
-    if (f.w == 1) return v ? term(f, side) : fmt::format("(not {})", term(f, side));
-    return fmt::format("(= {} (_ bv{} {}))", term(f, side), v, f.w);
+
+/// find_max's counter: the last of control_regs().
+constexpr size_t kCount = 6;
+
+/// Register r's value in state k of the frame part as an SMT literal.
+std::string literal(const std::vector<Flop>& flops, const ModelControl& mc, long k, size_t r) {
+    const std::uint64_t v = control_regs()[r].bits(mc.states[k], flops[r].w);
+    return flops[r].w == 1 ? (v ? "true" : "false") : fmt::format("(_ bv{} {})", v, flops[r].w);
 }
 
-/// The assertions "the control registers hold c" on the current registers.
-std::string at_state(const std::vector<Flop>& flops, const ControlRegisters& c) {
-    std::string s = "(assert (and";
-    for (size_t r = 0; r < flops.size(); ++r) s += " " + equal(flops[r], "q", control_regs()[r].bits(c, flops[r].w));
-    return s + "))\n";
+/// The model's next value of find_max's counter from its current one, `advances` a Bool term.
+std::string next_count(const std::vector<Flop>& flops, const ModelControl& mc, const std::string& advances) {
+    const Flop& n = flops[kCount];
+    const std::string q = term(n, "q"), inc = fmt::format("(bvadd {} (_ bv1 {}))", q, n.w);
+    const std::string moved =
+        mc.wrap_from < 0 ? inc : fmt::format("(ite (= {} (_ bv{} {})) (_ bv{} {}) {})", q, mc.wrap_from, n.w, mc.wrap_to, n.w, inc);
+    return fmt::format("(ite {} {} {})", advances, moved, q);
+}
+
+/// Two functions of the frame part's values, so that each state's checks name only its values:
+/// `at` (the current frame part holds them, find_max's counter any value the model's takes)
+/// and `step` (a next control register differs from the model's: the frame part from the
+/// given next values, the counter by the model's rule).
+std::string definitions(const std::vector<Flop>& flops, const ModelControl& mc) {
+    std::string params, at = "(and", step = "(or";
+    for (size_t r = 0; r < kCount; ++r) {
+        params += fmt::format(" (v{} {})", r, flops[r].w == 1 ? std::string("Bool") : fmt::format("(_ BitVec {})", flops[r].w));
+        at += fmt::format(" (= {} v{})", term(flops[r], "q"), r);
+        step += fmt::format(" (not (= {} v{}))", term(flops[r], "d"), r);
+    }
+    const Flop& n = flops[kCount];
+    at += fmt::format(" (bvule (_ bv{} {}) {}) (bvule {} (_ bv{} {})))", mc.lo, n.w, term(n, "q"), term(n, "q"), mc.hi, n.w);
+    step += fmt::format(" (not (= {} {})))", term(n, "d"), next_count(flops, mc, "adv"));
+    return fmt::format("(define-fun at ({}) Bool {})\n(define-fun step ({} (adv Bool)) Bool {})\n", params, at, params, step);
+}
+
+/// The frame part's values of state k, the arguments of `at` and `step`.
+std::string values(const std::vector<Flop>& flops, const ModelControl& mc, long k) {
+    std::string v;
+    for (size_t r = 0; r < kCount; ++r) v += " " + literal(flops, mc, k, r);
+    return v;
 }
 
 /// The answers of a solver's run of a file of checks, one word each ("unsat", "sat", ...).
@@ -204,19 +293,69 @@ std::vector<std::string> answers(const fs::path& file) {
 }
 
 /// Which next control register differs at state k (a query per register); "" if none does.
-std::string differing(const std::string& head, const std::vector<Flop>& flops, const ControlRegisters& c, const ControlRegisters& next,
-                      const fs::path& dir) {
-    std::string text = head + at_state(flops, c);
-    for (size_t r = 0; r < flops.size(); ++r)
-        text += fmt::format("(push 1)\n(assert (not {}))\n(check-sat)\n(pop 1)\n", equal(flops[r], "d", control_regs()[r].bits(next, flops[r].w)));
+std::string differing(const std::string& head, const std::vector<Flop>& flops, const ModelControl& mc, long k, const fs::path& dir) {
+    std::string text = head + fmt::format("(assert (at{}))\n", values(flops, mc, k));
+    const long next = mc.next_state(k);
+    for (size_t r = 0; r < flops.size(); ++r) {
+        const std::string model = r == kCount ? next_count(flops, mc, mc.advances[k] ? "true" : "false") : literal(flops, mc, next, r);
+        text += fmt::format("(push 1)\n(assert (not (= {} {})))\n(check-sat)\n(pop 1)\n", term(flops[r], "d"), model);
+    }
     util::write_file_atomic(dir / "which.smt2", text);
     util::run_process({"z3", "-smt2", "which.smt2"}, {.cwd = dir, .log = dir / "z3-which.log", .stdout_file = dir / "z3-which.txt"});
     const std::vector<std::string> a = answers(dir / "z3-which.txt");
     std::string s;
-    for (size_t r = 0; r < flops.size() && r < a.size(); ++r)
-        if (a[r] == "sat")
-            s += fmt::format("{}{} (model {})", s.empty() ? "" : ", ", control_regs()[r].name, control_regs()[r].bits(next, flops[r].w));
+    for (size_t r = 0; r < flops.size() && r < a.size(); ++r) {
+        if (a[r] != "sat") continue;
+        const std::string model = r != kCount ? std::to_string(control_regs()[r].bits(mc.states[next], flops[r].w))
+                                  : mc.advances[k]  ? "count + 1, wrapping"
+                                                    : "count, unchanged";
+        s += fmt::format("{}{} (model {})", s.empty() ? "" : ", ", control_regs()[r].name, model);
+    }
     return s;
+}
+
+/// cvc5 answers the states' checks again, in parts of at most kPartStates states (each part the
+/// head and its states' checks, cvc5-part-N.smt2) run side by side on o.recheck_jobs cores;
+/// sets p.recheck and p.rechecked (every state sat then unsat). A sat on a step where z3 said
+/// unsat is a fault of one of the solvers (std::logic_error).
+void recheck_with_cvc5(const std::string& head, const std::vector<std::string>& blocks, const fs::path& dir,
+                       const ControlInductionOptions& o, ControlInduction& p) {
+    constexpr size_t kPartStates = 20'000;
+    const size_t parts = (blocks.size() + kPartStates - 1) / kPartStates;
+    std::vector<long> unsat(parts, 0);
+    std::vector<std::string> failed(parts), contradiction(parts);
+    const auto run_part = [&](size_t j) {
+        const size_t first = j * kPartStates, last = std::min(blocks.size(), first + kPartStates);
+        std::string text = head;
+        for (size_t k = first; k < last; ++k) text += blocks[k];
+        const std::string name = fmt::format("cvc5-part-{}", j);
+        util::write_file_atomic(dir / (name + ".smt2"), text);
+        try {
+            util::run_process({"cvc5", "--lang=smt2", "--incremental", fmt::format("--tlimit={}", o.recheck_seconds * 1000), name + ".smt2"},
+                              {.cwd = dir, .log = dir / (name + ".log"), .stdout_file = dir / (name + "-answer.txt")});
+        } catch (const SimulatorError& e) {
+            failed[j] = e.what();
+            return;
+        }
+        const std::vector<std::string> c = answers(dir / (name + "-answer.txt"));
+        for (size_t k = 0; 2 * k + 1 < c.size(); ++k) {
+            if (c[2 * k + 1] == "sat" && contradiction[j].empty()) contradiction[j] = fmt::format("write {}", first + k);
+            unsat[j] += c[2 * k] == "sat" && c[2 * k + 1] == "unsat";
+        }
+    };
+    tbb::task_arena arena(o.recheck_jobs > 0 ? o.recheck_jobs : int(tbb::task_arena::automatic));
+    arena.execute([&] { tbb::parallel_for(size_t{0}, parts, run_part); });
+    for (size_t j = 0; j < parts; ++j) {
+        if (!contradiction[j].empty())
+            throw std::logic_error("control induction: z3 proves " + p.command + ", cvc5 finds a difference at " + contradiction[j]);
+        if (!failed[j].empty()) {
+            p.recheck = "cvc5: not run: " + failed[j];
+            return;
+        }
+    }
+    const long total = std::accumulate(unsat.begin(), unsat.end(), 0L);
+    p.rechecked = total == p.queries;
+    p.recheck = fmt::format("cvc5: {} unsat of {}", total, p.queries);
 }
 
 }  // namespace
@@ -232,46 +371,53 @@ ControlInduction prove_control_from_reset(const Formats& f, const Geometry& g, c
         p.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
         return p;
     };
-    const std::vector<ControlRegisters> states = control_states(f, g, o.max_states, p.prefix);
-    if (states.empty()) {
-        p.detail = fmt::format("more than {} distinct control states from reset", o.max_states);
+    const ModelControl mc = model_control(f, g, o.max_states, o.max_writes);
+    if (mc.states.empty()) {
+        p.detail = fmt::format("more than {} distinct control states (less find_max's counter) from reset", o.max_states);
         return done();
     }
-    p.period = static_cast<long>(states.size()) - p.prefix;
-    p.queries = static_cast<long>(states.size());
+    if (!mc.fault.empty()) {
+        p.detail = mc.fault;
+        return done();
+    }
+    p.prefix = mc.prefix;
+    p.period = static_cast<long>(mc.states.size()) - p.prefix;
+    p.queries = static_cast<long>(mc.states.size());
+    p.model_writes = mc.writes;
+    p.count_range = {mc.lo, mc.hi};
     const auto [verilog, smt] = synthesise(f, g, dir, o.rtl_dir);
     const std::vector<Flop> flops = resolve(verilog, smt);
     for (size_t r = 0; r < flops.size(); ++r)
         p.registers.push_back(fmt::format("{} = {} ({} bit{})", control_regs()[r].name, flops[r].name, flops[r].w, flops[r].w == 1 ? "" : "s"));
-    // the base: the netlist's reset state is c_0
+    // the base: the netlist's reset state is the model's
+    ControlRegisters reset = mc.states[0];
+    reset.count = mc.count0;
     for (size_t r = 0; r < flops.size(); ++r)
-        if (flops[r].reset != control_regs()[r].bits(states[0], flops[r].w)) {
+        if (flops[r].reset != control_regs()[r].bits(reset, flops[r].w)) {
             p.verdict = EqVerdict::counterexample;
             p.detail = fmt::format("reset: {} is {} on the netlist, {} in the model", control_regs()[r].name, flops[r].reset,
-                                   control_regs()[r].bits(states[0], flops[r].w));
+                                   control_regs()[r].bits(reset, flops[r].w));
             return done();
         }
-    const std::string head = "(set-logic ALL)\n" + control_cone(flops, dir) + "(declare-fun s () |top_s|)\n(assert (|top_h| s))\n";
-    std::string text = head;
-    for (size_t k = 0; k < states.size(); ++k) {
-        const ControlRegisters& next = states[k + 1 < states.size() ? k + 1 : static_cast<size_t>(p.prefix)];
-        std::string differs;
-        for (size_t r = 0; r < flops.size(); ++r) differs += " (not " + equal(flops[r], "d", control_regs()[r].bits(next, flops[r].w)) + ")";
+    const std::string head = "(set-logic ALL)\n" + control_cone(flops, dir) + "(declare-fun s () |top_s|)\n(assert (|top_h| s))\n" +
+                             definitions(flops, mc);
+    std::vector<std::string> blocks;   // each state's two checks
+    for (long k = 0; k < p.queries; ++k)
         // the first check (sat) shows the state is one the netlist's constraints admit, so the second's unsat is not vacuous
-        text += fmt::format("; write {}\n(push 1)\n{}(check-sat)\n(assert (or{}))\n(check-sat)\n(pop 1)\n", k, at_state(flops, states[k]),
-                            differs);
-    }
+        blocks.push_back(fmt::format("; write {}\n(push 1)\n(assert (at{}))\n(check-sat)\n(assert (step{} {}))\n(check-sat)\n(pop 1)\n", k,
+                                     values(flops, mc, k), values(flops, mc, mc.next_state(k)), mc.advances[k] ? "true" : "false"));
+    std::string text = head;
+    for (const auto& b : blocks) text += b;
     util::write_file_atomic(dir / "query.smt2", text);
     p.command = fmt::format("z3 -smt2 {}", (dir / "query.smt2").string());
     util::run_process({"z3", "-smt2", "query.smt2"}, {.cwd = dir, .log = dir / "z3.log", .stdout_file = dir / "z3-answer.txt"});
     const std::vector<std::string> a = answers(dir / "z3-answer.txt");
-    for (size_t k = 0; k < states.size(); ++k) {
+    for (size_t k = 0; k < static_cast<size_t>(p.queries); ++k) {
         const std::string held = 2 * k < a.size() ? a[2 * k] : "no answer", ans = 2 * k + 1 < a.size() ? a[2 * k + 1] : "no answer";
         if (held == "sat" && ans == "unsat") continue;
         if (held == "sat" && ans == "sat") {
             p.verdict = EqVerdict::counterexample;
-            const ControlRegisters& next = states[k + 1 < states.size() ? k + 1 : static_cast<size_t>(p.prefix)];
-            p.detail = fmt::format("write {}: the netlist's next {} differs from the model's", k, differing(head, flops, states[k], next, dir));
+            p.detail = fmt::format("write {}: the netlist's next {} differs from the model's", k, differing(head, flops, mc, static_cast<long>(k), dir));
         } else {
             p.detail = fmt::format("write {}: z3 {} on the state alone (sat expected), {} on the step ({})", k, held, ans,
                                    util::log_tail(dir / "z3.log", 300));
@@ -279,35 +425,20 @@ ControlInduction prove_control_from_reset(const Formats& f, const Geometry& g, c
         return done();
     }
     p.verdict = EqVerdict::equal;
-    if (o.recheck) {
-        const fs::path out = dir / "cvc5-answer.txt";
-        try {
-            util::run_process({"cvc5", "--lang=smt2", "--incremental", fmt::format("--tlimit={}", o.recheck_seconds * 1000), "query.smt2"},
-                              {.cwd = dir, .log = dir / "cvc5.log", .stdout_file = out});
-            const std::vector<std::string> c = answers(out);
-            long unsat = 0;
-            for (size_t k = 0; 2 * k + 1 < c.size(); ++k) {
-                if (c[2 * k + 1] == "sat") throw std::logic_error("control induction: z3 proves " + p.command + ", cvc5 finds a difference");
-                unsat += c[2 * k] == "sat" && c[2 * k + 1] == "unsat";
-            }
-            p.rechecked = unsat == p.queries;
-            p.recheck = fmt::format("cvc5: {} unsat of {}", unsat, p.queries);
-        } catch (const SimulatorError& e) {
-            p.recheck = std::string("cvc5: not run: ") + e.what();
-        }
-    }
+    if (o.recheck) recheck_with_cvc5(head, blocks, dir, o, p);
     return done();
 }
 
 std::string control_induction_markdown(const std::string& config, const std::vector<ControlInduction>& r) {
     std::string s = fmt::format("## Control registers from reset: {}\n\n"
-                                "| size | verdict | prefix | period | queries | second solver | seconds | detail | command |\n"
-                                "|---|---|---:|---:|---:|---|---:|---|---|\n",
+                                "| size | verdict | prefix | period | queries | model writes | find_max's counter | second solver | seconds | detail | command |\n"
+                                "|---|---|---:|---:|---:|---:|---|---|---:|---|---|\n",
                                 config);
     for (const auto& p : r)
-        s += fmt::format("| {}x{} | {} | {} | {} | {} | {} | {:.1f} | {} | `{}` |\n", p.geometry.width, p.geometry.height,
-                         eq_verdict_name(p.verdict), p.prefix, p.period, p.queries, p.recheck.empty() ? "-" : p.recheck, p.seconds,
-                         p.detail.empty() ? "-" : p.detail, p.command);
+        s += fmt::format("| {}x{} | {} | {} | {} | {} | {} | {} | {} | {:.1f} | {} | `{}` |\n", p.geometry.width, p.geometry.height,
+                         eq_verdict_name(p.verdict), p.prefix, p.period, p.queries, p.model_writes,
+                         p.model_writes > 0 ? fmt::format("{}..{}", p.count_range.first, p.count_range.second) : std::string("-"),
+                         p.recheck.empty() ? "-" : p.recheck, p.seconds, p.detail.empty() ? "-" : p.detail, p.command);
     return s;
 }
 

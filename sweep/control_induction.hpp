@@ -3,26 +3,33 @@
 //
 // The control registers (load control's row, col and load; input_converter_mux's row counter
 // i and its delays i_dly; the stage enables t; find_max's period counter count) move on each
-// write by the number of writes alone. The cycle model (HarrisTopT, model/harris/
-// harris_top_t.hpp) is run concretely from reset, its control state c_k after k writes read
-// by HarrisTopT::control(), until a state repeats: c_k for k < prefix + period are the
-// distinct states, c_{k + period} = c_k from k = prefix on.
+// write by the number of writes alone. Their frame part (all but find_max's counter) repeats
+// every frame; the whole state only after P / gcd(P, E) frames (P find_max's period, E the
+// writes of a frame that enable it), too many states to ask one by one at large sizes. So the
+// counter is kept symbolic. The cycle model (HarrisTopT, model/harris/harris_top_t.hpp) is run
+// concretely from reset (HarrisTopT::control() after each write): its distinct frame parts
+// c_0 ... c_{prefix+period-1} until one repeats, then once more until its whole control state
+// repeats, checking at every write that the next frame part is c_{k+1} (c_prefix after the
+// last) and that each state k moves the counter by one rule: unchanged, or +1 but for one wrap
+// value (the rule f_k and the counter's range [lo, hi] are read off this run, and past it the
+// model repeats itself).
 //
 // The netlist: GHDL synthesises harris_top at the geometry and formats (OBSERVE false), yosys
 // ties rst high and write high, flattens it, turns every register into an input (its current
 // value) and an output (its next value) (`expose -evert-dff`) and writes the transition as
 // SMT-LIB, cut to the cone of the control registers' next values (every register stays an
-// input, free unless a query fixes it). One query per distinct control state k: with the netlist's control registers at
-// c_k and every other register (every datapath register, the windows, the delays of the
-// pixels) and the written word free, is a next control register other than c_{k+1}? All
+// input, free unless a query fixes it). One query per frame part k: with the netlist's frame
+// part at c_k, its counter any value in [lo, hi], and every other register (every datapath
+// register, the windows, the delays of the pixels) and the written word free, is a next
+// frame-part register other than c_{k+1}, or the next counter other than f_k(counter)? All
 // unsat, and the netlist's reset state (the reset value of a register the reset sets, the
-// declared initial value of one it does not: i_dly, count) equal to c_0, is the induction:
-// after any number of writes n, of any pixels, the netlist's control registers hold c_n (by
-// induction on n; past prefix + period the states repeat, so the finite set of queries covers
-// every n). Each query is preceded by a check of the state alone, which must be sat (the
-// netlist's constraints admit c_k, so its unsat is not vacuous). The control state's ready,
-// which the co-simulation compares, is the next t(0), so it is covered as well. z3 answers the
-// queries (one file, two checks per state); cvc5 answers the same file again.
+// declared initial value of one it does not: i_dly, count) equal to the model's, is the
+// induction: after any number of writes n, of any pixels, the netlist's control registers hold
+// the model's (by induction on n, the model's counter in [lo, hi] at every n). Each query is
+// preceded by a check of the state alone, which must be sat (the netlist's constraints admit
+// it, so its unsat is not vacuous). The control state's ready, which the co-simulation
+// compares, is the next t(0), so it is covered as well. z3 answers the queries (one file, two
+// checks per state); cvc5 answers them again, in parts run side by side.
 //
 // Not covered: the datapath registers (the stage proofs, stage_equivalence.hpp, prove each
 // stage's next registers equal to the model's for every input; that the whole design's
@@ -30,6 +37,7 @@
 #pragma once
 
 #include <filesystem>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -43,9 +51,13 @@ struct ControlInductionOptions {
     std::filesystem::path dir;
     std::filesystem::path rtl_dir;     ///< the VHDL (empty: the project's rtl/)
     /// at most this many distinct control states are asked (more: the verdict is open)
-    long max_states = 20'000;
-    bool recheck = true;               ///< cvc5 answers the same file again
-    int recheck_seconds = 300;         ///< cvc5's time for the whole file (wall clock)
+    long max_states = 500'000;
+    /// the model's run that checks the counter's rule stops here if its whole control state has
+    /// not repeated by then (the verdict is then open)
+    long max_writes = 1'000'000'000;
+    bool recheck = true;               ///< cvc5 answers the same checks again
+    int recheck_seconds = 300;         ///< cvc5's time for each part of 20,000 states (wall clock)
+    int recheck_jobs = 0;              ///< cvc5's parts run at once (0: one per core)
 };
 
 /// The proof at one image size.
@@ -55,6 +67,8 @@ struct ControlInduction {
     long prefix = 0;                       ///< writes before the control states repeat
     long period = 0;                       ///< the control states' period from there
     long queries = 0;                      ///< one per distinct control state (prefix + period)
+    long model_writes = 0;                 ///< writes of the model's run until its whole control state repeated
+    std::pair<long, long> count_range{};   ///< find_max's counter's values in that run
     std::vector<std::string> registers;    ///< "lc.col = u.lc.col (6 bits)": model register = netlist flop
     std::string solver = "z3";
     std::string recheck;                   ///< "cvc5: 62 unsat of 62", or why not

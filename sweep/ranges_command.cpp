@@ -46,11 +46,11 @@ std::string control_induction_section(const RangesCommand& c, const Config& cfg,
         ci.push_back(prove_control_from_reset(cfg.formats, g,
                                               {.dir = fs::path(c.control_induction) / file_stem(cfg.name) / size, .rtl_dir = c.rtl}));
         const ControlInduction& p = ci.back();
-        std::fprintf(stderr, "ranges: %s: control induction %s: %s, %ld queries (prefix %ld, period %ld), %s, %.1f s%s%s\n",
-                     cfg.name.c_str(), size.c_str(), eq_verdict_name(p.verdict), p.queries, p.prefix, p.period,
+        std::fprintf(stderr, "ranges: %s: control induction %s: %s, %ld queries (prefix %ld, period %ld; the model's control state repeats after %ld writes), %s, %.1f s%s%s\n",
+                     cfg.name.c_str(), size.c_str(), eq_verdict_name(p.verdict), p.queries, p.prefix, p.period, p.model_writes,
                      p.recheck.empty() ? "no second solver" : p.recheck.c_str(), p.seconds, p.detail.empty() ? "" : ": ", p.detail.c_str());
         js.push_back({{"size", size}, {"verdict", eq_verdict_name(p.verdict)}, {"prefix", p.prefix}, {"period", p.period},
-                      {"queries", p.queries}, {"registers", p.registers}, {"solver", p.solver}, {"recheck", p.recheck},
+                      {"queries", p.queries}, {"model_writes", p.model_writes}, {"count_range", {p.count_range.first, p.count_range.second}}, {"registers", p.registers}, {"solver", p.solver}, {"recheck", p.recheck},
                       {"rechecked", p.rechecked}, {"seconds", p.seconds}, {"detail", p.detail}, {"command", p.command}});
     }
     return control_induction_markdown(cfg.name, ci);

@@ -46,7 +46,8 @@ void add_ranges_command(CLI::App& app) {
     cmd->add_option("--control-induction", o->control_induction,
                     "also prove the control registers of harris_top's netlist (load control, icmux's row counter and its\n"
                     "delays, the stage enables, find_max's period counter) equal to the cycle model's from reset for every\n"
-                    "input sequence, one query per control state (z3, then cvc5), keeping the files under DIR/<configuration>/<WxH>");
+                    "input sequence, one query per state of a frame with find_max's counter symbolic (z3, then cvc5 in parts on\n"
+                    "every core), keeping the files under DIR/<configuration>/<WxH>; the thesis's 640x360 takes minutes");
     cmd->add_option("--control-sizes", o->control_sizes, "the image sizes of --control-induction, WxH")
         ->delimiter(',')->capture_default_str();
     cmd->callback([o] { sweep::run_ranges_command(*o); });
