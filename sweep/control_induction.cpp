@@ -160,7 +160,7 @@ ControlRegisters frame_part(ControlRegisters c) {
 struct ModelControl {
     std::vector<ControlRegisters> states;   ///< frame parts (count 0)
     long prefix = 0;
-    std::vector<char> advances;             ///< per state: the write moves the counter
+    std::vector<signed char> advances;      ///< per state: the write moves the counter (1), or not (0)
     long lo = 0, hi = 0;                    ///< the counter's values seen
     long wrap_from = -1, wrap_to = -1;      ///< an advance from wrap_from goes to wrap_to (else +1)
     long count0 = 0;                        ///< the counter after reset
@@ -210,7 +210,7 @@ ModelControl model_control(const Formats& f, const Geometry& g, long limit, long
         ++mc.writes;
         const ControlRegisters n = m.control();
         if (frame_part(n) != mc.states[mc.next_state(k)]) return fail("its frame part is not the next state's");
-        const char adv = n.count != c.count;
+        const signed char adv = n.count != c.count;
         if (mc.advances[k] == -1) mc.advances[k] = adv;
         if (mc.advances[k] != adv) return fail(fmt::format("state {} moves find_max's counter on one visit and not on another", k));
         if (adv && n.count != c.count + 1) {

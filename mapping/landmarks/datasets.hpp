@@ -2,10 +2,10 @@
 // Middlebury 2006 scenes, KITTI odometry pairs and a user's own rig, each pair with its rectified rig.
 #pragma once
 
+#include "io/frames/frames.hpp"
 #include "mapping/landmarks/calib.hpp"
 #include "mapping/landmarks/corners.hpp"
 #include "mapping/landmarks/stereo.hpp"
-#include "io/frames/frames.hpp"
 #include "model/util/util.hpp"
 
 #include <cstdint>
