@@ -1,9 +1,9 @@
 // block_filter.hpp: model of rtl/block_filter.vhd (combinational part).
 //
 // The nine M coefficients, each resized (sign-extended) to bf_sum_w, summed in bf_sum_w
-// bits (by columns: block_column_sum, then block_filter_of_columns), then bits
-// bf_sum_w-1 .. bf_drop kept: floor(sum / 2^bf_drop) in bf_sum_w - bf_drop bits
-// (thesis: 20 -> 16 bits, floor(sum / 16)).
+// bits (in the VHDL's order: block_filter; by columns: block_column_sum, then
+// block_filter_of_columns), then bits bf_sum_w-1 .. bf_drop kept: floor(sum / 2^bf_drop)
+// in bf_sum_w - bf_drop bits (thesis: 20 -> 16 bits, floor(sum / 16)).
 // Template over the number type T (Word or LeanWord).
 #pragma once
 
@@ -30,12 +30,15 @@ inline T block_filter_of_columns(const T& c0, const T& c1, const T& c2, const Fo
     return slice(sum, f.bf_sum_w - 1, f.bf_drop);   // drop bf_drop LSBs: bf_sum_w -> bf_w() bits
 }
 
+/// The block filter's output: the nine resized to bf_sum_w and summed in the VHDL's order
+/// (row by row, left to right), then bits bf_sum_w-1 .. bf_drop. The same bits as the column
+/// sums above; the same order keeps a solver's term of it the netlist's term.
 template <class T>
 inline T block_filter(const std::array<std::array<T, 3>, 3>& a, const Formats& f) {
-    const T c0 = block_column_sum(a[0][0], a[1][0], a[2][0], f);
-    const T c1 = block_column_sum(a[0][1], a[1][1], a[2][1], f);
-    const T c2 = block_column_sum(a[0][2], a[1][2], a[2][2], f);
-    return block_filter_of_columns(c0, c1, c2, f);
+    const int w = f.bf_sum_w;
+    const T sum = resize(a[0][0], w) + resize(a[0][1], w) + resize(a[0][2], w) + resize(a[1][0], w) + resize(a[1][1], w) +
+                  resize(a[1][2], w) + resize(a[2][0], w) + resize(a[2][1], w) + resize(a[2][2], w);
+    return slice(sum, f.bf_sum_w - 1, f.bf_drop);   // drop bf_drop LSBs: bf_sum_w -> bf_w() bits
 }
 
 }  // namespace hc

@@ -34,19 +34,21 @@ FindMaxStep<T, C> find_max_step(const C& count, const T& running, const T& max, 
             choose(counting, max, running)};
 }
 
-template <class T>
+/// find_max's registers. C is the counter's type: long, or the whole-design proof's symbolic
+/// word (sweep/datapath_induction.cpp), which gives the counter's first value.
+template <class T, class C = long>
 struct FindMaxT {
-    long count = 1;
+    C count;
     T running;
     T max;
 
-    explicit FindMaxT(const Formats& f)
-        : running(T::most_negative(f.resp_w)), max(T::most_negative(f.resp_w)) {}
+    explicit FindMaxT(const Formats& f, const C& count0 = C(1))
+        : count(count0), running(T::most_negative(f.resp_w)), max(T::most_negative(f.resp_w)) {}
 
     void reset(const Formats& f) { max = T::most_negative(f.resp_w); }
 
     FindMaxT next(const T& response, const Geometry& g) const {
-        const FindMaxStep<T, long> s = find_max_step(count, running, max, response, g.find_max_period());
+        const FindMaxStep<T, C> s = find_max_step(count, running, max, response, g.find_max_period());
         FindMaxT n = *this;
         n.count = s.count;
         n.running = s.running;

@@ -1,13 +1,16 @@
 // harris_top_t.hpp: the cycle model of rtl/harris_top.vhd, process by process.
 //
-// Purpose: HarrisTopT holds every register of harris_top and steps them on write() the way
+// Purpose: HarrisCycle holds every register of harris_top and steps them on write() the way
 // the RTL does on a clock edge with write = '1': each process assigns its registers from
 // the values before the edge, leaving those its enables hold untouched. The registers are
 // kept once and updated in place, so the processes run in reverse pipeline order (each
 // before the process that overwrites its inputs; write() lists the order and why). They
 // are member functions named after the entity instances of harris_top.vhd (lc, icmux,
 // ctrl, sx/sy, mm, bfa/bfb/bfc, hr, th, fm, thr, lm, sr). The arithmetic is the shared
-// stage functions (harris/sobel_x.hpp ... harris/threshold.hpp) on LeanWords.
+// stage functions (harris/sobel_x.hpp ... harris/threshold.hpp) on the number types N
+// gives: LeanWords in the cycle model (CycleNumbers), the symbolic word in the proof that
+// the whole design's registers follow the model's (sweep/datapath_induction.hpp). HarrisTopT
+// is the cycle model: HarrisCycle on CycleNumbers, with the co-simulation's views.
 //
 // FS says where the formats come from: StaticFormats<F> makes every width a compile-time
 // constant (the shifts and masks of each LeanWord operation fold, and the datapath before
@@ -82,21 +85,49 @@ struct ControlRegisters {
     auto operator<=>(const ControlRegisters&) const = default;
 };
 
+/// The number types of the cycle model's registers (HarrisCycle's N): FS's Front and Back
+/// words, kept as their bare values (FrontRep, BackRep) and read back at a register's width;
+/// 8-bit pixels and 32-bit bus words (PixelNumbers); find_max's counter a long; the corner
+/// bit a bool. The whole-design proof gives HarrisCycle the symbolic word's instead
+/// (sweep/datapath_induction.cpp), so that the processes below run on both.
 template <class FS>
-class HarrisTopT final : public CycleModel {
+struct CycleNumbers : PixelNumbers {
     using Front = typename CycleWords<FS>::Front;
     using Back = typename CycleWords<FS>::Back;
     using FrontRep = decltype(Front::v);
     using BackRep = decltype(Back::v);
+    using Count = long;
+    using Bit = bool;
+    using Bits6 = std::uint8_t;
+    static Front front(FrontRep v, int width) { return Front{v, width, true}; }
+    static Back back(BackRep v, int width) { return Back{v, width, true}; }
+    static FrontRep front_rep(const Front& x) { return x.v; }
+    static BackRep back_rep(const Back& x) { return x.v; }
+    static FrontRep front_zero(int) { return 0; }
+    static BackRep back_zero(int) { return 0; }
+    static Bits6 bits6_zero() { return 0; }
+};
+
+/// Every register of harris_top and its processes: one write() is one clock edge with
+/// write = '1'. N gives the number types (CycleNumbers, or the whole-design proof's symbolic
+/// ones); the control registers (load control, the row counters, the stage enables) are
+/// plain integers in both, so the enables choose which processes run.
+template <class FS, class N>
+class HarrisCycle {
+public:
+    using Front = typename N::Front;
+    using Back = typename N::Back;
+    using FrontRep = typename N::FrontRep;
+    using BackRep = typename N::BackRep;
     /// An N x N matrix of register values (widths in the formats), element (i, j) at i*N + j.
-    template <class Rep, int N>
-    using Plane = std::array<Rep, N * N>;
+    template <class Rep, int M>
+    using Plane = std::array<Rep, M * M>;
 
     /// Every register of harris_top, named as in the VHDL.
     struct Registers {
         long writes = 0;                          ///< writes so far (not a VHDL register)
         LoadControl lc;                           ///< lc: row, col, load
-        InputConverterMux icmux;                  ///< icmux: i, delays, windows, a (icm)
+        InputConverterMuxT<N> icmux;              ///< icmux: i, delays, windows, a (icm)
         ControlShiftRegister ctrl;                ///< ctrl: t
         Plane<FrontRep, 5> sxm{}, sym{};          ///< sx, sy (sobel_w bits)
         Plane<FrontRep, 5> mam{}, mbm{}, mcm{};   ///< mm (m_w bits)
@@ -105,42 +136,43 @@ class HarrisTopT final : public CycleModel {
         bool step1_defined = false;               ///< step 1 has no reset: 'U' until t(2)
         Plane<BackRep, 3> hrm{};                  ///< hr step 2 (resp_w bits)
         Plane<BackRep, 3> r0_delay{}, trm{};      ///< th (resp_w bits)
-        FindMaxT<Back> fm;                        ///< fm: count, running, max
-        CornerShiftRegister sr;                   ///< sr: corner_sr
+        FindMaxT<Back, typename N::Count> fm;     ///< fm: count, running, max
+        CornerShiftRegisterT<typename N::Bits6, typename N::Bit> sr;   ///< sr: corner_sr
         StageTags tags;                           ///< provenance of each stage's window
 
         explicit Registers(const Formats& f) : fm(f) {}
+        Registers(const Formats& f, const typename N::Count& count) : fm(f, count) {}
     };
 
-public:
-    HarrisTopT(const Geometry& g, const FS& fs) : g_(g), fs_(fs), reg_(fs.get()) {
+    HarrisCycle(const Geometry& g, const FS& fs) : g_(g), fs_(fs), reg_(fs.get()) { reset(); }
+    HarrisCycle(const Geometry& g, const FS& fs, const typename N::Count& count) : g_(g), fs_(fs), reg_(fs.get(), count) {
         reset();
     }
 
-    void reset() override {
+    /// The reset: the registers the VHDL resets take their reset values; the others keep theirs.
+    void reset() {
         const Formats& f = fs_.get();
         Registers& r = reg_;
         r.lc.reset();
         r.icmux.reset();
         r.ctrl.reset();
-        r.sxm = r.sym = Plane<FrontRep, 5>{};
-        r.mam = r.mbm = r.mcm = Plane<FrontRep, 5>{};
-        r.bfam = r.bfbm = r.bfcm = Plane<FrontRep, 3>{};
-        r.hrm = r.r0_delay = r.trm = Plane<BackRep, 3>{};
+        for (auto* p : {&r.sxm, &r.sym}) p->fill(N::front_zero(f.sobel_w));
+        for (auto* p : {&r.mam, &r.mbm, &r.mcm}) p->fill(N::front_zero(f.m_w()));
+        for (auto* p : {&r.bfam, &r.bfbm, &r.bfcm}) p->fill(N::front_zero(f.bf_w()));
+        for (auto* p : {&r.hrm, &r.r0_delay, &r.trm}) p->fill(N::back_zero(f.resp_w));
         r.fm.reset(f);
-        r.sr.reset();
+        r.sr.c = N::bits6_zero();
     }
 
-    // flatten: every stage function is inlined here, so that the formats' constants reach
-    // each LeanWord operation (GCC's inliner otherwise stops early in a file holding many
-    // instances: docs/performance.md, cycle model).
-    //
+    Registers& registers() { return reg_; }
+    const Registers& registers() const { return reg_; }
+
     // The clock edge in place: each process updates its own registers from the values they
     // and their inputs held before the edge, so the processes run from the pipeline's end to
     // its start (each before the one that overwrites its inputs), the enables t and ready
     // are read before ctrl and lc move on, and a disabled stage keeps its registers
     // untouched.
-    [[gnu::flatten]] void write(std::uint32_t data) override {
+    void write(const typename N::Data& data) {
         Registers& r = reg_;
         const bool ready = r.icmux.ready(r.lc.load);   // icmux's output, from lc's load
         ++r.writes;                                     // this write's number (icmux's tag)
@@ -156,11 +188,167 @@ public:
         lc(r);
     }
 
+    /// thr: the threshold value formed from the published maximum (combinational).
+    Back thr() const { return threshold_value(reg_.fm.max, fs_.get()); }
+
+    /// lm: local_maximum of the thresholded responses (combinational): the corner bit.
+    typename N::Bit cornerbit() const { return lm(reg_); }
+
+private:
+    /// The 3x3 block of a 5x5 plane whose top-left element is (i, j), as Front words.
+    static std::array<std::array<Front, 3>, 3> block3(const Plane<FrontRep, 5>& p, int i, int j, int width) {
+        std::array<std::array<Front, 3>, 3> b;
+        for (int di = 0; di < 3; ++di)
+            for (int dj = 0; dj < 3; ++dj) b[di][dj] = N::front(p[(i + di) * 5 + j + dj], width);
+        return b;
+    }
+
+    // ---- the processes of harris_top, in the order of its architecture ----------------
+
+    /// lc: load_control counts the writes of a window row and the rows of a frame.
+    void lc(Registers& r) const { r.lc = r.lc.next(g_); }
+
+    /// icmux: input_converter_mux shifts the write's pixels into the quadrants' windows and
+    /// loads window i-1 into its output register (icm).
+    void icmux(Registers& r, const typename N::Data& data) const {
+        // the loaded window is quadrant i-1's, whose newest column ended i writes ago
+        const int i = r.icmux.i;
+        r.tags.window = i <= 4 ? WindowTag{r.writes - i, i - 1} : WindowTag{};
+        r.icmux.advance(data);
+    }
+
+    /// ctrl: control_shift_register shifts ready into the stage enables t.
+    void ctrl(Registers& r, bool ready) const { r.ctrl = r.ctrl.next(ready); }
+
+    /// rows5/cols5 sx, sy: sobel_x and sobel_y of the 3x3 window pixels at (i..i+2, j..j+2)
+    /// for the 5x5 gradients; enable: ready.
+    void sx_sy(Registers& r, bool ready) const {
+        if (!ready) return;
+        if (!r.icmux.a_defined) throw std::logic_error("Sobel enabled while the window register is undefined");
+        const Formats& f = fs_.get();
+        for (int i = 0; i < 5; ++i)
+            for (int j = 0; j < 5; ++j) {
+                const auto nb = sub3(r.icmux.a, i, j);
+                r.sxm[i * 5 + j] = N::front_rep(sobel_x<Front>(nb, f));
+                r.sym[i * 5 + j] = N::front_rep(sobel_y<Front>(nb, f));
+            }
+        r.tags.sobel = r.tags.window;
+    }
+
+    /// rows5/cols5 mm: m_products of each gradient pair; enable: t(0).
+    void mm(Registers& r) const {
+        if (!r.ctrl.en(0)) return;
+        const Formats& f = fs_.get();
+        for (int k = 0; k < 25; ++k) {
+            const MProductsT<Front> m = m_products(N::front(r.sxm[k], f.sobel_w), N::front(r.sym[k], f.sobel_w), f);
+            r.mam[k] = N::front_rep(m.a);
+            r.mbm[k] = N::front_rep(m.b);
+            r.mcm[k] = N::front_rep(m.c);
+        }
+        r.tags.m = r.tags.sobel;
+    }
+
+    /// rows3/cols3 bfa, bfb, bfc: block_filter of the M coefficients at (i..i+2, j..j+2);
+    /// enable: t(1).
+    void bf(Registers& r) const {
+        if (!r.ctrl.en(1)) return;
+        const Formats& f = fs_.get();
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                r.bfam[i * 3 + j] = N::front_rep(block_filter(block3(r.mam, i, j, f.m_w()), f));
+                r.bfbm[i * 3 + j] = N::front_rep(block_filter(block3(r.mbm, i, j, f.m_w()), f));
+                r.bfcm[i * 3 + j] = N::front_rep(block_filter(block3(r.mcm, i, j, f.m_w()), f));
+            }
+        r.tags.block = r.tags.m;
+    }
+
+    /// rows3/cols3 hr: harris_response, step 2 (the response from step 1's registers, enable
+    /// t(3)), then step 1 (products and k-term, enable t(2)), which overwrites them.
+    void hr(Registers& r) const {
+        const Formats& f = fs_.get();
+        if (r.ctrl.en(3)) {   // step2
+            if (!r.step1_defined) throw std::logic_error("harris_response step 2 enabled before step 1 ever was");
+            for (int k = 0; k < 9; ++k) {
+                const ResponseTermsT<Back> s{N::back(r.ac[k], f.prod_w()), N::back(r.bb[k], f.prod_w()),
+                                             N::back(r.ktr2[k], f.ktr_w)};
+                r.hrm[k] = N::back_rep(harris_response(s, f));
+            }
+            r.tags.response = r.tags.terms;
+        }
+        if (r.ctrl.en(2)) {   // step1
+            for (int k = 0; k < 9; ++k) {
+                const ResponseTermsT<Back> s = harris_response_terms(
+                    N::back(r.bfam[k], f.bf_w()), N::back(r.bfbm[k], f.bf_w()), N::back(r.bfcm[k], f.bf_w()), f);
+                r.ac[k] = N::back_rep(s.ac);
+                r.bb[k] = N::back_rep(s.bb);
+                r.ktr2[k] = N::back_rep(s.ktr2);
+            }
+            r.step1_defined = true;
+            r.tags.terms = r.tags.block;
+        }
+    }
+
+    /// rows3/cols3 th: threshold delays each response by one write (r0_delay) and, on t(5),
+    /// keeps the delayed response when it reaches thr (else 0); without t(5) the output is 0.
+    void th(Registers& r) const {
+        const Formats& f = fs_.get();
+        const Back thr_q = thr();
+        const bool en = r.ctrl.en(5);
+        for (int k = 0; k < 9; ++k) {
+            r.trm[k] = en ? N::back_rep(threshold(N::back(r.r0_delay[k], f.resp_w), thr_q)) : N::back_zero(f.resp_w);
+            r.r0_delay[k] = r.hrm[k];
+        }
+        r.tags.thresholded = en ? r.tags.delay : WindowTag{};
+        r.tags.delay = r.tags.response;
+    }
+
+    /// fm: find_max tracks the centre response hrm(2,2) on t(4) and publishes the maximum
+    /// of each period.
+    void fm(Registers& r) const {
+        if (r.ctrl.en(4)) r.fm = r.fm.next(N::back(r.hrm[1 * 3 + 1], fs_.get().resp_w), g_);
+    }
+
+    typename N::Bit lm(const Registers& q) const {
+        const Formats& f = fs_.get();
+        std::array<std::array<Back, 3>, 3> r;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) r[i][j] = N::back(q.trm[i * 3 + j], f.resp_w);
+        return local_maximum(r);
+    }
+
+    /// sr: corner_shift_register shifts the corner bit in.
+    void sr(Registers& r) const { r.sr = r.sr.next(lm(r)); }
+
+    Geometry g_;
+    [[no_unique_address]] FS fs_;
+    Registers reg_;   ///< every register of harris_top
+};
+
+/// The cycle model as a CycleModel: HarrisCycle on CycleNumbers, with the views the
+/// co-simulation reads (observe, the state image, the control registers).
+template <class FS>
+class HarrisTopT final : public CycleModel {
+    using Cycle = HarrisCycle<FS, CycleNumbers<FS>>;
+    using Registers = typename Cycle::Registers;
+    using Back = typename Cycle::Back;
+    template <class Rep, int M>
+    using Plane = typename Cycle::template Plane<Rep, M>;
+
+public:
+    HarrisTopT(const Geometry& g, const FS& fs) : fs_(fs), cycle_(g, fs) {}
+
+    void reset() override { cycle_.reset(); }
+
+    // flatten: every stage function is inlined here, so that the formats' constants reach
+    // each LeanWord operation (GCC's inliner otherwise stops early in a file holding many
+    // instances: docs/performance.md, cycle model).
+    [[gnu::flatten]] void write(std::uint32_t data) override { cycle_.write(data); }
+
     bool load() const override { return q().lc.load; }
     bool ready() const override { return q().icmux.ready(q().lc.load); }
     std::uint8_t t() const override { return q().ctrl.t; }
-    Word thr() const override { return word(thr(q()).v, fs_.get().resp_w); }
-    bool cornerbit() const override { return lm(q()); }
+    Word thr() const override { return word(cycle_.thr().v, fs_.get().resp_w); }
+    bool cornerbit() const override { return cycle_.cornerbit(); }
     std::uint32_t corner() const override { return q().sr.out(); }
     long writes() const override { return q().writes; }
     const StageTags& tags() const override { return q().tags; }
@@ -185,12 +373,12 @@ public:
         if (at != image.size())
             throw std::invalid_argument("cycle model state of " + std::to_string(image.size()) + " bytes, expected " +
                                         std::to_string(at));
-        reg_ = r;
+        cycle_.registers() = r;
     }
 
     void rebase(long writes, long find_max_count) override {
-        reg_.writes = writes;
-        reg_.fm.count = find_max_count;
+        cycle_.registers().writes = writes;
+        cycle_.registers().fm.count = find_max_count;
     }
 
     long find_max_count() const override { return q().fm.count; }
@@ -201,7 +389,7 @@ public:
     }
 
     FindMax find_max() const override {
-        const FindMaxT<Back>& m = q().fm;
+        const auto& m = q().fm;
         FindMax out(fs_.get());
         out.count = m.count;
         out.running = word(m.running.v, m.running.w);
@@ -237,7 +425,7 @@ public:
     }
 
 private:
-    const Registers& q() const { return reg_; }
+    const Registers& q() const { return cycle_.registers(); }
 
     /// Calls f on every scalar of every register (arrays element by element), in one fixed
     /// order: the state image is these values' bytes, without the structs' padding.
@@ -265,150 +453,17 @@ private:
         tag(r.tags.terms); tag(r.tags.response); tag(r.tags.delay); tag(r.tags.thresholded);
     }
 
-    /// A signed register value of `width` bits as a Front or Back word.
-    template <class T>
-    static T as(std::int64_t v, int width) {
-        return T{static_cast<decltype(T::v)>(v), width, true};
-    }
     static Word word(std::int64_t v, int width) { return Word::sgn(v, width); }
-    template <int N, class Rep>
-    static WordMatrix<N> words(const Plane<Rep, N>& p, int width) {
-        WordMatrix<N> m;
-        for (int i = 0; i < N; ++i)
-            for (int j = 0; j < N; ++j) m[i][j] = word(p[i * N + j], width);
+    template <int M, class Rep>
+    static WordMatrix<M> words(const Plane<Rep, M>& p, int width) {
+        WordMatrix<M> m;
+        for (int i = 0; i < M; ++i)
+            for (int j = 0; j < M; ++j) m[i][j] = word(p[i * M + j], width);
         return m;
     }
-    /// The 3x3 block of a 5x5 plane whose top-left element is (i, j), as Front words.
-    static std::array<std::array<Front, 3>, 3> block3(const Plane<FrontRep, 5>& p, int i, int j, int width) {
-        std::array<std::array<Front, 3>, 3> b;
-        for (int di = 0; di < 3; ++di)
-            for (int dj = 0; dj < 3; ++dj) b[di][dj] = as<Front>(p[(i + di) * 5 + j + dj], width);
-        return b;
-    }
 
-    // ---- the processes of harris_top, in the order of its architecture ----------------
-
-    /// lc: load_control counts the writes of a window row and the rows of a frame.
-    void lc(Registers& r) const { r.lc = r.lc.next(g_); }
-
-    /// icmux: input_converter_mux shifts the write's pixels into the quadrants' windows and
-    /// loads window i-1 into its output register (icm).
-    void icmux(Registers& r, std::uint32_t data) const {
-        // the loaded window is quadrant i-1's, whose newest column ended i writes ago
-        const int i = r.icmux.i;
-        r.tags.window = i <= 4 ? WindowTag{r.writes - i, i - 1} : WindowTag{};
-        r.icmux.advance(data);
-    }
-
-    /// ctrl: control_shift_register shifts ready into the stage enables t.
-    void ctrl(Registers& r, bool ready) const { r.ctrl = r.ctrl.next(ready); }
-
-    /// rows5/cols5 sx, sy: sobel_x and sobel_y of the 3x3 window pixels at (i..i+2, j..j+2)
-    /// for the 5x5 gradients; enable: ready.
-    void sx_sy(Registers& r, bool ready) const {
-        if (!ready) return;
-        if (!r.icmux.a_defined) throw std::logic_error("Sobel enabled while the window register is undefined");
-        const Formats& f = fs_.get();
-        for (int i = 0; i < 5; ++i)
-            for (int j = 0; j < 5; ++j) {
-                const Pixels3 nb = sub3(r.icmux.a, i, j);
-                r.sxm[i * 5 + j] = sobel_x<Front>(nb, f).v;
-                r.sym[i * 5 + j] = sobel_y<Front>(nb, f).v;
-            }
-        r.tags.sobel = r.tags.window;
-    }
-
-    /// rows5/cols5 mm: m_products of each gradient pair; enable: t(0).
-    void mm(Registers& r) const {
-        if (!r.ctrl.en(0)) return;
-        const Formats& f = fs_.get();
-        for (int k = 0; k < 25; ++k) {
-            const MProductsT<Front> m = m_products(as<Front>(r.sxm[k], f.sobel_w), as<Front>(r.sym[k], f.sobel_w), f);
-            r.mam[k] = m.a.v;
-            r.mbm[k] = m.b.v;
-            r.mcm[k] = m.c.v;
-        }
-        r.tags.m = r.tags.sobel;
-    }
-
-    /// rows3/cols3 bfa, bfb, bfc: block_filter of the M coefficients at (i..i+2, j..j+2);
-    /// enable: t(1).
-    void bf(Registers& r) const {
-        if (!r.ctrl.en(1)) return;
-        const Formats& f = fs_.get();
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) {
-                r.bfam[i * 3 + j] = block_filter(block3(r.mam, i, j, f.m_w()), f).v;
-                r.bfbm[i * 3 + j] = block_filter(block3(r.mbm, i, j, f.m_w()), f).v;
-                r.bfcm[i * 3 + j] = block_filter(block3(r.mcm, i, j, f.m_w()), f).v;
-            }
-        r.tags.block = r.tags.m;
-    }
-
-    /// rows3/cols3 hr: harris_response, step 2 (the response from step 1's registers, enable
-    /// t(3)), then step 1 (products and k-term, enable t(2)), which overwrites them.
-    void hr(Registers& r) const {
-        const Formats& f = fs_.get();
-        if (r.ctrl.en(3)) {   // step2
-            if (!r.step1_defined) throw std::logic_error("harris_response step 2 enabled before step 1 ever was");
-            for (int k = 0; k < 9; ++k) {
-                const ResponseTermsT<Back> s{as<Back>(r.ac[k], f.prod_w()), as<Back>(r.bb[k], f.prod_w()),
-                                             as<Back>(r.ktr2[k], f.ktr_w)};
-                r.hrm[k] = harris_response(s, f).v;
-            }
-            r.tags.response = r.tags.terms;
-        }
-        if (r.ctrl.en(2)) {   // step1
-            for (int k = 0; k < 9; ++k) {
-                const ResponseTermsT<Back> s = harris_response_terms(
-                    as<Back>(r.bfam[k], f.bf_w()), as<Back>(r.bfbm[k], f.bf_w()), as<Back>(r.bfcm[k], f.bf_w()), f);
-                r.ac[k] = s.ac.v;
-                r.bb[k] = s.bb.v;
-                r.ktr2[k] = s.ktr2.v;
-            }
-            r.step1_defined = true;
-            r.tags.terms = r.tags.block;
-        }
-    }
-
-    /// rows3/cols3 th: threshold delays each response by one write (r0_delay) and, on t(5),
-    /// keeps the delayed response when it reaches thr (else 0); without t(5) the output is 0.
-    void th(Registers& r) const {
-        const Formats& f = fs_.get();
-        const Back thr_q = thr(r);
-        const bool en = r.ctrl.en(5);
-        for (int k = 0; k < 9; ++k) {
-            r.trm[k] = en ? threshold(as<Back>(r.r0_delay[k], f.resp_w), thr_q).v : 0;
-            r.r0_delay[k] = r.hrm[k];
-        }
-        r.tags.thresholded = en ? r.tags.delay : WindowTag{};
-        r.tags.delay = r.tags.response;
-    }
-
-    /// fm: find_max tracks the centre response hrm(2,2) on t(4) and publishes the maximum
-    /// of each period.
-    void fm(Registers& r) const {
-        if (r.ctrl.en(4)) r.fm = r.fm.next(as<Back>(r.hrm[1 * 3 + 1], fs_.get().resp_w), g_);
-    }
-
-    /// thr: the threshold value formed from the published maximum (combinational).
-    Back thr(const Registers& q) const { return threshold_value(q.fm.max, fs_.get()); }
-
-    /// lm: local_maximum of the thresholded responses (combinational): the corner bit.
-    bool lm(const Registers& q) const {
-        const Formats& f = fs_.get();
-        std::array<std::array<Back, 3>, 3> r;
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) r[i][j] = as<Back>(q.trm[i * 3 + j], f.resp_w);
-        return local_maximum(r);
-    }
-
-    /// sr: corner_shift_register shifts the corner bit in.
-    void sr(Registers& r) const { r.sr = r.sr.next(lm(r)); }
-
-    Geometry g_;
     [[no_unique_address]] FS fs_;
-    Registers reg_;   ///< every register of harris_top
+    Cycle cycle_;
 };
 
 }  // namespace hc
