@@ -109,43 +109,18 @@ std::vector<Flop> resolve(const std::string& verilog, const std::string& smt) {
     return out;
 }
 
-/// GHDL's and yosys's commands in `dir`; returns (GHDL's Verilog, the SMT-LIB transition) and
-/// writes commands.txt.
+/// GHDL's and yosys's commands in `dir` for the control registers' cone (top.ys, cone.ys).
 std::pair<std::string, std::string> synthesise(const Formats& f, const Geometry& g, const fs::path& dir, const fs::path& rtl_dir) {
-    fs::create_directories(dir / "work");
-    std::vector<std::string> argv = {"ghdl", "--synth", "--std=08", "--workdir=" + (dir / "work").string()};
-    std::string gens, sources;
-    for (const auto& [name, v] : generics(g, f)) gens += fmt::format(" -g{}={}", name, v);
-    gens += " -gOBSERVE=false";
-    std::istringstream gs(gens);
-    for (std::string x; gs >> x;) argv.push_back(x);
-    argv.push_back("--out=verilog");
-    for (const auto& s : cosim::rtl_sources(rtl_dir)) {
-        argv.push_back(s.string());
-        sources += " " + s.string();
-    }
-    argv.insert(argv.end(), {"-e", "harris_top"});
-    const fs::path log = dir / "synth.log";
-    if (cosim::synth_verilog(argv, dir / "harris_top.v", {.log = log}) != 0)
-        throw SimulatorError("ghdl --synth of harris_top failed: " + util::log_tail(log, 1500));
-    util::write_file_atomic(dir / "top.v",
-                            "module top(input clk, input [31:0] data, output [31:0] corner);\n"
-                            "  harris_top u(.clk(clk), .rst(1'b1), .write(1'b1), .data(data), .corner(corner));\nendmodule\n");
-    util::write_file_atomic(dir / "top.ys",
-                            "read_verilog harris_top.v top.v\nhierarchy -top top\nproc\nflatten\nopt -nosdff -nodffe\n"
-                            "select -assert-none t:$*latch* t:$sr t:$mem* t:$*dff* t:$dff %d\n"
-                            "opt_clean -purge\nexpose -evert-dff\nopt_clean\nselect -assert-none t:$dff\n"
-                            "write_rtlil top.il\nwrite_smt2 -wires top.smt2\n");
-    const fs::path ylog = dir / "yosys.log";
-    fs::remove(ylog);
-    if (util::run_process({"yosys", "-q", "-s", "top.ys"}, {.cwd = dir, .log = ylog}) != 0)
-        throw SimulatorError("yosys could not write harris_top's transition as SMT-LIB: " + util::log_tail(ylog, 1500));
-    util::write_file_atomic(dir / "commands.txt",
-                            fmt::format("ghdl --synth --std=08 --workdir=work{} --out=verilog{} -e harris_top | {} > harris_top.v\n"
-                                        "yosys -q -s top.ys    # writes top.il and top.smt2\n"
-                                        "yosys -q -s cone.ys   # writes cone.smt2\n",
-                                        gens, sources, cosim::kSizedBitLiteralsFilter));
-    return {util::read_file(dir / "harris_top.v"), util::read_file(dir / "top.smt2")};
+    const HarrisTopNetlist n = synthesise_harris_top(
+        f, g, dir, rtl_dir,
+        {.top_v = "module top(input clk, input [31:0] data, output [31:0] corner);\n"
+                  "  harris_top u(.clk(clk), .rst(1'b1), .write(1'b1), .data(data), .corner(corner));\nendmodule\n",
+         .script = "read_verilog harris_top.v top.v\nhierarchy -top top\nproc\nflatten\nopt -nosdff -nodffe\n"
+                   "select -assert-none t:$*latch* t:$sr t:$mem* t:$*dff* t:$dff %d\n"
+                   "opt_clean -purge\nexpose -evert-dff\nopt_clean\nselect -assert-none t:$dff\n"
+                   "write_rtlil top.il\nwrite_smt2 -wires top.smt2\n",
+         .commands = "yosys -q -s top.ys    # writes top.il and top.smt2\nyosys -q -s cone.ys   # writes cone.smt2\n"});
+    return {n.verilog, n.smt};
 }
 
 /// The control state less find_max's counter: the registers whose states repeat every frame.
@@ -283,15 +258,6 @@ std::string values(const std::vector<Flop>& flops, const ModelControl& mc, long 
     return v;
 }
 
-/// The answers of a solver's run of a file of checks, one word each ("unsat", "sat", ...).
-std::vector<std::string> answers(const fs::path& file) {
-    std::vector<std::string> v;
-    std::istringstream in(fs::exists(file) ? util::read_file(file) : "");
-    for (std::string l; std::getline(in, l);)
-        if (l == "sat" || l == "unsat" || l == "unknown") v.push_back(l);
-    return v;
-}
-
 /// Which next control register differs at state k (a query per register); "" if none does.
 std::string differing(const std::string& head, const std::vector<Flop>& flops, const ModelControl& mc, long k, const fs::path& dir) {
     std::string text = head + fmt::format("(assert (at{}))\n", values(flops, mc, k));
@@ -302,7 +268,7 @@ std::string differing(const std::string& head, const std::vector<Flop>& flops, c
     }
     util::write_file_atomic(dir / "which.smt2", text);
     util::run_process({"z3", "-smt2", "which.smt2"}, {.cwd = dir, .log = dir / "z3-which.log", .stdout_file = dir / "z3-which.txt"});
-    const std::vector<std::string> a = answers(dir / "z3-which.txt");
+    const std::vector<std::string> a = solver_answers(dir / "z3-which.txt");
     std::string s;
     for (size_t r = 0; r < flops.size() && r < a.size(); ++r) {
         if (a[r] != "sat") continue;
@@ -337,7 +303,7 @@ void recheck_with_cvc5(const std::string& head, const std::vector<std::string>& 
             failed[j] = e.what();
             return;
         }
-        const std::vector<std::string> c = answers(dir / (name + "-answer.txt"));
+        const std::vector<std::string> c = solver_answers(dir / (name + "-answer.txt"));
         for (size_t k = 0; 2 * k + 1 < c.size(); ++k) {
             if (c[2 * k + 1] == "sat" && contradiction[j].empty()) contradiction[j] = fmt::format("write {}", first + k);
             unsat[j] += c[2 * k] == "sat" && c[2 * k + 1] == "unsat";
@@ -359,6 +325,43 @@ void recheck_with_cvc5(const std::string& head, const std::vector<std::string>& 
 }
 
 }  // namespace
+
+HarrisTopNetlist synthesise_harris_top(const Formats& f, const Geometry& g, const fs::path& dir, const fs::path& rtl_dir,
+                                       const HarrisTopScript& s) {
+    fs::create_directories(dir / "work");
+    std::vector<std::string> argv = {"ghdl", "--synth", "--std=08", "--workdir=" + (dir / "work").string()};
+    std::string gens, sources;
+    for (const auto& [name, v] : generics(g, f)) gens += fmt::format(" -g{}={}", name, v);
+    gens += " -gOBSERVE=false";
+    std::istringstream gs(gens);
+    for (std::string x; gs >> x;) argv.push_back(x);
+    argv.push_back("--out=verilog");
+    for (const auto& src : cosim::rtl_sources(rtl_dir)) {
+        argv.push_back(src.string());
+        sources += " " + src.string();
+    }
+    argv.insert(argv.end(), {"-e", "harris_top"});
+    const fs::path log = dir / "synth.log";
+    if (cosim::synth_verilog(argv, dir / "harris_top.v", {.log = log}) != 0)
+        throw SimulatorError("ghdl --synth of harris_top failed: " + util::log_tail(log, 1500));
+    util::write_file_atomic(dir / "top.v", s.top_v);
+    util::write_file_atomic(dir / "top.ys", s.script);
+    const fs::path ylog = dir / "yosys.log";
+    fs::remove(ylog);
+    if (util::run_process({"yosys", "-q", "-s", "top.ys"}, {.cwd = dir, .log = ylog}) != 0)
+        throw SimulatorError("yosys could not write harris_top's transition as SMT-LIB: " + util::log_tail(ylog, 1500));
+    util::write_file_atomic(dir / "commands.txt", fmt::format("ghdl --synth --std=08 --workdir=work{} --out=verilog{} -e harris_top | {} > harris_top.v\n{}",
+                                                              gens, sources, cosim::kSizedBitLiteralsFilter, s.commands));
+    return {util::read_file(dir / "harris_top.v"), util::read_file(dir / "top.smt2")};
+}
+
+std::vector<std::string> solver_answers(const fs::path& file) {
+    std::vector<std::string> v;
+    std::istringstream in(fs::exists(file) ? util::read_file(file) : "");
+    for (std::string l; std::getline(in, l);)
+        if (l == "sat" || l == "unsat" || l == "unknown") v.push_back(l);
+    return v;
+}
 
 ControlInduction prove_control_from_reset(const Formats& f, const Geometry& g, const ControlInductionOptions& o) {
     const auto t0 = Clock::now();
@@ -411,7 +414,7 @@ ControlInduction prove_control_from_reset(const Formats& f, const Geometry& g, c
     util::write_file_atomic(dir / "query.smt2", text);
     p.command = fmt::format("z3 -smt2 {}", (dir / "query.smt2").string());
     util::run_process({"z3", "-smt2", "query.smt2"}, {.cwd = dir, .log = dir / "z3.log", .stdout_file = dir / "z3-answer.txt"});
-    const std::vector<std::string> a = answers(dir / "z3-answer.txt");
+    const std::vector<std::string> a = solver_answers(dir / "z3-answer.txt");
     for (size_t k = 0; k < static_cast<size_t>(p.queries); ++k) {
         const std::string held = 2 * k < a.size() ? a[2 * k] : "no answer", ans = 2 * k + 1 < a.size() ? a[2 * k + 1] : "no answer";
         if (held == "sat" && ans == "unsat") continue;

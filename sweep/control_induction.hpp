@@ -78,6 +78,25 @@ struct ControlInduction {
     std::string command;                   ///< the one command that reruns the queries
 };
 
+/// How the netlist of harris_top is made for a proof: the wrapper module `top` (top.v), the
+/// yosys script (top.ys, which reads harris_top.v and top.v and writes top.smt2) and the lines
+/// of commands.txt after GHDL's.
+struct HarrisTopScript {
+    std::string top_v, script, commands;
+};
+struct HarrisTopNetlist {
+    std::string verilog;   ///< GHDL's Verilog of harris_top (harris_top.v)
+    std::string smt;       ///< yosys's SMT-LIB (top.smt2)
+};
+/// GHDL's synthesis of harris_top at `g` and `f` (OBSERVE false) in `dir`, then the script;
+/// commands.txt rebuilds both. SimulatorError when GHDL or yosys fails.
+HarrisTopNetlist synthesise_harris_top(const Formats& f, const Geometry& g, const std::filesystem::path& dir,
+                                       const std::filesystem::path& rtl_dir, const HarrisTopScript& s);
+
+/// A solver's answers in its output file, in order ("sat", "unsat" or "unknown"; nothing for
+/// a missing file).
+std::vector<std::string> solver_answers(const std::filesystem::path& file);
+
 /// The proof at geometry `g` and formats `f`. SimulatorError when GHDL or yosys fails;
 /// std::logic_error when a control register is not found on the netlist.
 ControlInduction prove_control_from_reset(const Formats& f, const Geometry& g, const ControlInductionOptions& o = {});

@@ -12,6 +12,7 @@
 #include "model/util/util.hpp"
 #include "model/harris/formats_json.hpp"
 #include "sweep/control_induction.hpp"
+#include "sweep/datapath_induction.hpp"
 #include "sweep/stage_equivalence.hpp"
 #include "sweep/sweep_config.hpp"
 
@@ -56,6 +57,25 @@ std::string control_induction_section(const RangesCommand& c, const Config& cfg,
     return control_induction_markdown(cfg.name, ci);
 }
 
+/// The datapath induction of `cfg` at each size: a line on stderr each, `js` the JSON array,
+/// and the Markdown section returned.
+std::string datapath_induction_section(const RangesCommand& c, const Config& cfg, const std::vector<Geometry>& sizes, nlohmann::json& js) {
+    std::vector<DatapathInduction> di;
+    js = nlohmann::json::array();
+    for (const Geometry& g : sizes) {
+        const std::string size = fmt::format("{}x{}", g.width, g.height);
+        di.push_back(prove_datapath_from_reset(cfg.formats, g, {.dir = fs::path(c.datapath_induction) / file_stem(cfg.name) / size, .rtl_dir = c.rtl}));
+        const DatapathInduction& p = di.back();
+        std::fprintf(stderr, "ranges: %s: datapath induction %s: %s, %ld control classes (the model's run: %ld writes), %s, %.1f s%s%s\n",
+                     cfg.name.c_str(), size.c_str(), eq_verdict_name(p.verdict), p.classes, p.model_writes,
+                     p.recheck.empty() ? "no second solver" : p.recheck.c_str(), p.seconds, p.detail.empty() ? "" : ": ", p.detail.c_str());
+        js.push_back({{"size", size}, {"verdict", eq_verdict_name(p.verdict)}, {"classes", p.classes}, {"model_writes", p.model_writes},
+                      {"registers", p.registers}, {"invariants", p.invariants}, {"solver", p.solver}, {"recheck", p.recheck},
+                      {"rechecked", p.rechecked}, {"seconds", p.seconds}, {"detail", p.detail}, {"command", p.command}});
+    }
+    return datapath_induction_markdown(cfg.name, di);
+}
+
 }  // namespace
 
 void run_ranges_command(const RangesCommand& c) {
@@ -71,8 +91,9 @@ void run_ranges_command(const RangesCommand& c) {
     }
     if (c.pixel_max > 255) throw InputError("ranges: --pixel-max " + std::to_string(c.pixel_max) + " is above 255");
     if (!c.rtl.empty()) {
-        if (c.stages.empty() && c.control_induction.empty())
-            throw InputError("ranges: --rtl " + c.rtl + " names the VHDL of the stage proofs: give --stages DIR too (or --control-induction DIR)");
+        if (c.stages.empty() && c.control_induction.empty() && c.datapath_induction.empty())
+            throw InputError("ranges: --rtl " + c.rtl +
+                             " names the VHDL of the stage proofs: give --stages DIR too (or --control-induction DIR, --datapath-induction DIR)");
         for (const auto& f : cosim::rtl_sources(c.rtl))
             if (!fs::is_regular_file(f)) throw InputError("ranges: --rtl " + c.rtl + " has no " + f.filename().string());
     }
@@ -115,6 +136,7 @@ void run_ranges_command(const RangesCommand& c) {
             all.back()["stages"] = stage_equivalence_to_json(se);
         }
         if (!c.control_induction.empty()) md += control_induction_section(c, cfg, sizes, all.back()["control_induction"]) + "\n";
+        if (!c.datapath_induction.empty()) md += datapath_induction_section(c, cfg, sizes, all.back()["datapath_induction"]) + "\n";
         if (!c.witnesses.empty())
             for (const auto& w : write_witnesses(cfg.name, r, c.witnesses))
                 lines.push_back(w.regression_line(c.set_dir.empty() ? fs::path("golden") : fs::path(c.set_dir)));

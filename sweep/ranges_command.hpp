@@ -22,6 +22,9 @@ struct RangesCommand {
     /// --control-induction DIR: the control registers of the whole design's netlist from reset
     /// (control_induction.hpp), at each of `control_sizes`, kept under DIR/<config>/<WxH>
     std::string control_induction;
+    /// --datapath-induction DIR: every register of the whole design's netlist from reset
+    /// (datapath_induction.hpp), at each of `control_sizes`, kept under DIR/<config>/<WxH>
+    std::string datapath_induction;
     std::vector<std::string> control_sizes{"10x8"};   ///< --control-sizes WxH,...
     std::string propose;  ///< --propose FILE: the narrowest proven widths (propose_widths) as a --config file
 };

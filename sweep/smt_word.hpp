@@ -145,4 +145,42 @@ inline SmtWord constant_like(const SmtWord& x, std::int64_t v) {
 /// A condition as a one-bit unsigned word ('1' where it holds).
 inline SmtWord as_bit(const SmtBool& c) { return SmtWord::def(fmt::format("(ite {} #b1 #b0)", c.e), 1, false); }
 
+/// The corner shift register's shift (model/harris/corner_shift_register.hpp) on the query:
+/// the 6-bit word c shifted left by one, `bit` entering bit 0.
+inline SmtWord shift_in(const SmtWord& c, const SmtBool& bit) {
+    if (c.w != 6) throw std::logic_error("SmtWord: the corner shift register is 6 bits");
+    return SmtWord::def(fmt::format("(concat ((_ extract 4 0) {}) (ite {} #b1 #b0))", c.e, bit.e), 6, false);
+}
+
+/// The cycle model's number types on the query (HarrisCycle's N, model/harris/harris_top_t.hpp):
+/// every register a word of its width, the pixels 8-bit unsigned words, the bus word 32 bits.
+struct SmtNumbers {
+    using Front = SmtWord;
+    using Back = SmtWord;
+    using FrontRep = SmtWord;
+    using BackRep = SmtWord;
+    using Pixel = SmtWord;
+    using Data = SmtWord;
+    using Count = SmtWord;
+    using Bit = SmtBool;
+    using Bits6 = SmtWord;
+    /// A register's value read as a signed word of its width (a word of another width is a
+    /// logic_error: the register does not hold what the model's process expects).
+    static SmtWord front(const SmtWord& v, int width) {
+        if (v.w != width) throw std::logic_error(fmt::format("SmtNumbers: a {}-bit register read as {} bits", v.w, width));
+        return {v.e, width, true};
+    }
+    static SmtWord back(const SmtWord& v, int width) { return front(v, width); }
+    static SmtWord front_rep(const SmtWord& x) { return x; }
+    static SmtWord back_rep(const SmtWord& x) { return x; }
+    static SmtWord front_zero(int width) { return SmtWord::sgn(0, width); }
+    static SmtWord back_zero(int width) { return SmtWord::sgn(0, width); }
+    static SmtWord bits6_zero() { return {SmtWord::constant(0, 6).e, 6, false}; }
+    static SmtWord pixel(int v) { return {SmtWord::constant(v, 8).e, 8, false}; }
+    static SmtWord data(std::uint32_t v) { return {SmtWord::constant(v, 32).e, 32, false}; }
+    static SmtWord byte(const SmtWord& d, int q) {
+        return SmtWord::def(fmt::format("((_ extract {} {}) {})", 8 * q + 7, 8 * q, d.e), 8, false);
+    }
+};
+
 }  // namespace hc::sweep

@@ -48,7 +48,13 @@ void add_ranges_command(CLI::App& app) {
                     "delays, the stage enables, find_max's period counter) equal to the cycle model's from reset for every\n"
                     "input sequence, one query per state of a frame with find_max's counter symbolic (z3, then cvc5 in parts on\n"
                     "every core), keeping the files under DIR/<configuration>/<WxH>; the thesis's 640x360 takes minutes");
-    cmd->add_option("--control-sizes", o->control_sizes, "the image sizes of --control-induction, WxH")
+    cmd->add_option("--datapath-induction", o->datapath_induction,
+                    "also prove every register of harris_top's netlist (the windows, pixel delays, gradients, M\n"
+                    "coefficients, block sums, response terms, responses, thresholded responses, find_max's maximum, the\n"
+                    "corner shift register) equal to the cycle model's from reset for every input sequence, one query per\n"
+                    "control class a frame reaches (z3, then cvc5, side by side on every core), keeping the files under\n"
+                    "DIR/<configuration>/<WxH>; about 6 min on 2 cores at 10x8");
+    cmd->add_option("--control-sizes", o->control_sizes, "the image sizes of --control-induction and --datapath-induction, WxH")
         ->delimiter(',')->capture_default_str();
     cmd->callback([o] { sweep::run_ranges_command(*o); });
 }

@@ -1,0 +1,70 @@
+// Datapath induction: every register of harris_top's netlist against the cycle model's from
+// reset, for every input sequence (ghdl, yosys, z3 and cvc5 on PATH).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "model/util/util.hpp"
+#include "sweep/datapath_induction.hpp"
+#include "sweep/ranges_command.hpp"
+#include "tests/sweep/mutated_rtl.hpp"
+
+using namespace hc;
+using namespace hc::sweep;
+namespace fs = std::filesystem;
+
+TEST_CASE("datapath induction at the smallest image: every register of the netlist follows the model's from reset, z3 and cvc5",
+          "[datapath-induction]") {
+    const util::ScratchDir dir;
+    const DatapathInduction p = prove_datapath_from_reset(Formats{}, Geometry{10, 8}, {.dir = dir.path()});
+    INFO(p.detail);
+    CHECK(p.verdict == EqVerdict::equal);
+    // 10x8: the control classes the model reaches from reset until its frame part repeats
+    CHECK(p.classes == 33);
+    CHECK(p.rechecked);
+    CHECK(p.recheck == "cvc5: 34 unsat of 34");
+    // every register the co-simulation compares: 4 windows of 49 pixels, 3 pixel delays, icm's 49
+    // pixels, 2 x 25 gradients, 3 x 25 M coefficients, 3 x 9 block sums, 3 x 9 response terms,
+    // 9 responses, 9 delayed and 9 thresholded responses, the running and published maximum, the
+    // corner shift register
+    CHECK(p.registers.size() == 196 + 3 + 49 + 50 + 75 + 27 + 27 + 27 + 2 + 1);
+    CHECK(p.registers.front() == "win0(1,1) = u.icmux.win[1567:1560]");
+}
+
+TEST_CASE("datapath induction through the ranges command: a Sobel coefficient changed in a copy of the VHDL is a difference naming the gradient",
+          "[datapath-induction-mutant]") {
+    const util::ScratchDir dir;
+    RangesCommand c;
+    c.no_netlist = true;
+    c.datapath_induction = (dir.path() / "di").string();
+    c.json = (dir.path() / "ranges.json").string();
+    c.out = (dir.path() / "ranges.md").string();
+    c.rtl = mutated_rtl(dir.path(), "sobel_x.vhd", "+ resize(p23, SOBEL_W)", "+ resize(p13, SOBEL_W)").string();
+    run_ranges_command(c);
+    const nlohmann::json j = nlohmann::json::parse(util::read_file(c.json));
+    const nlohmann::json& di = j.at(0).at("datapath_induction").at(0);
+    INFO(di.dump(1));
+    CHECK(di.at("size") == "10x8");
+    CHECK(di.at("verdict") == "counterexample");
+    CHECK(di.at("classes") == 33);   // the model's classes, not the mutant's
+    CHECK(di.at("detail").get<std::string>().find("the netlist's next sxm(1,1)") != std::string::npos);
+    CHECK(di.at("rechecked") == false);
+    CHECK(fs::is_regular_file(dir.path() / "di" / "thesis" / "10x8" / "which.smt2"));
+    CHECK(util::read_file(c.out).find("## Every register from reset: thesis") != std::string::npos);
+}
+
+TEST_CASE("datapath induction's report: one row per size, the command's pipes escaped in its table cell", "[model]") {
+    DatapathInduction p;
+    p.geometry = {10, 8};
+    p.verdict = EqVerdict::equal;
+    p.classes = 33;
+    p.model_writes = 112;
+    p.recheck = "cvc5: 34 unsat of 34";
+    p.command = "cd D && cat head.smt2 q | z3 -in";
+    const std::string md = datapath_induction_markdown("thesis", {p});
+    CHECK(md.find("| 10x8 | proven equal | 33 | 112 | - | cvc5: 34 unsat of 34 |") != std::string::npos);
+    CHECK(md.find("`cd D && cat head.smt2 q \\| z3 -in`") != std::string::npos);
+}
