@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 TEST_CASE("datapath induction at the smallest image: every register of the netlist follows the model's from reset, z3 and cvc5",
           "[datapath-induction]") {
     const util::ScratchDir dir;
-    const DatapathInduction p = prove_datapath_from_reset(Formats{}, Geometry{10, 8}, {.dir = dir.path()});
+    const DatapathInduction p = prove_datapath_from_reset(Formats{}, Geometry{10, 8}, {.dir = dir.path(), .rtl_dir = {}});
     INFO(p.detail);
     CHECK(p.verdict == EqVerdict::equal);
     // 10x8: the control classes the model reaches from reset until its frame part repeats
