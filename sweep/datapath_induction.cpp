@@ -9,7 +9,6 @@
 #include <regex>
 #include <set>
 #include <string_view>
-#include <sstream>
 #include <tuple>
 
 #include <fmt/format.h>
