@@ -19,7 +19,6 @@
 #include "model/harris/harris_top_t.hpp"
 #include "model/util/errors.hpp"
 #include "model/util/util.hpp"
-#include "sweep/control_induction.hpp"
 #include "sweep/ranges.hpp"
 #include "sweep/smt_word.hpp"
 
@@ -302,24 +301,48 @@ std::string invariant_terms(const std::vector<Invariant>& inv, const Regs& r) {
 
 /// One query: an edge of the netlist (the head's assertions), the model's registers and the
 /// fresh values of undefined ones (definitions), the hypothesis on the current state and the
-/// question whether a next register differs (or an invariant breaks). Both asked in two files:
-/// held.smt2 asks each hypothesis alone (sat expected: the check is not vacuous), query-N.smt2
-/// the difference (unsat expected), each after head.smt2 (the netlist).
+/// question whether a next register differs. Asked in three files: held-N.smt2 asks the
+/// hypothesis alone (sat expected: the check is not vacuous), query-N.smt2 the difference
+/// (unsat expected), each after head.smt2 (the netlist), with the side conditions assumed;
+/// side-N.smt2, on the model alone, whether the hypothesis implies each side condition and the
+/// invariants in the next state (each unsat expected). The side conditions: no signed resize
+/// of the model's write overflows (numeric_std's result, sign bit kept, is then the netlist's
+/// truncation). Proven on the model alone with the current registers free, they hold wherever
+/// the hypothesis does, so assuming them in query-N.smt2 is sound and leaves a hypothesis that
+/// is sat wherever held-N.smt2 finds it sat.
 struct Query {
-    std::string title;                ///< "reset", "class 3 (first after write 49)"
-    std::string edge, defs, hyp, any;
-    std::vector<std::string> diffs;   ///< per compared register: its "(not (= model netlist))" term
-    std::vector<std::string> names;
-    std::vector<std::string> signals;   ///< per compared register: the netlist's, "u.sxm[274:264]"
-    std::string held_text() const { return fmt::format("(push 1)\n{}{}(assert {})\n(check-sat)\n(pop 1)\n", edge, defs, hyp); }
-    std::string text() const { return fmt::format("{}{}(assert {})\n(assert {})\n(check-sat)\n", edge, defs, hyp, any); }
+    std::string title{};              ///< "reset", "class 3 (first after write 49)"
+    std::string edge{}, defs{}, hyp{}, any{};
+    std::vector<std::string> diffs{};     ///< per compared register: its "(not (= model netlist))" term
+    std::vector<std::string> names{};
+    std::vector<std::string> signals{};   ///< per compared register: the netlist's, "u.sxm[274:264]"
+    std::vector<SmtShrink> side{};        ///< the model's signed resizes to fewer bits
+    std::string broken{};                 ///< true where an invariant fails in the model's next state
+    std::string held_text() const { return fmt::format("{}{}(assert {})\n(check-sat)\n", edge, defs, hyp); }
+    std::string assumed() const {
+        std::string s;
+        for (const auto& x : side) s += fmt::format("(assert (not {}))\n", x.overflow);
+        return s;
+    }
+    std::string text() const { return fmt::format("{}{}(assert {})\n{}(assert {})\n(check-sat)\n", edge, defs, hyp, assumed(), any); }
+    /// The side conditions' file: `decls` declares the current state's signals it names.
+    std::string side_text(const std::string& decls) const {
+        std::string s = fmt::format("(set-logic QF_BV)\n{}{}(assert {})\n", decls, defs, hyp);
+        for (const auto& x : side) s += fmt::format("(push 1)\n(assert {})\n(check-sat)\n(pop 1)\n", x.overflow);
+        return s + fmt::format("(push 1)\n(assert {})\n(check-sat)\n(pop 1)\n", broken);
+    }
+    /// What check k of side_text asks.
+    std::string side_name(size_t k) const {
+        return k < side.size() ? fmt::format("the signed resize of {} ({} -> {} bits) overflows", side[k].source, side[k].from, side[k].to)
+                               : std::string("an invariant fails in the next state");
+    }
 };
 
 constexpr const char* kStepEdge = "(assert |top_h@s|)\n(assert |top_h@s2|)\n(assert |top_n rst@s|)\n(assert |top_n rst@s2|)\n"
                                   "(assert |top_t@s@s2|)\n";
 
 /// Appends the relation on the next state to q's question (any differing register, one
-/// difference per register for the question which).
+/// difference per register for the question which) and the invariants there to its side file.
 template <class Regs>
 void ask_next(const Formats& f, Regs& r, const NetlistView& next, const std::vector<Invariant>& inv, Query& q) {
     q.any = "(or";
@@ -330,9 +353,8 @@ void ask_next(const Formats& f, Regs& r, const NetlistView& next, const std::vec
         q.diffs.push_back(fmt::format("(not (= {} {}))", model.e, net.e));
         q.any += " " + q.diffs.back();
     });
-    q.names.push_back("invariants");
-    q.diffs.push_back(fmt::format("(not {})", invariant_terms(inv, r)));
-    q.any += " " + q.diffs.back() + ")";
+    q.any += ")";
+    q.broken = fmt::format("(not {})", invariant_terms(inv, r));
 }
 
 Query class_step(const Formats& f, const Geometry& g, const ControlClass& c, const std::map<std::string, int>& wires,
@@ -363,6 +385,7 @@ Query class_step(const Formats& f, const Geometry& g, const ControlClass& c, con
     ask_next(f, r, next, inv, q);
     smt_query = nullptr;
     q.defs = sq.text;
+    q.side = sq.shrinks;
     return q;
 }
 
@@ -387,14 +410,15 @@ Query base_query(const Formats& f, const Geometry& g, const std::map<std::string
     q.any.insert(q.any.size() - 1, " " + q.diffs.back());
     smt_query = nullptr;
     q.defs = sq.text;
+    q.side = sq.shrinks;
     return q;
 }
 
-/// Runs `solver` (its arguments reading SMT-LIB from standard input) on head.smt2 followed by
-/// `file` in `dir`; its answers.
-std::vector<std::string> solve(const std::string& solver, const fs::path& dir, const std::string& file) {
+/// Runs `solver` (its arguments reading SMT-LIB from standard input) on `file` in `dir`, after
+/// head.smt2 where `with_head`; its answers.
+std::vector<std::string> solve(const std::string& solver, const fs::path& dir, const std::string& file, bool with_head = true) {
     const std::string stem = fs::path(file).stem().string() + "-" + solver.substr(0, solver.find(' '));
-    util::run_process({"sh", "-c", fmt::format("cat head.smt2 {} | {}", file, solver)},
+    util::run_process({"sh", "-c", fmt::format("cat {}{} | {}", with_head ? "head.smt2 " : "", file, solver)},
                       {.cwd = dir, .log = dir / (stem + ".log"), .stdout_file = dir / (stem + ".txt")});
     return solver_answers(dir / (stem + ".txt"));
 }
@@ -404,7 +428,7 @@ std::vector<std::string> solve(const std::string& solver, const fs::path& dir, c
 std::string differing(const Query& q, const fs::path& dir) {
     std::string text = q.edge + q.defs;
     for (size_t k = 0; k < q.diffs.size(); ++k) text += fmt::format("(define-fun d{} () Bool {})\n", k, q.diffs[k]);
-    text += fmt::format("(assert {})\n(assert {})\n(check-sat)\n(get-value (", q.hyp, q.any);
+    text += fmt::format("(assert {})\n{}(assert {})\n(check-sat)\n(get-value (", q.hyp, q.assumed(), q.any);
     for (size_t k = 0; k < q.diffs.size(); ++k) text += fmt::format(" d{}", k);
     util::write_file_atomic(dir / "which.smt2", text + "))\n");
     util::run_process({"sh", "-c", "cat head.smt2 which.smt2 | z3 -in -smt2 -model"},
@@ -424,8 +448,26 @@ const HarrisTopScript kScript{
               "select -assert-none t:$*latch* t:$sr t:$mem* t:$*dff* t:$dff %d\nopt_clean\nwrite_smt2 -wires top.smt2\n",
     .commands = "yosys -q -s top.ys    # writes top.smt2\n"};
 
-/// The queries' files in `dir` (head.smt2: the netlist at the signals they name; held.smt2;
-/// query-N.smt2) and the registers of the relation into p.
+/// Declarations of the current state's signals that `text` names, as free constants (their
+/// sorts from `head`): the side files ask about every value of them, not only the netlist's.
+std::string free_signals(const std::string& head, const std::string& text) {
+    if (text.find("@s2|") != std::string::npos) throw std::logic_error("datapath induction: a side condition names the next state");
+    static const std::regex used(R"(\|top_n ([^@|]+)@s\|)");
+    std::set<std::string, std::less<>> names;
+    for (std::sregex_iterator it(text.begin(), text.end(), used), end; it != end; ++it) names.insert((*it)[1]);
+    std::string out;
+    for (const auto& n : names) {
+        const std::string def = fmt::format("(define-fun |top_n {}@s| () ", n);
+        const size_t at = head.find(def);
+        if (at == std::string::npos) throw std::logic_error("datapath induction: the head does not define " + n);
+        const size_t from = at + def.size(), to = head[from] == '(' ? head.find(')', from) + 1 : head.find(' ', from);
+        out += fmt::format("(declare-fun |top_n {}@s| () {})\n", n, head.substr(from, to - from));
+    }
+    return out;
+}
+
+/// The queries' files in `dir` (head.smt2: the netlist at the signals they name; held-N.smt2,
+/// query-N.smt2, side-N.smt2) and the registers of the relation into p.
 void write_queries(const std::string& smt, const std::vector<Query>& queries, const fs::path& dir, DatapathInduction& p) {
     const Query& widest = *std::max_element(queries.begin(), queries.end(),
                                             [](const Query& a, const Query& b) { return a.signals.size() < b.signals.size(); });
@@ -435,34 +477,94 @@ void write_queries(const std::string& smt, const std::vector<Query>& queries, co
     for (const auto& q : queries)
         for (const std::string* s : {&q.defs, &q.hyp, &q.any})
             for (std::sregex_iterator it(s->begin(), s->end(), signal), end; it != end; ++it) named.insert((*it)[1]);
-    util::write_file_atomic(dir / "head.smt2", "(set-logic QF_BV)\n" + instantiate(smt, {"s", "s2"}, {{"s", "s2"}}, named));
-    std::string held;
+    const std::string head = "(set-logic QF_BV)\n" + instantiate(smt, {"s", "s2"}, {{"s", "s2"}}, named);
+    util::write_file_atomic(dir / "head.smt2", head);
     for (size_t k = 0; k < queries.size(); ++k) {
-        held += fmt::format("; {}\n{}", queries[k].title, queries[k].held_text());
-        util::write_file_atomic(dir / fmt::format("query-{}.smt2", k), fmt::format("; {}\n{}", queries[k].title, queries[k].text()));
+        const Query& q = queries[k];
+        util::write_file_atomic(dir / fmt::format("held-{}.smt2", k), fmt::format("; {}\n{}", q.title, q.held_text()));
+        util::write_file_atomic(dir / fmt::format("query-{}.smt2", k), fmt::format("; {}\n{}", q.title, q.text()));
+        const std::string side = q.side_text("");
+        util::write_file_atomic(dir / fmt::format("side-{}.smt2", k), fmt::format("; {}\n{}", q.title, q.side_text(free_signals(head, side))));
     }
-    util::write_file_atomic(dir / "held.smt2", held);
-    p.command = fmt::format("cd {} && for q in held.smt2 query-*.smt2; do cat head.smt2 $q | z3 -in -smt2; done", dir.string());
+    p.command = fmt::format("cd {} && for q in held-*.smt2 query-*.smt2; do cat head.smt2 $q | z3 -in -smt2; done && for s in side-*.smt2; do z3 $s; done",
+                            dir.string());
 }
 
-/// `solver` on every query-N.smt2 of `dir`, side by side on `jobs` cores (0: every core): the
-/// first answer of each; with `stop`, the queries not yet started after a difference (sat) are
-/// skipped ("not asked").
-std::vector<std::string> solve_all(const std::string& solver, const fs::path& dir, size_t n, int jobs, bool stop) {
-    std::vector<std::string> a(n, "not asked");
-    std::atomic<bool> differs = false;
+/// A solver's answers to the files of n queries: per query, held-N.smt2's and query-N.smt2's
+/// (the first answer, "no answer" if none, "not asked"), and side-N.smt2's (all).
+struct Answers {
+    std::vector<std::string> held, query;
+    std::vector<std::vector<std::string>> side;
+};
+
+/// The solver commands for each kind of file (an empty one: those files are not asked).
+struct Solvers {
+    std::string held, query, side;
+};
+
+/// The solvers on every file of n queries in `dir`, side by side on `jobs` cores (0: every
+/// core); with `stop`, the files not yet started after an unexpected answer are skipped.
+Answers solve_all(const Solvers& s, const fs::path& dir, size_t n, int jobs, bool stop) {
+    Answers a{std::vector<std::string>(n, "not asked"), std::vector<std::string>(n, "not asked"), std::vector<std::vector<std::string>>(n)};
+    std::atomic<bool> failed = false;
+    const auto first = [](const std::vector<std::string>& x) { return x.empty() ? std::string("no answer") : x[0]; };
     tbb::task_arena arena(jobs > 0 ? jobs : int(tbb::task_arena::automatic));
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1), [&](const tbb::blocked_range<size_t>& range) {
-            for (size_t k = range.begin(); k < range.end(); ++k) {
-                if (stop && differs) return;
-                const std::vector<std::string> x = solve(solver, dir, fmt::format("query-{}.smt2", k));
-                a[k] = x.empty() ? "no answer" : x[0];
-                if (a[k] == "sat") differs = true;
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, 3 * n, 1), [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t j = range.begin(); j < range.end(); ++j) {
+                if (stop && failed) return;
+                const size_t k = j / 3;
+                if (j % 3 == 0 && !s.held.empty()) {
+                    a.held[k] = first(solve(s.held, dir, fmt::format("held-{}.smt2", k)));
+                    if (a.held[k] != "sat") failed = true;
+                } else if (j % 3 == 1) {
+                    a.query[k] = first(solve(s.query, dir, fmt::format("query-{}.smt2", k)));
+                    if (a.query[k] != "unsat") failed = true;
+                } else if (j % 3 == 2) {
+                    a.side[k] = solve(s.side, dir, fmt::format("side-{}.smt2", k), false);
+                    if (std::count(a.side[k].begin(), a.side[k].end(), "unsat") != static_cast<long>(a.side[k].size())) failed = true;
+                }
             }
         }, tbb::simple_partitioner());
     });
     return a;
+}
+
+/// Why z3's answers prove nothing though no query is sat, in this order: a hypothesis found
+/// unsat alone (the query would be vacuous), a side check answered other than unsat (the
+/// assumed no-overflow or the invariants may fail where the hypothesis holds), a file without
+/// its answer; "" if every file has the expected answers.
+std::string unproven(const std::vector<Query>& queries, const Answers& a, int seconds) {
+    for (size_t k = 0; k < queries.size(); ++k)
+        if (a.held[k] != "sat" && a.held[k] != "not asked")
+            return fmt::format("{}: z3 {} on the hypothesis alone (sat expected: a vacuous query proves nothing)", queries[k].title, a.held[k]);
+    for (size_t k = 0; k < queries.size(); ++k)
+        for (size_t c = 0; c < a.side[k].size(); ++c)
+            if (a.side[k][c] != "unsat")
+                return fmt::format("{}: {} (z3: {}; unsat expected)", queries[k].title, queries[k].side_name(c), a.side[k][c]);
+    for (size_t k = 0; k < queries.size(); ++k) {
+        const std::string& x = a.held[k] != "sat" ? a.held[k] : a.query[k] != "unsat" ? a.query[k] : std::string();
+        if (!x.empty()) return fmt::format("{}: z3 {} within {} s", queries[k].title, x, seconds);
+        if (a.side[k].size() != queries[k].side.size() + 1)
+            return fmt::format("{}: z3 answered {} of the {} side checks within {} s", queries[k].title, a.side[k].size(), queries[k].side.size() + 1,
+                               seconds);
+    }
+    return "";
+}
+
+/// cvc5 on the query and side files of `dir` (after z3 proved them all): p's recheck.
+void recheck_with_cvc5(const std::vector<Query>& queries, const DatapathInductionOptions& o, const fs::path& dir, DatapathInduction& p) {
+    const std::string cvc5 = fmt::format("cvc5 --lang=smt2 --tlimit={}", o.seconds * 1000);
+    const Answers c = solve_all({"", cvc5, cvc5 + " --incremental"}, dir, queries.size(), o.jobs, false);
+    long checks = 0, unsat = 0;
+    for (size_t k = 0; k < queries.size(); ++k) {
+        checks += 1 + static_cast<long>(queries[k].side.size()) + 1;
+        unsat += (c.query[k] == "unsat") + std::count(c.side[k].begin(), c.side[k].end(), "unsat");
+        if (c.query[k] == "sat" || std::count(c.side[k].begin(), c.side[k].end(), "sat") > 0)
+            throw std::logic_error("datapath induction: z3 proves every check of " + dir.string() + ", cvc5 finds " + queries[k].title + " sat");
+    }
+    p.rechecked = unsat == checks;
+    p.recheck = fmt::format("cvc5: {} unsat of {}", unsat, checks);
 }
 
 /// The proof in `dir`; every field of p but its seconds.
@@ -482,34 +584,19 @@ void prove_in(const Formats& f, const Geometry& g, const DatapathInductionOption
         queries.push_back(class_step(f, g, c, wires, inv));
         queries.back().title = fmt::format("class {} (first after write {})", queries.size() - 2, c.first_write);
     }
+    for (const auto& q : queries) p.side_conditions += static_cast<long>(q.side.size());
     write_queries(n.smt, queries, dir, p);
-    const std::vector<std::string> h = solve("z3 -in -smt2", dir, "held.smt2");
+    const std::string z3 = fmt::format("z3 -in -smt2 -T:{}", o.seconds);
+    const Answers a = solve_all({z3, z3, z3}, dir, queries.size(), o.jobs, true);
     for (size_t k = 0; k < queries.size(); ++k)
-        if (k >= h.size() || h[k] != "sat") {
-            p.detail = fmt::format("{}: z3 {} on the hypothesis alone (sat expected: a vacuous query proves nothing)", queries[k].title,
-                                   k < h.size() ? h[k] : "no answer");
-            return;
-        }
-    const std::vector<std::string> a = solve_all(fmt::format("z3 -in -smt2 -T:{}", o.seconds), dir, queries.size(), o.jobs, true);
-    for (size_t k = 0; k < queries.size(); ++k)
-        if (a[k] == "sat") {
+        if (a.query[k] == "sat") {
             p.verdict = EqVerdict::counterexample;
             p.detail = fmt::format("{}: the netlist's next {} differs from the model's", queries[k].title, differing(queries[k], dir));
             return;
         }
-    for (size_t k = 0; k < queries.size(); ++k)
-        if (a[k] != "unsat") {
-            p.detail = fmt::format("{}: z3 {} within {} s", queries[k].title, a[k], o.seconds);
-            return;
-        }
+    if (p.detail = unproven(queries, a, o.seconds); !p.detail.empty()) return;
     p.verdict = EqVerdict::equal;
-    if (!o.recheck) return;
-    const std::vector<std::string> c = solve_all(fmt::format("cvc5 --lang=smt2 --tlimit={}", o.seconds * 1000), dir, queries.size(), o.jobs, false);
-    if (std::count(c.begin(), c.end(), "sat") > 0)
-        throw std::logic_error("datapath induction: z3 proves every query of " + dir.string() + ", cvc5 finds a difference");
-    const long unsat = std::count(c.begin(), c.end(), "unsat");
-    p.rechecked = unsat == static_cast<long>(queries.size());
-    p.recheck = fmt::format("cvc5: {} unsat of {}", unsat, queries.size());
+    if (o.recheck) recheck_with_cvc5(queries, o, dir, p);
 }
 
 }  // namespace
@@ -528,14 +615,14 @@ DatapathInduction prove_datapath_from_reset(const Formats& f, const Geometry& g,
 
 std::string datapath_induction_markdown(const std::string& config, const std::vector<DatapathInduction>& r) {
     std::string s = fmt::format("## Every register from reset: {}\n\n"
-                                "| size | verdict | control classes | model writes | invariants | second solver | seconds | detail | command |\n"
-                                "|---|---|---:|---:|---|---|---:|---|---|\n",
+                                "| size | verdict | control classes | model writes | invariants | side conditions | second solver | seconds | detail | command |\n"
+                                "|---|---|---:|---:|---|---:|---|---:|---|---|\n",
                                 config);
     for (const auto& p : r) {
         std::string inv;
         for (const auto& i : p.invariants) inv += (inv.empty() ? "" : "; ") + i;
-        s += fmt::format("| {}x{} | {} | {} | {} | {} | {} | {:.1f} | {} | `{}` |\n", p.geometry.width, p.geometry.height, eq_verdict_name(p.verdict),
-                         p.classes, p.model_writes, inv.empty() ? "-" : inv, p.recheck.empty() ? "-" : p.recheck, p.seconds,
+        s += fmt::format("| {}x{} | {} | {} | {} | {} | {} | {} | {:.1f} | {} | `{}` |\n", p.geometry.width, p.geometry.height, eq_verdict_name(p.verdict),
+                         p.classes, p.model_writes, inv.empty() ? "-" : inv, p.side_conditions, p.recheck.empty() ? "-" : p.recheck, p.seconds,
                          p.detail.empty() ? "-" : p.detail, std::regex_replace(p.command, std::regex(R"(\|)"), R"(\|)"));   // a pipe ends a table cell
     }
     return s;

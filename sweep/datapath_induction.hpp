@@ -27,16 +27,15 @@
 //
 // Where a signed resize to fewer bits could overflow, GHDL 2.0's netlist truncates where
 // numeric_std keeps the sign (docs/stage-equivalence.md): the relation then carries the
-// registers' proven ranges (docs/derived-ranges.md) as invariants, each checked to hold in the
-// next state, so the proof is about the VHDL's semantics wherever the netlist's could differ.
+// registers' proven ranges (docs/derived-ranges.md) as invariants, and every signed resize of
+// the model's write is a side condition (it does not overflow) that the step query assumes.
+// Both are proven on the model alone, with the current registers free under the class's
+// hypothesis (the invariants in the next state, each resize without overflow), so the proof is
+// about the VHDL's semantics wherever the netlist's could differ.
 #pragma once
 
-#include <filesystem>
-#include <string>
-#include <vector>
-
-#include "model/harris/harris_pkg.hpp"
-#include "sweep/stage_equivalence.hpp"
+// the control registers' proof, on which this one builds (its geometry, formats, verdicts)
+#include "sweep/control_induction.hpp"
 
 namespace hc::sweep {
 
@@ -60,8 +59,11 @@ struct DatapathInduction {
     long classes = 0;                      ///< distinct control classes: one step query each
     std::vector<std::string> registers;    ///< "sxm(1,1) = u.sxm[274:264]": model register = netlist signal
     std::vector<std::string> invariants;   ///< the ranges carried with the relation
+    /// the model's signed resizes to fewer bits over every class, each proven not to overflow
+    /// where the class's hypothesis holds (side conditions the step queries assume)
+    long side_conditions = 0;
     std::string solver = "z3";
-    std::string recheck;                   ///< "cvc5: 34 unsat of 34"
+    std::string recheck;                   ///< "cvc5: 34 unsat of 34": every query and side check
     bool rechecked = false;
     double seconds = 0;                    ///< wall time: synthesis, the model's run, both solvers
     std::string detail;                    ///< the first differing class and register, or why it is open
@@ -72,7 +74,8 @@ struct DatapathInduction {
 /// std::logic_error when a register has no signal of its width on the netlist.
 DatapathInduction prove_datapath_from_reset(const Formats& f, const Geometry& g, const DatapathInductionOptions& o = {});
 
-/// One row per size: verdict, classes, model writes, second solver, seconds, command.
+/// One row per size: verdict, classes, model writes, invariants, side conditions, second
+/// solver, seconds, command.
 std::string datapath_induction_markdown(const std::string& config, const std::vector<DatapathInduction>& r);
 
 }  // namespace hc::sweep
