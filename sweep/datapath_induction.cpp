@@ -295,7 +295,7 @@ template <class Regs>
 std::string invariant_terms(const std::vector<Invariant>& inv, const Regs& r) {
     std::string s = "(and true";
     for (const auto& i : inv)
-        for (const auto& x : i.reg == Reg::sobel_x ? r.sxm : r.sym) s += " " + in_range(x, i.range);
+        for (const auto& x : i.reg == Reg::sobel_x ? r.sxm : r.sym) s.append(" ").append(in_range(x, i.range));
     return s + ")";
 }
 
@@ -304,12 +304,13 @@ std::string invariant_terms(const std::vector<Invariant>& inv, const Regs& r) {
 /// question whether a next register differs. Asked in three files: held-N.smt2 asks the
 /// hypothesis alone (sat expected: the check is not vacuous), query-N.smt2 the difference
 /// (unsat expected), each after head.smt2 (the netlist), with the side conditions assumed;
-/// side-N.smt2, on the model alone, whether the hypothesis implies each side condition and the
-/// invariants in the next state (each unsat expected). The side conditions: no signed resize
-/// of the model's write overflows (numeric_std's result, sign bit kept, is then the netlist's
-/// truncation). Proven on the model alone with the current registers free, they hold wherever
-/// the hypothesis does, so assuming them in query-N.smt2 is sound and leaves a hypothesis that
-/// is sat wherever held-N.smt2 finds it sat.
+/// side-N.smt2, on the model alone, whether the invariants can fail in the next state (unsat
+/// expected). The side conditions: no signed resize of the model's write overflows
+/// (numeric_std's result, sign bit kept, is then the netlist's truncation). Each is asked once
+/// for all classes (resize-J.smt2, DistinctResizes): on the model alone, with the current
+/// registers free under the invariants (a weaker hypothesis than any class's), so it holds
+/// wherever a class's hypothesis does; assuming it in query-N.smt2 is then sound and leaves a
+/// hypothesis that is sat wherever held-N.smt2 finds it sat.
 struct Query {
     std::string title{};              ///< "reset", "class 3 (first after write 49)"
     std::string edge{}, defs{}, hyp{}, any{};
@@ -317,6 +318,7 @@ struct Query {
     std::vector<std::string> names{};
     std::vector<std::string> signals{};   ///< per compared register: the netlist's, "u.sxm[274:264]"
     std::vector<SmtShrink> side{};        ///< the model's signed resizes to fewer bits
+    std::string now{} ;                   ///< the invariants in the current state
     std::string broken{};                 ///< true where an invariant fails in the model's next state
     std::string held_text() const { return fmt::format("{}{}(assert {})\n(check-sat)\n", edge, defs, hyp); }
     std::string assumed() const {
@@ -325,16 +327,92 @@ struct Query {
         return s;
     }
     std::string text() const { return fmt::format("{}{}(assert {})\n{}(assert {})\n(check-sat)\n", edge, defs, hyp, assumed(), any); }
-    /// The side conditions' file: `decls` declares the current state's signals it names.
+    /// The invariants' file: `decls` declares the current state's signals it names.
     std::string side_text(const std::string& decls) const {
-        std::string s = fmt::format("(set-logic QF_BV)\n{}{}(assert {})\n", decls, defs, hyp);
-        for (const auto& x : side) s += fmt::format("(push 1)\n(assert {})\n(check-sat)\n(pop 1)\n", x.overflow);
-        return s + fmt::format("(push 1)\n(assert {})\n(check-sat)\n(pop 1)\n", broken);
+        return fmt::format("(set-logic QF_BV)\n{}{}(assert {})\n(assert {})\n(check-sat)\n", decls, defs, hyp, broken);
     }
-    /// What check k of side_text asks.
-    std::string side_name(size_t k) const {
-        return k < side.size() ? fmt::format("the signed resize of {} ({} -> {} bits) overflows", side[k].source, side[k].from, side[k].to)
-                               : std::string("an invariant fails in the next state");
+};
+
+/// The definitions of one query's `defs` (one per line, as SmtQuery writes them) that some terms
+/// read, directly or through others, renamed in their order: the same text for the same
+/// condition in any query.
+class Cone {
+public:
+    explicit Cone(const std::string& defs) {
+        for (size_t at = 0, end; at < defs.size(); at = end + 1) {
+            end = defs.find('\n', at);
+            lines_.push_back(defs.substr(at, end - at));
+            const size_t name = lines_.back().find(' ') + 1;
+            index_[lines_.back().substr(name, lines_.back().find(' ', name) - name)] = lines_.size() - 1;
+        }
+    }
+    /// The definitions `terms` read, and the terms, with every name of the cone as `prefix`k.
+    std::pair<std::string, std::vector<std::string>> of(const std::vector<std::string>& terms, const std::string& prefix) const {
+        std::set<size_t> in;
+        std::vector<size_t> todo;
+        const auto visit = [&](const std::string& text) {
+            for (std::sregex_iterator it(text.begin(), text.end(), name_), end; it != end; ++it)
+                if (const auto f = index_.find(it->str()); f != index_.end() && in.insert(f->second).second) todo.push_back(f->second);
+        };
+        for (const auto& t : terms) visit(t);
+        while (!todo.empty()) {
+            const size_t k = todo.back();
+            todo.pop_back();
+            visit(lines_[k].substr(lines_[k].find(' ', lines_[k].find(' ') + 1)));
+        }
+        std::map<std::string, std::string, std::less<>> renamed;
+        for (const size_t k : in) renamed[lines_[k].substr(lines_[k].find(' ') + 1, lines_[k].find(' ', lines_[k].find(' ') + 1) - lines_[k].find(' ') - 1)] =
+            prefix + std::to_string(renamed.size());
+        const auto rename = [&](const std::string& text) {
+            std::string out;
+            size_t last = 0;
+            for (std::sregex_iterator it(text.begin(), text.end(), name_), end; it != end; ++it)
+                if (const auto r = renamed.find(it->str()); r != renamed.end()) {
+                    out += text.substr(last, it->position() - last) + r->second;
+                    last = it->position() + it->length();
+                }
+            return out + text.substr(last);
+        };
+        std::string defs;
+        for (const size_t k : in) defs += rename(lines_[k]) + "\n";
+        std::vector<std::string> out;
+        for (const auto& t : terms) out.push_back(rename(t));
+        return {defs, out};
+    }
+
+private:
+    inline static const std::regex name_{R"(\b[tu]\d+\b)"};
+    std::vector<std::string> lines_;
+    std::map<std::string, size_t, std::less<>> index_;
+};
+
+/// The side conditions of every query, each distinct one once (the same cone and terms up to
+/// names): a check asks whether the resize can overflow where the current state's invariants
+/// hold, chunked into files of `per_file` checks.
+struct DistinctResizes {
+    std::vector<std::string> checks;   ///< push, the cone, the invariants, the overflow, check-sat, pop
+    std::vector<std::string> what;     ///< "the signed resize of t184 (22 -> 21 bits) in class 12 (first after write 51)"
+    static constexpr size_t per_file = 25;
+
+    explicit DistinctResizes(const std::vector<Query>& queries) {
+        std::set<std::string, std::less<>> seen;
+        for (const auto& q : queries) {
+            const Cone cone(q.defs);
+            for (const auto& x : q.side) {
+                const auto [defs, terms] = cone.of({q.now, x.overflow}, "c");
+                if (!seen.insert(defs + terms[0] + "\n" + terms[1]).second) continue;
+                const auto [d, t] = cone.of({q.now, x.overflow}, fmt::format("r{}_", checks.size()));
+                checks.push_back(fmt::format("(push 1)\n{}(assert {})\n(assert {})\n(check-sat)\n(pop 1)\n", d, t[0], t[1]));
+                what.push_back(fmt::format("the signed resize of {} ({} -> {} bits) in {}", x.source, x.from, x.to, q.title));
+            }
+        }
+    }
+    size_t files() const { return (checks.size() + per_file - 1) / per_file; }
+    /// File j's checks after `decls` (the current state's signals they name).
+    std::string text(size_t j, const std::string& decls) const {
+        std::string s = "(set-logic QF_BV)\n" + decls;
+        for (size_t k = j * per_file; k < std::min(checks.size(), (j + 1) * per_file); ++k) s += checks[k];
+        return s;
     }
 };
 
@@ -380,7 +458,8 @@ Query class_step(const Formats& f, const Geometry& g, const ControlClass& c, con
         for (int k = 0; k < 9; ++k) r.ac[k] = fresh(f.prod_w(), true), r.bb[k] = fresh(f.prod_w(), true), r.ktr2[k] = fresh(f.ktr_w, true);
     relation(f, r, now, [](const std::string&, auto& model, const SmtWord& net) { model = net; });
     Query q{.title = fmt::format("class (first after write {})", c.first_write), .edge = kStepEdge};
-    q.hyp = fmt::format("(and {} {})", control_at(c, now, wires, g.find_max_period()), invariant_terms(inv, r));
+    q.now = invariant_terms(inv, r);
+    q.hyp = fmt::format("(and {} {})", control_at(c, now, wires, g.find_max_period()), q.now);
     m.write(now.whole("data", 32, false));
     ask_next(f, r, next, inv, q);
     smt_query = nullptr;
@@ -402,7 +481,8 @@ Query base_query(const Formats& f, const Geometry& g, const std::map<std::string
     Query q{.title = "reset",
             .edge = "(assert |top_i@s|)\n(assert |top_h@s|)\n(assert |top_h@s2|)\n(assert (not |top_n rst@s|))\n"
                     "(assert |top_n rst@s2|)\n(assert |top_t@s@s2|)\n",
-            .hyp = "true"};
+            .hyp = "true",
+            .now = "true"};
     ask_next(f, m.registers(), after, inv, q);
     const ControlClass reset = control_class(Concrete(g, DynamicFormats{f}).registers(), 0);
     q.names.push_back("control registers");
@@ -467,8 +547,9 @@ std::string free_signals(const std::string& head, const std::string& text) {
 }
 
 /// The queries' files in `dir` (head.smt2: the netlist at the signals they name; held-N.smt2,
-/// query-N.smt2, side-N.smt2) and the registers of the relation into p.
-void write_queries(const std::string& smt, const std::vector<Query>& queries, const fs::path& dir, DatapathInduction& p) {
+/// query-N.smt2, side-N.smt2, resize-J.smt2) and the registers of the relation into p.
+void write_queries(const std::string& smt, const std::vector<Query>& queries, const DistinctResizes& resizes, const fs::path& dir,
+                   DatapathInduction& p) {
     const Query& widest = *std::max_element(queries.begin(), queries.end(),
                                             [](const Query& a, const Query& b) { return a.signals.size() < b.signals.size(); });
     for (size_t k = 0; k < widest.signals.size(); ++k) p.registers.push_back(widest.names[k] + " = " + widest.signals[k]);
@@ -486,34 +567,45 @@ void write_queries(const std::string& smt, const std::vector<Query>& queries, co
         const std::string side = q.side_text("");
         util::write_file_atomic(dir / fmt::format("side-{}.smt2", k), fmt::format("; {}\n{}", q.title, q.side_text(free_signals(head, side))));
     }
-    p.command = fmt::format("cd {} && for q in held-*.smt2 query-*.smt2; do cat head.smt2 $q | z3 -in -smt2; done && for s in side-*.smt2; do z3 $s; done",
+    for (size_t j = 0; j < resizes.files(); ++j)
+        util::write_file_atomic(dir / fmt::format("resize-{}.smt2", j), resizes.text(j, free_signals(head, resizes.text(j, ""))));
+    p.command = fmt::format("cd {} && for q in held-*.smt2 query-*.smt2; do cat head.smt2 $q | z3 -in -smt2; done && "
+                            "for s in side-*.smt2 resize-*.smt2; do z3 $s; done",
                             dir.string());
 }
 
-/// A solver's answers to the files of n queries: per query, held-N.smt2's and query-N.smt2's
-/// (the first answer, "no answer" if none, "not asked"), and side-N.smt2's (all).
+/// A solver's answers to the files of n queries: per query, held-N.smt2's, query-N.smt2's and
+/// side-N.smt2's (the first answer, "no answer" if none, "not asked"), and per resize-J.smt2
+/// its answers.
 struct Answers {
-    std::vector<std::string> held, query;
-    std::vector<std::vector<std::string>> side;
+    std::vector<std::string> held, query, side;
+    std::vector<std::vector<std::string>> resize;
 };
 
 /// The solver commands for each kind of file (an empty one: those files are not asked).
 struct Solvers {
-    std::string held, query, side;
+    std::string held, query, side, resize;
 };
 
-/// The solvers on every file of n queries in `dir`, side by side on `jobs` cores (0: every
-/// core); with `stop`, the files not yet started after an unexpected answer are skipped.
-Answers solve_all(const Solvers& s, const fs::path& dir, size_t n, int jobs, bool stop) {
-    Answers a{std::vector<std::string>(n, "not asked"), std::vector<std::string>(n, "not asked"), std::vector<std::vector<std::string>>(n)};
+/// The solvers on every file of n queries and `resizes` resize files in `dir`, side by side on
+/// `jobs` cores (0: every core), the resize files first; with `stop`, the files not yet started
+/// after an unexpected answer are skipped.
+Answers solve_all(const Solvers& s, const fs::path& dir, size_t n, size_t resizes, int jobs, bool stop) {
+    Answers a{std::vector<std::string>(n, "not asked"), std::vector<std::string>(n, "not asked"), std::vector<std::string>(n, "not asked"),
+              std::vector<std::vector<std::string>>(resizes)};
     std::atomic<bool> failed = false;
     const auto first = [](const std::vector<std::string>& x) { return x.empty() ? std::string("no answer") : x[0]; };
     tbb::task_arena arena(jobs > 0 ? jobs : int(tbb::task_arena::automatic));
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, 3 * n, 1), [&](const tbb::blocked_range<size_t>& range) {
-            for (size_t j = range.begin(); j < range.end(); ++j) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, resizes + 3 * n, 1), [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i < range.end(); ++i) {
                 if (stop && failed) return;
-                const size_t k = j / 3;
+                if (i < resizes) {
+                    a.resize[i] = solve(s.resize, dir, fmt::format("resize-{}.smt2", i), false);
+                    if (std::count(a.resize[i].begin(), a.resize[i].end(), "unsat") != static_cast<long>(a.resize[i].size())) failed = true;
+                    continue;
+                }
+                const size_t j = i - resizes, k = j / 3;
                 if (j % 3 == 0 && !s.held.empty()) {
                     a.held[k] = first(solve(s.held, dir, fmt::format("held-{}.smt2", k)));
                     if (a.held[k] != "sat") failed = true;
@@ -521,8 +613,8 @@ Answers solve_all(const Solvers& s, const fs::path& dir, size_t n, int jobs, boo
                     a.query[k] = first(solve(s.query, dir, fmt::format("query-{}.smt2", k)));
                     if (a.query[k] != "unsat") failed = true;
                 } else if (j % 3 == 2) {
-                    a.side[k] = solve(s.side, dir, fmt::format("side-{}.smt2", k), false);
-                    if (std::count(a.side[k].begin(), a.side[k].end(), "unsat") != static_cast<long>(a.side[k].size())) failed = true;
+                    a.side[k] = first(solve(s.side, dir, fmt::format("side-{}.smt2", k), false));
+                    if (a.side[k] != "unsat") failed = true;
                 }
             }
         }, tbb::simple_partitioner());
@@ -531,38 +623,39 @@ Answers solve_all(const Solvers& s, const fs::path& dir, size_t n, int jobs, boo
 }
 
 /// Why z3's answers prove nothing though no query is sat, in this order: a hypothesis found
-/// unsat alone (the query would be vacuous), a side check answered other than unsat (the
-/// assumed no-overflow or the invariants may fail where the hypothesis holds), a file without
-/// its answer; "" if every file has the expected answers.
-std::string unproven(const std::vector<Query>& queries, const Answers& a, int seconds) {
+/// unsat alone (the query would be vacuous), a side condition or an invariant answered other
+/// than unsat (it may fail where the hypothesis holds), a file without its answers; "" if
+/// every file has the expected answers.
+std::string unproven(const std::vector<Query>& queries, const DistinctResizes& resizes, const Answers& a, int seconds) {
     for (size_t k = 0; k < queries.size(); ++k)
         if (a.held[k] != "sat" && a.held[k] != "not asked")
             return fmt::format("{}: z3 {} on the hypothesis alone (sat expected: a vacuous query proves nothing)", queries[k].title, a.held[k]);
+    for (size_t j = 0; j < a.resize.size(); ++j)
+        for (size_t c = 0; c < a.resize[j].size(); ++c)
+            if (a.resize[j][c] != "unsat")
+                return fmt::format("{} may overflow (z3: {}; unsat expected)", resizes.what[j * DistinctResizes::per_file + c], a.resize[j][c]);
     for (size_t k = 0; k < queries.size(); ++k)
-        for (size_t c = 0; c < a.side[k].size(); ++c)
-            if (a.side[k][c] != "unsat")
-                return fmt::format("{}: {} (z3: {}; unsat expected)", queries[k].title, queries[k].side_name(c), a.side[k][c]);
-    for (size_t k = 0; k < queries.size(); ++k) {
-        const std::string& x = a.held[k] != "sat" ? a.held[k] : a.query[k] != "unsat" ? a.query[k] : std::string();
-        if (!x.empty()) return fmt::format("{}: z3 {} within {} s", queries[k].title, x, seconds);
-        if (a.side[k].size() != queries[k].side.size() + 1)
-            return fmt::format("{}: z3 answered {} of the {} side checks within {} s", queries[k].title, a.side[k].size(), queries[k].side.size() + 1,
-                               seconds);
-    }
+        if (a.side[k] != "unsat" && a.side[k] != "not asked")
+            return fmt::format("{}: an invariant may fail in the next state (z3: {}; unsat expected)", queries[k].title, a.side[k]);
+    for (size_t j = 0; j < a.resize.size(); ++j)
+        if (const size_t n = std::min(resizes.checks.size() - j * DistinctResizes::per_file, DistinctResizes::per_file); a.resize[j].size() != n)
+            return fmt::format("resize-{}.smt2: z3 answered {} of its {} checks within {} s", j, a.resize[j].size(), n, seconds);
+    for (size_t k = 0; k < queries.size(); ++k)
+        for (const std::string* x : {&a.held[k], &a.query[k], &a.side[k]})
+            if (*x != (x == &a.held[k] ? "sat" : "unsat")) return fmt::format("{}: z3 {} within {} s", queries[k].title, *x, seconds);
     return "";
 }
 
-/// cvc5 on the query and side files of `dir` (after z3 proved them all): p's recheck.
-void recheck_with_cvc5(const std::vector<Query>& queries, const DatapathInductionOptions& o, const fs::path& dir, DatapathInduction& p) {
+/// cvc5 on the query, side and resize files of `dir` (after z3 proved them all): p's recheck.
+void recheck_with_cvc5(const std::vector<Query>& queries, const DistinctResizes& resizes, const DatapathInductionOptions& o, const fs::path& dir,
+                       DatapathInduction& p) {
     const std::string cvc5 = fmt::format("cvc5 --lang=smt2 --tlimit={}", o.seconds * 1000);
-    const Answers c = solve_all({"", cvc5, cvc5 + " --incremental"}, dir, queries.size(), o.jobs, false);
-    long checks = 0, unsat = 0;
-    for (size_t k = 0; k < queries.size(); ++k) {
-        checks += 1 + static_cast<long>(queries[k].side.size()) + 1;
-        unsat += (c.query[k] == "unsat") + std::count(c.side[k].begin(), c.side[k].end(), "unsat");
-        if (c.query[k] == "sat" || std::count(c.side[k].begin(), c.side[k].end(), "sat") > 0)
-            throw std::logic_error("datapath induction: z3 proves every check of " + dir.string() + ", cvc5 finds " + queries[k].title + " sat");
-    }
+    const Answers c = solve_all({"", cvc5, cvc5, cvc5 + " --incremental"}, dir, queries.size(), resizes.files(), o.jobs, false);
+    const long checks = 2 * static_cast<long>(queries.size()) + static_cast<long>(resizes.checks.size());
+    long unsat = std::count(c.query.begin(), c.query.end(), "unsat") + std::count(c.side.begin(), c.side.end(), "unsat"), sat = 0;
+    for (const auto& r : c.resize) unsat += std::count(r.begin(), r.end(), "unsat"), sat += std::count(r.begin(), r.end(), "sat");
+    if (sat + std::count(c.query.begin(), c.query.end(), "sat") + std::count(c.side.begin(), c.side.end(), "sat") > 0)
+        throw std::logic_error("datapath induction: z3 proves every check of " + dir.string() + ", cvc5 finds one sat");
     p.rechecked = unsat == checks;
     p.recheck = fmt::format("cvc5: {} unsat of {}", unsat, checks);
 }
@@ -585,18 +678,20 @@ void prove_in(const Formats& f, const Geometry& g, const DatapathInductionOption
         queries.back().title = fmt::format("class {} (first after write {})", queries.size() - 2, c.first_write);
     }
     for (const auto& q : queries) p.side_conditions += static_cast<long>(q.side.size());
-    write_queries(n.smt, queries, dir, p);
+    const DistinctResizes resizes(queries);
+    p.distinct_side_conditions = static_cast<long>(resizes.checks.size());
+    write_queries(n.smt, queries, resizes, dir, p);
     const std::string z3 = fmt::format("z3 -in -smt2 -T:{}", o.seconds);
-    const Answers a = solve_all({z3, z3, z3}, dir, queries.size(), o.jobs, true);
+    const Answers a = solve_all({z3, z3, z3, z3}, dir, queries.size(), resizes.files(), o.jobs, true);
     for (size_t k = 0; k < queries.size(); ++k)
         if (a.query[k] == "sat") {
             p.verdict = EqVerdict::counterexample;
             p.detail = fmt::format("{}: the netlist's next {} differs from the model's", queries[k].title, differing(queries[k], dir));
             return;
         }
-    if (p.detail = unproven(queries, a, o.seconds); !p.detail.empty()) return;
+    if (p.detail = unproven(queries, resizes, a, o.seconds); !p.detail.empty()) return;
     p.verdict = EqVerdict::equal;
-    if (o.recheck) recheck_with_cvc5(queries, o, dir, p);
+    if (o.recheck) recheck_with_cvc5(queries, resizes, o, dir, p);
 }
 
 }  // namespace
@@ -622,7 +717,8 @@ std::string datapath_induction_markdown(const std::string& config, const std::ve
         std::string inv;
         for (const auto& i : p.invariants) inv += (inv.empty() ? "" : "; ") + i;
         s += fmt::format("| {}x{} | {} | {} | {} | {} | {} | {} | {:.1f} | {} | `{}` |\n", p.geometry.width, p.geometry.height, eq_verdict_name(p.verdict),
-                         p.classes, p.model_writes, inv.empty() ? "-" : inv, p.side_conditions, p.recheck.empty() ? "-" : p.recheck, p.seconds,
+                         p.classes, p.model_writes, inv.empty() ? "-" : inv,
+                         fmt::format("{} ({} distinct)", p.side_conditions, p.distinct_side_conditions), p.recheck.empty() ? "-" : p.recheck, p.seconds,
                          p.detail.empty() ? "-" : p.detail, std::regex_replace(p.command, std::regex(R"(\|)"), R"(\|)"));   // a pipe ends a table cell
     }
     return s;

@@ -29,9 +29,10 @@
 // numeric_std keeps the sign (docs/stage-equivalence.md): the relation then carries the
 // registers' proven ranges (docs/derived-ranges.md) as invariants, and every signed resize of
 // the model's write is a side condition (it does not overflow) that the step query assumes.
-// Both are proven on the model alone, with the current registers free under the class's
-// hypothesis (the invariants in the next state, each resize without overflow), so the proof is
-// about the VHDL's semantics wherever the netlist's could differ.
+// Both are proven on the model alone with the current registers free: the invariants in the
+// next state under each class's hypothesis, each distinct resize once under the invariants of
+// the current state (without overflow); so the proof is about the VHDL's semantics wherever
+// the netlist's could differ.
 #pragma once
 
 // the control registers' proof, on which this one builds (its geometry, formats, verdicts)
@@ -62,6 +63,7 @@ struct DatapathInduction {
     /// the model's signed resizes to fewer bits over every class, each proven not to overflow
     /// where the class's hypothesis holds (side conditions the step queries assume)
     long side_conditions = 0;
+    long distinct_side_conditions = 0;     ///< of those, the distinct ones (each proven once)
     std::string solver = "z3";
     std::string recheck;                   ///< "cvc5: 34 unsat of 34": every query and side check
     bool rechecked = false;

@@ -71,7 +71,8 @@ std::string datapath_induction_section(const RangesCommand& c, const Config& cfg
                      p.recheck.empty() ? "no second solver" : p.recheck.c_str(), p.seconds, p.detail.empty() ? "" : ": ", p.detail.c_str());
         js.push_back({{"size", size}, {"verdict", eq_verdict_name(p.verdict)}, {"classes", p.classes}, {"model_writes", p.model_writes},
                       {"registers", p.registers}, {"invariants", p.invariants},
-                      {"side_conditions", p.side_conditions}, {"solver", p.solver}, {"recheck", p.recheck},
+                      {"side_conditions", p.side_conditions},
+                      {"distinct_side_conditions", p.distinct_side_conditions}, {"solver", p.solver}, {"recheck", p.recheck},
                       {"rechecked", p.rechecked}, {"seconds", p.seconds}, {"detail", p.detail}, {"command", p.command}});
     }
     return datapath_induction_markdown(cfg.name, di);
