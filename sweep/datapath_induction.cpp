@@ -318,7 +318,7 @@ struct Query {
     std::vector<std::string> names{};
     std::vector<std::string> signals{};   ///< per compared register: the netlist's, "u.sxm[274:264]"
     std::vector<SmtShrink> side{};        ///< the model's signed resizes to fewer bits
-    std::string now{} ;                   ///< the invariants in the current state
+    std::string now{};                    ///< the invariants in the current state
     std::string broken{};                 ///< true where an invariant fails in the model's next state
     std::string held_text() const { return fmt::format("{}{}(assert {})\n(check-sat)\n", edge, defs, hyp); }
     std::string assumed() const {
@@ -342,27 +342,27 @@ public:
         for (size_t at = 0, end; at < defs.size(); at = end + 1) {
             end = defs.find('\n', at);
             lines_.push_back(defs.substr(at, end - at));
-            const size_t name = lines_.back().find(' ') + 1;
-            index_[lines_.back().substr(name, lines_.back().find(' ', name) - name)] = lines_.size() - 1;
+            const size_t from = lines_.back().find(' ') + 1;   // "(define-fun NAME ..." or "(declare-fun NAME ..."
+            names_.push_back(lines_.back().substr(from, lines_.back().find(' ', from) - from));
+            index_[names_.back()] = lines_.size() - 1;
         }
     }
-    /// The definitions `terms` read, and the terms, with every name of the cone as `prefix`k.
-    std::pair<std::string, std::vector<std::string>> of(const std::vector<std::string>& terms, const std::string& prefix) const {
+    /// The definitions `terms` read, and the terms, with every name of the cone as c0, c1, ...
+    std::pair<std::string, std::vector<std::string>> of(const std::vector<std::string>& terms) const {
         std::set<size_t> in;
-        std::vector<size_t> todo;
+        std::vector<size_t> pending;
         const auto visit = [&](const std::string& text) {
             for (std::sregex_iterator it(text.begin(), text.end(), name_), end; it != end; ++it)
-                if (const auto f = index_.find(it->str()); f != index_.end() && in.insert(f->second).second) todo.push_back(f->second);
+                if (const auto f = index_.find(it->str()); f != index_.end() && in.insert(f->second).second) pending.push_back(f->second);
         };
         for (const auto& t : terms) visit(t);
-        while (!todo.empty()) {
-            const size_t k = todo.back();
-            todo.pop_back();
-            visit(lines_[k].substr(lines_[k].find(' ', lines_[k].find(' ') + 1)));
+        while (!pending.empty()) {
+            const size_t k = pending.back();
+            pending.pop_back();
+            visit(lines_[k].substr(lines_[k].find(names_[k]) + names_[k].size()));
         }
         std::map<std::string, std::string, std::less<>> renamed;
-        for (const size_t k : in) renamed[lines_[k].substr(lines_[k].find(' ') + 1, lines_[k].find(' ', lines_[k].find(' ') + 1) - lines_[k].find(' ') - 1)] =
-            prefix + std::to_string(renamed.size());
+        for (const size_t k : in) renamed[names_[k]] = "c" + std::to_string(renamed.size());
         const auto rename = [&](const std::string& text) {
             std::string out;
             size_t last = 0;
@@ -382,13 +382,14 @@ public:
 
 private:
     inline static const std::regex name_{R"(\b[tu]\d+\b)"};
-    std::vector<std::string> lines_;
+    std::vector<std::string> lines_, names_;
     std::map<std::string, size_t, std::less<>> index_;
 };
 
 /// The side conditions of every query, each distinct one once (the same cone and terms up to
 /// names): a check asks whether the resize can overflow where the current state's invariants
-/// hold, chunked into files of `per_file` checks.
+/// hold, chunked into files of `per_file` checks. Each check defines its cone inside its own
+/// push/pop (SMT-LIB scopes definitions so), so every check may name it c0, c1, ...
 struct DistinctResizes {
     std::vector<std::string> checks;   ///< push, the cone, the invariants, the overflow, check-sat, pop
     std::vector<std::string> what;     ///< "the signed resize of t184 (22 -> 21 bits) in class 12 (first after write 51)"
@@ -399,10 +400,10 @@ struct DistinctResizes {
         for (const auto& q : queries) {
             const Cone cone(q.defs);
             for (const auto& x : q.side) {
-                const auto [defs, terms] = cone.of({q.now, x.overflow}, "c");
-                if (!seen.insert(defs + terms[0] + "\n" + terms[1]).second) continue;
-                const auto [d, t] = cone.of({q.now, x.overflow}, fmt::format("r{}_", checks.size()));
-                checks.push_back(fmt::format("(push 1)\n{}(assert {})\n(assert {})\n(check-sat)\n(pop 1)\n", d, t[0], t[1]));
+                const auto [defs, terms] = cone.of({q.now, x.overflow});
+                std::string check = fmt::format("(push 1)\n{}(assert {})\n(assert {})\n(check-sat)\n(pop 1)\n", defs, terms[0], terms[1]);
+                if (!seen.insert(check).second) continue;
+                checks.push_back(std::move(check));
                 what.push_back(fmt::format("the signed resize of {} ({} -> {} bits) in {}", x.source, x.from, x.to, q.title));
             }
         }
@@ -564,11 +565,13 @@ void write_queries(const std::string& smt, const std::vector<Query>& queries, co
         const Query& q = queries[k];
         util::write_file_atomic(dir / fmt::format("held-{}.smt2", k), fmt::format("; {}\n{}", q.title, q.held_text()));
         util::write_file_atomic(dir / fmt::format("query-{}.smt2", k), fmt::format("; {}\n{}", q.title, q.text()));
-        const std::string side = q.side_text("");
-        util::write_file_atomic(dir / fmt::format("side-{}.smt2", k), fmt::format("; {}\n{}", q.title, q.side_text(free_signals(head, side))));
+        util::write_file_atomic(dir / fmt::format("side-{}.smt2", k),
+                                fmt::format("; {}\n{}", q.title, q.side_text(free_signals(head, q.defs + q.hyp + q.broken))));
     }
-    for (size_t j = 0; j < resizes.files(); ++j)
-        util::write_file_atomic(dir / fmt::format("resize-{}.smt2", j), resizes.text(j, free_signals(head, resizes.text(j, ""))));
+    for (size_t j = 0; j < resizes.files(); ++j) {
+        const std::string checks = resizes.text(j, "");
+        util::write_file_atomic(dir / fmt::format("resize-{}.smt2", j), resizes.text(j, free_signals(head, checks)));
+    }
     p.command = fmt::format("cd {} && for q in held-*.smt2 query-*.smt2; do cat head.smt2 $q | z3 -in -smt2; done && "
                             "for s in side-*.smt2 resize-*.smt2; do z3 $s; done",
                             dir.string());
