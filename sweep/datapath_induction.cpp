@@ -591,8 +591,10 @@ struct Solvers {
 };
 
 /// The solvers on every file of n queries and `resizes` resize files in `dir`, side by side on
-/// `jobs` cores (0: every core), the resize files first; with `stop`, the files not yet started
-/// after an unexpected answer are skipped.
+/// `jobs` cores (0: every core), in this order: the resize files, every query file, every side
+/// file, every held file (a difference, in a query file, is found before the checks that only
+/// matter to a proof); with `stop`, the files not yet started after an unexpected answer are
+/// skipped.
 Answers solve_all(const Solvers& s, const fs::path& dir, size_t n, size_t resizes, int jobs, bool stop) {
     Answers a{std::vector<std::string>(n, "not asked"), std::vector<std::string>(n, "not asked"), std::vector<std::string>(n, "not asked"),
               std::vector<std::vector<std::string>>(resizes)};
@@ -608,16 +610,16 @@ Answers solve_all(const Solvers& s, const fs::path& dir, size_t n, size_t resize
                     if (std::count(a.resize[i].begin(), a.resize[i].end(), "unsat") != static_cast<long>(a.resize[i].size())) failed = true;
                     continue;
                 }
-                const size_t j = i - resizes, k = j / 3;
-                if (j % 3 == 0 && !s.held.empty()) {
-                    a.held[k] = first(solve(s.held, dir, fmt::format("held-{}.smt2", k)));
-                    if (a.held[k] != "sat") failed = true;
-                } else if (j % 3 == 1) {
+                const size_t j = i - resizes, k = j % n;
+                if (j / n == 0) {
                     a.query[k] = first(solve(s.query, dir, fmt::format("query-{}.smt2", k)));
                     if (a.query[k] != "unsat") failed = true;
-                } else if (j % 3 == 2) {
+                } else if (j / n == 1) {
                     a.side[k] = first(solve(s.side, dir, fmt::format("side-{}.smt2", k), false));
                     if (a.side[k] != "unsat") failed = true;
+                } else if (!s.held.empty()) {
+                    a.held[k] = first(solve(s.held, dir, fmt::format("held-{}.smt2", k)));
+                    if (a.held[k] != "sat") failed = true;
                 }
             }
         }, tbb::simple_partitioner());
