@@ -343,7 +343,8 @@ public:
             end = defs.find('\n', at);
             lines_.push_back(defs.substr(at, end - at));
             const size_t from = lines_.back().find(' ') + 1;   // "(define-fun NAME ..." or "(declare-fun NAME ..."
-            names_.push_back(lines_.back().substr(from, lines_.back().find(' ', from) - from));
+            bodies_.push_back(lines_.back().find(' ', from));
+            names_.push_back(lines_.back().substr(from, bodies_.back() - from));
             index_[names_.back()] = lines_.size() - 1;
         }
     }
@@ -359,7 +360,7 @@ public:
         while (!pending.empty()) {
             const size_t k = pending.back();
             pending.pop_back();
-            visit(lines_[k].substr(lines_[k].find(names_[k]) + names_[k].size()));
+            visit(lines_[k].substr(bodies_[k]));
         }
         std::map<std::string, std::string, std::less<>> renamed;
         for (const size_t k : in) renamed[names_[k]] = "c" + std::to_string(renamed.size());
@@ -383,6 +384,7 @@ public:
 private:
     inline static const std::regex name_{R"(\b[tu]\d+\b)"};
     std::vector<std::string> lines_, names_;
+    std::vector<size_t> bodies_;   ///< per line: where its sort and body start, after the name
     std::map<std::string, size_t, std::less<>> index_;
 };
 
