@@ -6,21 +6,53 @@
 # --jobs 2), with the same --out (moved aside in between, so that the command quoted in the
 # reports is the same), and compares the report data byte for byte; time columns and the
 # synthesis cache flag are left out of the comparison. Exit 77 (skipped) without the data.
+# HC_SHARD_REFERENCE=write:DIR keeps the single-process run in DIR; HC_SHARD_REFERENCE=read:DIR
+# takes it from there instead of running it, when DIR holds the run of the same binary and
+# arguments, newer than the binary and rtl/ (else the run is made here, and the log says which);
+# every path in the commands below is the same in every work directory, so that a run of
+# another test's work directory is this one's.
 set -euo pipefail
 kind=$1; bin=$2; work=$3; shift 3
 runner=("$@"); [ ${#runner[@]} -gt 0 ] || runner=(--runner local --jobs 2)
+src=$(cd "$(dirname "$0")/../.." && pwd)   # the repository
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
-data=${HARRIS_COSIM_DATA:-$(cd "$(dirname "$0")/../.." && pwd)/../shared/data}
+data=${HARRIS_COSIM_DATA:-$src/../shared/data}
 need() { [ -e "$1" ] || { echo "skipped: $1 not found (set HARRIS_COSIM_DATA)"; exit 77; }; }
 fail() { echo "FAIL: $*"; exit 1; }
 same() {   # same FILE-A FILE-B: byte for byte
   cmp "$1" "$2" || { diff "$1" "$2" | head -20; fail "$1 and $2 differ"; }
 }
-between=:   # a command run between the two runs of both()
-both() {   # both ARGS...: the single-process run into single/, the sharded one into sharded/
+stale() {   # stale DIR KEY: why DIR holds no single-process run of KEY usable now ("" if it does)
+  if [ ! -e "$1/done" ]; then echo "none there"
+  elif [ "$(cat "$1/args")" != "$2" ]; then echo "made with other arguments"
+  elif [ "$bin" -nt "$1/done" ]; then echo "older than $bin"
+  elif [ -n "$(find "$src/rtl" -newer "$1/done" -print -quit)" ]; then echo "older than rtl/"
+  fi
+}
+single_run() {   # single_run ARGS...: the single-process run into single/ (HC_SHARD_REFERENCE above)
+  local mode=${HC_SHARD_REFERENCE%%:*} ref=${HC_SHARD_REFERENCE#*:} key why
+  key=$(printf '%s\n' "$bin" "$@")
+  if [ "$mode" = read ]; then
+    why=$(stale "$ref" "$key")
+    if [ -z "$why" ]; then
+      cp -a "$ref/single" single && cp "$ref/single.log" single.log
+      echo "single-process run: the one in $ref (same binary and arguments)"
+      return
+    fi
+    echo "single-process run: made here ($ref: $why)"
+  fi
   mkdir -p out
   "$bin" "$@" > single.log 2>&1 || { tail -20 single.log; fail "single-process run failed"; }
   mv out single
+  if [ "$mode" = write ]; then
+    rm -rf "$ref" "$ref.new"; mkdir -p "$ref.new"
+    cp -a single single.log "$ref.new/" && printf '%s' "$key" > "$ref.new/args" && touch "$ref.new/done"
+    mv "$ref.new" "$ref"
+  fi
+}
+between=:   # a command run between the two runs of both()
+both() {   # both ARGS...: the single-process run into single/, the sharded one into sharded/
+  single_run "$@"
   $between
   mkdir -p out
   "$bin" "$@" --shards "$shards" "${runner[@]}" > sharded.log 2>&1 || { tail -30 sharded.log; fail "sharded run failed"; }
@@ -35,9 +67,7 @@ wait_done() {   # wait_done RUN_DIR: until shards_done (at most 10 minutes)
   fail "the shards of $1 did not finish: $("$bin" shard status "$1" 2>&1 | head -3)"
 }
 both_no_wait() {   # as both, the sharded run submitted with --no-wait and finished by two --resume
-  mkdir -p out
-  "$bin" "$@" > single.log 2>&1 || { tail -20 single.log; fail "single-process run failed"; }
-  mv out single
+  single_run "$@"
   $between
   mkdir -p out
   local sharded=("$@" --shards "$shards" "${runner[@]}" --no-wait)
@@ -102,7 +132,7 @@ slam)
   ;;
 mutate)
   # HC_MUTATE_SUBSET=N: the first N mutants of the list; else all
-  list=$(cd "$(dirname "$0")/../.." && pwd)/mutation/mutations.json
+  list=$src/mutation/mutations.json
   if [ -n "${HC_MUTATE_SUBSET:-}" ]; then
     jq --argjson n "$HC_MUTATE_SUBSET" '.mutants |= .[0:$n]' "$list" > subset.json
     list=$PWD/subset.json
@@ -123,7 +153,7 @@ sweep)
 SPEC
   sweep_cache
   shards=3
-  both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --no-rtl --threads 1
+  both sweep --config spec.json --out out --kitti "$data/kitti" --cache cache --quiet --no-rtl --threads 1
   same_sweep_reports
   echo "sweep: $(($(wc -l < single/sweep.csv) - 1)) configurations in 3 shards: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
   ;;
@@ -135,7 +165,7 @@ sweep_rtl)
   # sharded one each in a shard of its own.
   sweep_rtl_inputs
   shards=1
-  both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1 --backend mcode \
+  both sweep --config spec.json --out out --kitti "$data/kitti" --cache cache --quiet --threads 1 --backend mcode \
     --regression-set streams.txt
   grep -q '^\[shards\] 4/4 done' sharded.log || fail "the sharded run did not report the 4 check shards done"
   for p in m6 thesis; do
@@ -150,7 +180,7 @@ sweep_rtl_no_wait)
   # checks' shards; a second --resume after those renders the report
   sweep_rtl_inputs
   shards=1
-  both_no_wait sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1 \
+  both_no_wait sweep --config spec.json --out out --kitti "$data/kitti" --cache cache --quiet --threads 1 \
     --backend mcode --regression-set streams.txt
   grep -q 'submitted' submit.log || fail "the first command did not say it submitted: $(head -3 submit.log)"
   checks_equal 4 ghdl
@@ -167,7 +197,7 @@ sweep_verilator)
 SPEC
   fresh_trust_cache
   shards=1
-  both sweep --config spec.json --out out --kitti "$data/kitti" --cache "$cache" --quiet --threads 1
+  both sweep --config spec.json --out out --kitti "$data/kitti" --cache cache --quiet --threads 1
   grep -q '^\[shards\] 2/2 done' sharded.log || fail "the sharded run did not report the 2 check shards done"
   checks_equal 2 verilator
   echo "sweep_verilator: 2 Pareto points, each netlist run on KITTI 01 pair 0 in a shard of its own: sweep.csv, sweep.json (timings aside), sweep.md (timing line aside) identical"
