@@ -2,25 +2,11 @@
 // the instance that reads the formats at run time, write by write.
 #include <catch2/catch.hpp>
 
-#include <sstream>
-
 #include "model/driver/host_driver.hpp"
+#include "model/harris/formats_json.hpp"
 #include "model/harris/harris_top.hpp"
 
 using namespace hc;
-
-namespace {
-
-std::string describe(const Formats& f) {
-    std::ostringstream s;
-    s << "sobel_w=" << f.sobel_w << " m_prod_w=" << f.m_prod_w << " m_drop=" << f.m_drop
-      << " bf_sum_w=" << f.bf_sum_w << " bf_drop=" << f.bf_drop << " resp_w=" << f.resp_w
-      << " ktr_w=" << f.ktr_w << " k_shift=" << f.k_shift1 << "," << f.k_shift2
-      << " thr_shift=" << f.thr_shift1 << "," << f.thr_shift2;
-    return s.str();
-}
-
-}  // namespace
 
 TEST_CASE("every compiled instance holds the run-time instance's registers after every write of a 3-frame stream",
           "[model][harris_top]") {
@@ -31,7 +17,7 @@ TEST_CASE("every compiled instance holds the run-time instance's registers after
     const std::vector<Formats> all = compiled_formats();
     REQUIRE(all.front() == Formats{});
     for (const Formats& f : all) {
-        INFO("formats " << describe(f));
+        INFO("formats " << formats_to_json(f));
         HostDriver drv(g, {&a, &b, &c});
         HarrisTop compiled(g, f), run_time(g, f, Specialisation::run_time);
         REQUIRE(compiled.compiled());

@@ -26,11 +26,11 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <sstream>
 #include <string>
 
 #include "model/fixed/word.hpp"
 #include "model/harris/block_filter.hpp"
+#include "model/harris/formats_json.hpp"
 #include "model/harris/harris_pkg.hpp"
 #include "model/harris/harris_response.hpp"
 #include "model/harris/local_maximum.hpp"
@@ -179,18 +179,10 @@ Formats any_formats() {
     f.thr_shift2 = in_range(0, f.resp_w - 1);
     return f;
 }
-std::string describe(const Formats& f) {
-    std::ostringstream s;
-    s << "formats sobel_w=" << f.sobel_w << " m_prod_w=" << f.m_prod_w << " m_drop=" << f.m_drop
-      << " bf_sum_w=" << f.bf_sum_w << " bf_drop=" << f.bf_drop << " resp_w=" << f.resp_w
-      << " ktr_w=" << f.ktr_w << " k_shift=" << f.k_shift1 << "," << f.k_shift2
-      << " thr_shift=" << f.thr_shift1 << "," << f.thr_shift2 << "\n";
-    return s.str();
-}
 /// any_formats(), logged: a failing property's report names its formats.
 Formats any_logged_formats() {
     const Formats f = any_formats();
-    RC_LOG() << describe(f);
+    RC_LOG() << "formats " << formats_to_json(f) << "\n";
     return f;
 }
 hc::Pixels3 any_pixels() {
