@@ -30,7 +30,8 @@ stale() {   # stale DIR KEY: why DIR holds no single-process run of KEY usable n
   fi
 }
 single_run() {   # single_run ARGS...: the single-process run into single/ (HC_SHARD_REFERENCE above)
-  local mode=${HC_SHARD_REFERENCE%%:*} ref=${HC_SHARD_REFERENCE#*:} key why
+  local setting=${HC_SHARD_REFERENCE:-} mode ref key why
+  mode=${setting%%:*} ref=${setting#*:}
   key=$(printf '%s\n' "$bin" "$@")
   if [ "$mode" = read ]; then
     why=$(stale "$ref" "$key")
